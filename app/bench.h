@@ -1,0 +1,37 @@
+// palpation bench: step time against error (design.md section 6, issue 3).
+//
+// For each mesh level x backend x precision x solver setting, the paper-sweep scenario is
+// stepped for a fixed window (dt = 1 ms, the first pushes over the tumour). Per point:
+// median and p99 step time (warm-up excluded), CG iterations, and the error against a
+// reference run on the same mesh (double, CG to 1e-10): force error = relative L2 norm of
+// the finger-force time series, displacement error = relative L2 norm of the node
+// displacements at fixed times. References are cached (model cache folder).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace palpation::app {
+
+struct BenchOptions {
+  std::vector<std::string> meshes{"coarse", "paper", "xfine"};
+  std::vector<std::string> backends;           // empty: every available one
+  std::vector<std::string> precisions{"double", "float"};
+  int steps = 1000;                            // window length
+  int warmup = 50;                             // steps excluded from timing
+  bool quick = false;                          // CI subset: coarse, cpu, few settings
+  std::string out;                             // folder for bench.json/csv/png
+  std::string scenario = "paper-sweep";
+};
+
+struct BenchSetting {
+  double tolerance;
+  int max_iterations;
+};
+
+/// Runs the sweep; prints the table on stdout. Returns the JSON report.
+nlohmann::json run_bench(const BenchOptions& opt);
+
+}  // namespace palpation::app

@@ -1,0 +1,23 @@
+// The `palpation` command line (design.md section 5): one executable, subcommands.
+// Exit codes: 0 success, 2 bad input (one line naming file, field and reason), 1 other
+// failures (a broken device, an internal error).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace palpation::app {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitBadInput = 2;
+
+/// A subcommand registers its options on `sub` and returns the action to run.
+using CommandAction = std::function<int()>;
+
+CommandAction add_scenario_command(CLI::App& app);
+CommandAction add_run_command(CLI::App& app);
+CommandAction add_bench_command(CLI::App& app);
+
+}  // namespace palpation::app

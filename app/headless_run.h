@@ -1,0 +1,46 @@
+// Runs a scenario headless: the simulation stepped as fast as it goes, finger forces
+// sampled at the 1 kHz haptic rate (design.md section 5: fingers.csv, summary.json).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scenario.h"
+#include "simulation.h"
+
+namespace palpation::app {
+
+/// One row of fingers.csv: what a 1 kHz haptic tick sends for one finger.
+struct FingerSample {
+  double t;
+  int finger;
+  Eigen::Vector3d x, f;
+};
+
+struct RunResult {
+  std::vector<FingerSample> samples;   // (ticks x fingers)
+  std::vector<double> step_ms;         // wall time per solved step
+  std::vector<int> cg_iterations;      // per step
+  nlohmann::json summary;
+};
+
+struct RunOptions {
+  bool progress = false;               // progress lines on stderr
+  sim::LogFn log;                      // meshing/backend lines
+};
+
+/// Runs the scenario to its duration. Throws ScenarioError / std::runtime_error.
+RunResult run_headless(const sim::Scenario& s, const RunOptions& opt);
+/// Same, on an existing simulation (reset first).
+RunResult run_headless(sim::Simulation& sim, const RunOptions& opt);
+
+/// Writes fingers.csv (header t,finger,x,y,z,fx,fy,fz).
+void write_fingers_csv(const std::string& path, const std::vector<FingerSample>& samples);
+
+/// Median and percentile of a sample (copy sorted), 0 for an empty one.
+double percentile(std::vector<double> v, double p);
+
+}  // namespace palpation::app

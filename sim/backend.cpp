@@ -1,0 +1,73 @@
+#include "backend.h"
+
+#include <stdexcept>
+
+#include "backend_cpu.h"
+
+#ifdef PALPATION_HAVE_CUDA
+#include "backend_cuda.h"
+#endif
+
+namespace palpation::sim {
+
+bool cuda_available(std::string* why_not) {
+#ifdef PALPATION_HAVE_CUDA
+  return cuda_probe(why_not);
+#else
+  if (why_not) *why_not = "this build has no CUDA backend";
+  return false;
+#endif
+}
+
+std::vector<std::string> available_backends() {
+  std::vector<std::string> out{"cpu"};
+  if (cuda_available()) {
+    out.push_back("cuda");
+    out.push_back("cuda-csr");
+  }
+  return out;
+}
+
+std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params) {
+  if (name == "cpu") return make_cpu_backend(model, params);
+#ifdef PALPATION_HAVE_CUDA
+  std::string why;
+  if (name == "cuda" || name == "cuda-csr") {
+    if (!cuda_available(&why)) throw std::runtime_error("backend " + name + ": " + why);
+    return name == "cuda" ? make_cuda_backend(model, params) : make_cuda_csr_backend(model, params);
+  }
+#endif
+  throw std::runtime_error("backend \"" + name + "\" is not available in this build");
+}
+
+bool cuda_floor(const Model& model, Precision precision, FloorEstimate& out) {
+#ifdef PALPATION_HAVE_CUDA
+  if (!cuda_available()) return false;
+  return cuda_measure_floor(model, precision, out);
+#else
+  (void)model;
+  (void)precision;
+  (void)out;
+  return false;
+#endif
+}
+
+std::unique_ptr<Backend> make_backend(BackendKind kind, const Model& model, const SimParams& params,
+                                      std::string* reason) {
+  std::string why;
+  if (kind == BackendKind::Cuda || kind == BackendKind::Auto) {
+    if (cuda_available(&why)) {
+#ifdef PALPATION_HAVE_CUDA
+      auto b = make_cuda_backend(model, params);
+      if (reason) *reason = "cuda on " + b->device_name();
+      return b;
+#endif
+    }
+    if (kind == BackendKind::Cuda) throw std::runtime_error("solver.backend: cuda was asked for but " + why);
+  }
+  auto b = make_cpu_backend(model, params);
+  if (reason) *reason = kind == BackendKind::Auto ? "cpu (" + why + ")" : "cpu";
+  return b;
+}
+
+}  // namespace palpation::sim

@@ -1,0 +1,71 @@
+// The backend interface: one synchronous step of the whole simulation on one device.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "model.h"
+#include "params.h"
+
+namespace palpation::sim {
+
+/// A backend owns the mutable state (positions, velocities, rotations, solver workspace)
+/// of one Model. It never owns a thread; callers serialise calls.
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;         // "cpu" or "cuda"
+  virtual std::string device_name() const = 0;  // CPU model or GPU name
+  virtual Precision precision() const = 0;
+
+  /// Puts the body at rest in its reference shape, velocities and filters zeroed.
+  virtual void reset() = 0;
+  /// Advances one time step dt with the fingers at their end-of-step poses.
+  /// `out` receives one FingerOutput per input finger.
+  virtual StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) = 0;
+  /// All node positions (nnode x 3, m). Copies from the device: call at display rate.
+  virtual void positions(std::vector<double>& xyz) const = 0;
+  /// All node velocities (nnode x 3, m/s).
+  virtual void velocities(std::vector<double>& xyz) const = 0;
+  /// Re-reads per-element materials from the model (after painting a tumour).
+  virtual void update_materials() = 0;
+  /// Changes solver/contact/damping parameters between steps.
+  virtual void set_params(const SimParams& p) = 0;
+  virtual const SimParams& params() const = 0;
+};
+
+enum class BackendKind { Auto, Cpu, Cuda };
+
+/// Makes a backend. `model` must outlive it. Throws std::runtime_error with a clear
+/// message when the kind asked for is unavailable (cuda without a GPU).
+std::unique_ptr<Backend> make_backend(BackendKind kind, const Model& model, const SimParams& params,
+                                      std::string* chosen_reason = nullptr);
+
+/// True when this build has the CUDA backend and a usable GPU is present.
+bool cuda_available(std::string* why_not = nullptr);
+
+/// Every backend this build and machine can run, by name: "cpu"; with a GPU also "cuda"
+/// (the fast one) and "cuda-csr" (the textbook baseline: assembled CSR, cuSPARSE SpMV,
+/// cuBLAS dot/axpy, the host driving each CG iteration).
+std::vector<std::string> available_backends();
+/// Makes a backend by name. Throws std::runtime_error for an unknown/unavailable one.
+std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params);
+
+/// The floor of one CG iteration on the GPU: the bytes it must move and the grid-wide
+/// synchronisations it needs, turned into a time with the bandwidth and sync cost
+/// measured on the device now.
+struct FloorEstimate {
+  double bytes_per_iteration = 0;      // B
+  int syncs_per_iteration = 0;
+  double bandwidth_gbs = 0;            // measured, GB/s (read + write)
+  double sync_us = 0;                  // measured cost of one grid-wide sync, us
+  double iteration_us = 0;             // bytes / bandwidth + syncs * sync_us
+  double step_fixed_us = 0;            // per-step work outside CG (assembly etc.) floor
+  std::string device;
+};
+/// Measures it (CUDA builds with a GPU); false otherwise.
+bool cuda_floor(const Model& model, Precision precision, FloorEstimate& out);
+
+}  // namespace palpation::sim

@@ -1,0 +1,307 @@
+// One step (design.md section 4), per time step h:
+//   1. per element: F, rotation R (warm-started), elastic force, rotated stiffness blocks,
+//      K v (for the right-hand side);
+//   2. penalty contact on surface vertices inside finger spheres, k_s n n^T and
+//      k_e n n^T added to the diagonal blocks;
+//   3. solve (M + h C + h^2 K) dv = h (f - h K v), C = alpha M + beta K + contact damping,
+//      by block-Jacobi preconditioned CG, warm-started with the previous dv, over the
+//      free nodes only (the chest wall is removed from the system);
+//   4. v += dv, x += h v; finger forces re-evaluated at the new state, low-pass filtered.
+#include "backend_cpu.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include <Eigen/Dense>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "contact_sphere.h"
+#include "fem_corotational.h"
+#include "solve_cg.h"
+
+namespace palpation::sim {
+
+std::string cpu_name() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  }
+  return "CPU";
+}
+
+namespace {
+
+// Below this many free nodes a parallel region costs more than it saves (measured:
+// see docs/benchmarks.md, "threads").
+constexpr int kParallelMinFree = 3000;
+
+template <class T>
+class CpuBackend final : public Backend {
+ public:
+  using V3 = fem::Vec3<T>;
+  using M3 = fem::Mat3<T>;
+
+  CpuBackend(const Model& model, const SimParams& params) : m_(model), p_(params) {
+    const int nn = m_.num_nodes(), ne = m_.num_tets(), nf = m_.num_free();
+    x_.resize(3 * nn);
+    v_.resize(3 * nn);
+    q_.resize(ne);
+    blocks_.resize(9 * std::size_t(m_.num_blocks()));
+    b_.resize(3 * nf);
+    dv_.resize(3 * nf);
+    kv_.resize(3 * nf);
+    precond_.resize(9 * std::size_t(nf));
+    cg_.resize(3 * nf);
+    update_materials();
+    reset();
+  }
+
+  std::string name() const override { return "cpu"; }
+  std::string device_name() const override { return cpu_name(); }
+  Precision precision() const override {
+    return std::is_same_v<T, double> ? Precision::Double : Precision::Float;
+  }
+  const SimParams& params() const override { return p_; }
+  void set_params(const SimParams& p) override { p_ = p; }
+
+  void update_materials() override {
+    const int ne = m_.num_tets();
+    lambda_.resize(ne);
+    mu_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      lambda_[e] = T(m_.lambda[e]);
+      mu_[e] = T(m_.mu[e]);
+    }
+    rested_ = false;
+  }
+
+  void reset() override {
+    for (int i = 0; i < m_.num_nodes(); ++i)
+      for (int k = 0; k < 3; ++k) x_[3 * i + k] = T(m_.rest[i][k]);
+    std::fill(v_.begin(), v_.end(), T(0));
+    std::fill(dv_.begin(), dv_.end(), T(0));
+    for (auto& q : q_) q.setIdentity();
+    filtered_.clear();
+    rested_ = p_.gravity.squaredNorm() == 0;
+  }
+
+  void positions(std::vector<double>& xyz) const override { xyz.assign(x_.begin(), x_.end()); }
+  void velocities(std::vector<double>& xyz) const override { xyz.assign(v_.begin(), v_.end()); }
+
+  StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
+    StepStats st;
+    const T h = T(p_.solver.dt);
+    const int nf = m_.num_free();
+    if (filtered_.size() != fingers.size()) filtered_.assign(fingers.size(), Eigen::Vector3d::Zero());
+
+    // Contact detection at the start-of-step positions against end-of-step fingers.
+    surface_bounds();
+    contact::detect<T>(fingers, m_.surface_nodes, x_.data(), bounds_, contacts_);
+    st.contacts = static_cast<int>(contacts_.size());
+
+    // Skip what the scene does not need: no contact and at rest -> no solve.
+    if (contacts_.empty() && rested_) {
+      finger_outputs(fingers, out);
+      return st;
+    }
+
+    assemble();
+    add_gravity_and_damping_rhs(h);
+    add_contacts(fingers, h);
+
+    cg::BlockSystem<T> sys{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data(), precond_.data()};
+    const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
+                               cg_, parallel());
+    st.cg_iterations = res.iterations;
+    st.cg_residual = res.relative_residual;
+    st.solved = true;
+
+    T vmax = 0, dvmax = 0;
+    for (int i = 0; i < nf; ++i) {
+      const int node = m_.free_nodes[i];
+      for (int k = 0; k < 3; ++k) {
+        T& v = v_[3 * node + k];
+        v += dv_[3 * i + k];
+        x_[3 * node + k] += h * v;
+        vmax = std::max(vmax, std::abs(v));
+        dvmax = std::max(dvmax, std::abs(dv_[3 * i + k]));
+      }
+    }
+    st.finite = std::isfinite(double(vmax)) && std::isfinite(double(res.relative_residual));
+    // At rest: no contact, velocities and their change negligible (1 um/s).
+    if (contacts_.empty() && vmax < T(1e-6) && dvmax < T(1e-7)) {
+      std::fill(v_.begin(), v_.end(), T(0));
+      rested_ = true;
+    } else {
+      rested_ = false;
+    }
+    finger_outputs(fingers, out);
+    for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
+    return st;
+  }
+
+ private:
+  bool parallel() const { return m_.num_free() >= kParallelMinFree && p_.solver.threads != 1; }
+
+  void surface_bounds() {
+    contact::Bounds b;
+    for (int node : m_.surface_nodes)
+      for (int k = 0; k < 3; ++k) {
+        b.lo[k] = std::min(b.lo[k], double(x_[3 * node + k]));
+        b.hi[k] = std::max(b.hi[k], double(x_[3 * node + k]));
+      }
+    bounds_ = b;
+  }
+
+  // Elastic forces into b_ (as f), rotated stiffness into blocks_, K v into kv_.
+  void assemble() {
+    std::fill(blocks_.begin(), blocks_.end(), T(0));
+    std::fill(b_.begin(), b_.end(), T(0));
+    std::fill(kv_.begin(), kv_.end(), T(0));
+    const T h = T(p_.solver.dt);
+    const T kscale = h * h + h * T(p_.damping.stiffness);  // h^2 K + h beta K
+    const bool par = parallel();
+    for (const auto& colour : m_.colours) {
+      const int count = static_cast<int>(colour.size());
+#pragma omp parallel for schedule(static) if (par)
+      for (int c = 0; c < count; ++c) element(colour[c], kscale);
+    }
+    // Mass terms on the diagonal: (1 + h alpha) M.
+    const T mscale = T(1) + h * T(p_.damping.mass);
+    for (int i = 0; i < m_.num_free(); ++i) {
+      T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
+      const T mm = mscale * T(m_.mass[m_.free_nodes[i]]);
+      d[0] += mm;
+      d[4] += mm;
+      d[8] += mm;
+    }
+  }
+
+  void element(int e, T kscale) {
+    const auto& t = m_.tets[e];
+    V3 x[4], g[4], r[4], f[4], vv[4], kv[4];
+    for (int a = 0; a < 4; ++a) {
+      x[a] = V3(x_[3 * t[a]], x_[3 * t[a] + 1], x_[3 * t[a] + 2]);
+      vv[a] = V3(v_[3 * t[a]], v_[3 * t[a] + 1], v_[3 * t[a] + 2]);
+      g[a] = m_.grad[e][a].template cast<T>();
+    }
+    const M3 F = fem::deformation_gradient<T>(x, g);
+    fem::extract_rotation<T>(F, q_[e]);
+    const M3 R = q_[e].toRotationMatrix();
+    const T vol = T(m_.volume[e]);
+    fem::element_forces<T>(F, R, g, vol, lambda_[e], mu_[e], f);
+    for (int a = 0; a < 4; ++a) r[a] = R * g[a];
+    fem::stiffness_apply<T>(r, vol, lambda_[e], mu_[e], vv, kv);
+    for (int a = 0; a < 4; ++a) {
+      const int ia = m_.dof[t[a]];
+      if (ia < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        b_[3 * ia + k] += f[a][k];
+        kv_[3 * ia + k] += kv[a][k];
+      }
+      for (int b = 0; b < 4; ++b) {
+        const int blk = m_.tet_block[e][4 * a + b];
+        if (blk < 0) continue;
+        const M3 K = fem::stiffness_block<T>(r[a], r[b], g[a].dot(g[b]), vol, lambda_[e], mu_[e]);
+        T* dst = &blocks_[9 * std::size_t(blk)];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) dst[3 * i + j] += kscale * K(i, j);
+      }
+    }
+  }
+
+  // b = h (f_el + m g - alpha M v - (beta + h) K v); contact terms are added after.
+  void add_gravity_and_damping_rhs(T h) {
+    const T alpha = T(p_.damping.mass), beta = T(p_.damping.stiffness);
+    for (int i = 0; i < m_.num_free(); ++i) {
+      const int node = m_.free_nodes[i];
+      const T mass = T(m_.mass[node]);
+      for (int k = 0; k < 3; ++k) {
+        const T f = b_[3 * i + k] + mass * T(p_.gravity[k]) - alpha * mass * v_[3 * node + k] -
+                    (beta + h) * kv_[3 * i + k];
+        b_[3 * i + k] = h * f;
+      }
+    }
+  }
+
+  void add_contacts(std::span<const FingerInput> fingers, T h) {
+    const double ks = p_.contact.stiffness, ke = p_.contact.damping;
+    for (const auto& c : contacts_) {
+      const int i = m_.dof[c.node];
+      if (i < 0) continue;
+      const Eigen::Vector3d vn(v_[3 * c.node], v_[3 * c.node + 1], v_[3 * c.node + 2]);
+      const double rate = -c.n.dot(vn - fingers[c.finger].velocity);
+      const double mag = contact::penalty(ks, ke, c.depth, rate);
+      if (mag <= 0) continue;
+      // Linearised: f(x + h v') ~ f - h ks n n^T v', damping ke n n^T on v'.
+      const Eigen::Matrix3d nn = c.n * c.n.transpose();
+      const Eigen::Vector3d rhs = h * (mag * c.n - double(h) * ks * nn * vn);
+      const Eigen::Matrix3d A = (double(h) * double(h) * ks + double(h) * ke) * nn;
+      T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
+      for (int r = 0; r < 3; ++r) {
+        b_[3 * i + r] += T(rhs[r]);
+        for (int s = 0; s < 3; ++s) d[3 * r + s] += T(A(r, s));
+      }
+    }
+  }
+
+  // Forces on the fingers at the end-of-step state, low-pass filtered.
+  void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
+    const double ks = p_.contact.stiffness, ke = p_.contact.damping;
+    const double h = p_.solver.dt;
+    const double a = 1.0 - std::exp(-2.0 * M_PI * p_.contact.force_filter_hz * h);
+    surface_bounds();
+    contact::detect<T>(fingers, m_.surface_nodes, x_.data(), bounds_, contacts_);
+    for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
+    for (const auto& c : contacts_) {
+      const Eigen::Vector3d vn(v_[3 * c.node], v_[3 * c.node + 1], v_[3 * c.node + 2]);
+      const double rate = -c.n.dot(vn - fingers[c.finger].velocity);
+      const double mag = contact::penalty(ks, ke, c.depth, rate);
+      FingerOutput& o = out[c.finger];
+      o.force_raw -= mag * c.n;
+      o.stiffness -= ks * c.n * c.n.transpose();
+      o.contact_point += Eigen::Vector3d(x_[3 * c.node], x_[3 * c.node + 1], x_[3 * c.node + 2]);
+      ++o.contacts;
+    }
+    for (std::size_t f = 0; f < out.size() && f < fingers.size(); ++f) {
+      FingerOutput& o = out[f];
+      if (o.contacts > 0) o.contact_point /= o.contacts;
+      const double fn = o.force_raw.norm();
+      o.normal = fn > 0 ? Eigen::Vector3d(o.force_raw / fn) : Eigen::Vector3d::Zero();
+      filtered_[f] += a * (o.force_raw - filtered_[f]);
+      o.force = filtered_[f];
+    }
+  }
+
+  const Model& m_;
+  SimParams p_;
+  std::vector<T> x_, v_;                     // (nnode x 3) state
+  std::vector<Eigen::Quaternion<T>> q_;      // (ntet) element rotations, warm start
+  std::vector<T> lambda_, mu_;               // (ntet) materials in T
+  std::vector<T> blocks_;                    // (nblock x 9) system matrix
+  std::vector<T> b_, dv_, kv_;               // (nfree x 3)
+  std::vector<T> precond_;                   // (nfree x 9) inverse diagonal blocks
+  cg::Workspace<T> cg_;
+  std::vector<contact::VertexContact> contacts_;
+  std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
+  contact::Bounds bounds_;
+  bool rested_ = true;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cpu_backend(const Model& model, const SimParams& params) {
+  if (params.solver.precision == Precision::Float) return std::make_unique<CpuBackend<float>>(model, params);
+  return std::make_unique<CpuBackend<double>>(model, params);
+}
+
+}  // namespace palpation::sim

@@ -1,0 +1,149 @@
+#include "mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace palpation::sim {
+
+double tet_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                  const Eigen::Vector3d& d) {
+  return (b - a).dot((c - a).cross(d - a)) / 6.0;
+}
+
+int TetMesh::orient() {
+  int flipped = 0;
+  for (auto& t : tets) {
+    if (tet_volume(nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]) < 0) {
+      std::swap(t[2], t[3]);
+      ++flipped;
+    }
+  }
+  return flipped;
+}
+
+std::string TetMesh::validate() const {
+  std::ostringstream why;
+  if (nodes.empty()) return "mesh has no nodes";
+  if (tets.empty()) return "mesh has no tetrahedra";
+  if (!region.empty() && region.size() != tets.size()) return "region tags do not match tetrahedra";
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (!nodes[i].allFinite()) {
+      why << "node " << i << " has a non-finite coordinate";
+      return why.str();
+    }
+  }
+  const int n = num_nodes();
+  for (std::size_t e = 0; e < tets.size(); ++e) {
+    const auto& t = tets[e];
+    for (int k = 0; k < 4; ++k) {
+      if (t[k] < 0 || t[k] >= n) {
+        why << "tetrahedron " << e << " refers to node " << t[k] << " of " << n;
+        return why.str();
+      }
+    }
+    const double v = std::abs(tet_volume(nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]));
+    if (!(v > 0)) {
+      why << "tetrahedron " << e << " is degenerate (zero volume)";
+      return why.str();
+    }
+  }
+  return {};
+}
+
+std::vector<std::array<int, 3>> TetMesh::boundary_faces() const {
+  // Faces of a positively oriented tet (a,b,c,d), outward normals.
+  static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> seen;
+  for (const auto& t : tets) {
+    const bool pos = tet_volume(nodes[t[0]], nodes[t[1]], nodes[t[2]], nodes[t[3]]) > 0;
+    for (const auto& f : kFace) {
+      std::array<int, 3> tri{t[f[0]], t[f[1]], t[f[2]]};
+      if (!pos) std::swap(tri[1], tri[2]);
+      std::array<int, 3> key = tri;
+      std::sort(key.begin(), key.end());
+      auto it = seen.find(key);
+      if (it == seen.end())
+        seen.emplace(key, std::make_pair(1, tri));
+      else
+        ++it->second.first;
+    }
+  }
+  std::vector<std::array<int, 3>> out;
+  for (const auto& [key, v] : seen)
+    if (v.first == 1) out.push_back(v.second);
+  return out;
+}
+
+void TetMesh::bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
+  lo = Eigen::Vector3d::Constant(1e300);
+  hi = Eigen::Vector3d::Constant(-1e300);
+  for (const auto& p : nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+}
+
+std::uint64_t TetMesh::hash() const {
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+      h ^= p[i];
+      h *= 1099511628211ull;
+    }
+  };
+  mix(nodes.data(), nodes.size() * sizeof(Eigen::Vector3d));
+  mix(tets.data(), tets.size() * sizeof(tets[0]));
+  mix(region.data(), region.size() * sizeof(int));
+  return h;
+}
+
+TetMesh make_box_mesh(const Eigen::Vector3d& size, int nx, int ny, int nz) {
+  TetMesh m;
+  nx = std::max(nx, 1);
+  ny = std::max(ny, 1);
+  nz = std::max(nz, 1);
+  auto id = [&](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
+  m.nodes.reserve(static_cast<std::size_t>((nx + 1) * (ny + 1) * (nz + 1)));
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i)
+        m.nodes.emplace_back(size.x() * (double(i) / nx - 0.5), size.y() * (double(j) / ny - 0.5),
+                             size.z() * double(k) / nz);
+  // Kuhn subdivision of each cube into 6 tets along the main diagonal (0 -> 7): all
+  // cubes use the same pattern, so shared faces are split the same way (conforming).
+  static const int kPaths[6][3] = {{1, 3, 7}, {1, 5, 7}, {2, 3, 7}, {2, 6, 7}, {4, 5, 7}, {4, 6, 7}};
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        int c[8];
+        for (int b = 0; b < 8; ++b) c[b] = id(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1));
+        for (const auto& p : kPaths) m.tets.push_back({c[0], c[p[0]], c[p[1]], c[7]});
+      }
+  m.region.assign(m.tets.size(), 0);
+  m.orient();
+  return m;
+}
+
+void grade_box_mesh(TetMesh& mesh, const Eigen::Vector3d& size, double grading) {
+  if (grading == 1.0) return;
+  for (auto& p : mesh.nodes) {
+    for (int k = 0; k < 2; ++k) {
+      const double u = p[k] / (0.5 * size[k]);
+      p[k] = 0.5 * size[k] * std::copysign(std::pow(std::abs(u), grading), u);
+    }
+    const double w = p.z() / size.z();
+    p.z() = size.z() * (1.0 - std::pow(1.0 - w, grading));
+  }
+}
+
+TetMesh make_box_mesh(const Eigen::Vector3d& size, double edge, double grading) {
+  auto cells = [edge](double s) { return std::max(1, static_cast<int>(std::lround(s / edge))); };
+  TetMesh m = make_box_mesh(size, cells(size.x()), cells(size.y()), cells(size.z()));
+  grade_box_mesh(m, size, grading);
+  return m;
+}
+
+}  // namespace palpation::sim

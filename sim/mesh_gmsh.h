@@ -1,0 +1,29 @@
+// Gmsh, behind this one header (design.md: Gmsh for meshing only, behind one file).
+// Implemented in mesh_gmsh.cpp when the build has Gmsh, else in mesh_gmsh_none.cpp,
+// whose functions throw a clear error.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mesh.h"
+#include "phantom.h"
+#include "scenario.h"
+
+namespace palpation::sim {
+
+/// True when this build links Gmsh.
+bool gmsh_available();
+
+/// Tetrahedralises the breast phantom with target edge length `edge` (m). The inclusions'
+/// surfaces are embedded (elements conform to them, region tag i+1 for inclusion i) and
+/// the mesh is refined inside and around them. Throws std::runtime_error.
+TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inclusion>& inclusions,
+                    const LogFn& log);
+
+/// Reads a volume mesh file Gmsh understands (.msh v2/v4, .vtk, .mesh, ...): its linear
+/// tetrahedra, physical/elementary volume tags as region. Throws std::runtime_error
+/// naming the file and the reason.
+TetMesh gmsh_read_volume(const std::string& path);
+
+}  // namespace palpation::sim

@@ -1,0 +1,87 @@
+// The immutable tissue model (MuJoCo's mjModel idea): everything that does not change
+// while a session runs. The mutable state lives in the backends.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mesh.h"
+
+namespace palpation::sim {
+
+/// Isotropic linear-elastic material.
+/// @param young_modulus  Pa, > 0
+/// @param poisson_ratio  -1 < nu < 0.5
+/// @param density        kg/m^3, > 0
+struct Material {
+  double young_modulus = 19000.0;
+  double poisson_ratio = 0.45;
+  double density = 1000.0;
+};
+
+/// Lame parameters of a material: lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)).
+inline void lame(double E, double nu, double& lambda, double& mu) {
+  lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  mu = E / (2.0 * (1.0 + nu));
+}
+
+/// Precomputed rest-state data of a corotational linear-tetrahedron model.
+///
+/// Element stiffness in the rest frame, for the linear tetrahedron with shape-function
+/// gradients g_a (a = 0..3), volume V and Lame parameters lambda, mu:
+///   K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I)
+/// so the four gradients, V, lambda and mu are all the element needs (12 numbers + 3)
+/// instead of a 12 x 12 matrix. Corotation replaces g_a by R g_a.
+struct Model {
+  // Geometry ------------------------------------------------------------------
+  std::vector<Eigen::Vector3d> rest;        // (nnode) rest positions, m
+  std::vector<std::array<int, 4>> tets;     // (ntet) positively oriented
+  std::vector<int> region;                  // (ntet) region tag from the mesh
+  std::vector<std::array<int, 3>> surface;  // (nsurf) boundary triangles, outward
+  std::vector<int> surface_nodes;           // (nsurfnode) nodes on the boundary
+  // Elements ------------------------------------------------------------------
+  std::vector<double> young;                // (ntet) Pa
+  std::vector<double> poisson;              // (ntet)
+  std::vector<double> volume;               // (ntet) m^3
+  std::vector<double> lambda, mu;           // (ntet) Pa
+  std::vector<std::array<Eigen::Vector3d, 4>> grad;  // (ntet x 4) shape gradients, 1/m
+  std::vector<Eigen::Matrix3d> dm_inv;      // (ntet) inverse rest edge matrix
+  // Nodes ---------------------------------------------------------------------
+  std::vector<double> mass;                 // (nnode) lumped, kg
+  std::vector<unsigned char> fixed;         // (nnode) 1 = Dirichlet (chest wall)
+  std::vector<int> dof;                     // (nnode) free index, -1 when fixed
+  std::vector<int> free_nodes;              // (nfree) node of each free index
+  // Sparsity of the free-free system in 3x3 blocks (block CSR, full symmetric storage).
+  std::vector<int> row_ptr;                 // (nfree + 1)
+  std::vector<int> col;                     // (nblock) free column index
+  std::vector<int> diag_block;              // (nfree) block index of the diagonal
+  std::vector<std::array<int, 16>> tet_block;  // (ntet x 4 x 4) block of (a,b), -1 if fixed
+  // Element colouring: elements of one colour share no free node (race-free scatter).
+  std::vector<std::vector<int>> colours;
+  Material tissue;                          // bulk material (for reporting)
+  double density = 1000.0;
+
+  int num_nodes() const { return static_cast<int>(rest.size()); }
+  int num_tets() const { return static_cast<int>(tets.size()); }
+  int num_free() const { return static_cast<int>(free_nodes.size()); }
+  int num_blocks() const { return static_cast<int>(col.size()); }
+
+  /// Changes one element's material (painting a tumour) without rebuilding anything else.
+  void set_element_material(int e, double young_modulus, double poisson_ratio);
+};
+
+/// Which nodes are fixed: by default the chest-wall base (z <= base_tolerance).
+using FixedPredicate = std::function<bool(const Eigen::Vector3d&)>;
+
+/// Builds a model from a mesh. Every element gets `tissue`; inclusions are applied
+/// afterwards with set_element_material. Throws std::invalid_argument on a bad mesh.
+Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed);
+
+/// Fixed predicate for the chest wall: z below `height` (m).
+FixedPredicate fix_base(double height = 1e-9);
+
+}  // namespace palpation::sim

@@ -1,0 +1,69 @@
+// Run-time parameters of the simulation (what a scenario's tissue/solver/contact set).
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+namespace palpation::sim {
+
+enum class Precision { Double, Float };
+
+struct SolverParams {
+  double dt = 0.001;               // s, time step (backward Euler)
+  double cg_tolerance = 1e-6;      // relative residual ||r|| / ||b||
+  int cg_max_iterations = 200;
+  Precision precision = Precision::Double;
+  int threads = 0;                 // CPU threads, 0 = all cores where it pays
+};
+
+/// Rayleigh damping C = alpha M + beta K.
+struct DampingParams {
+  double mass = 1.0;               // alpha, 1/s
+  double stiffness = 0.01;         // beta, s
+};
+
+/// Penalty contact between a fingertip sphere and the surface vertices (paper eq. 1):
+///   F = -k_s d - k_e v   per vertex in contact,
+/// d the penetration depth, v its rate. Enters the implicit system as k_s n n^T.
+struct ContactParams {
+  double stiffness = 2000.0;       // k_s, N/m per vertex
+  double damping = 5.0;            // k_e, N s/m per vertex
+  double force_filter_hz = 100.0;  // first-order low-pass cutoff of the finger force
+};
+
+struct SimParams {
+  SolverParams solver;
+  DampingParams damping;
+  ContactParams contact;
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s^2
+};
+
+/// One fingertip as the simulation sees it: a rigid sphere.
+struct FingerInput {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // sphere centre, m, world
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s
+  double radius = 0.008;                               // m
+  bool active = true;
+};
+
+/// What a step yields per finger: the force and a local contact model that the 1 kHz
+/// haptic loop re-evaluates between simulation updates.
+struct FingerOutput {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();      // filtered, on the finger, N
+  Eigen::Vector3d force_raw = Eigen::Vector3d::Zero();  // unfiltered sum, N
+  Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  // d(force)/d(finger position), N/m
+  Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();  // mean contact vertex, m
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();     // unit, from surface to finger
+  int contacts = 0;                                     // vertices in contact
+};
+
+struct StepStats {
+  int cg_iterations = 0;
+  double cg_residual = 0.0;        // relative, at exit
+  bool solved = false;             // false when the step was skipped (body at rest)
+  bool finite = true;
+  int contacts = 0;
+};
+
+}  // namespace palpation::sim

@@ -1,0 +1,366 @@
+#include "scenario.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "phantom.h"
+
+namespace palpation::sim {
+
+using nlohmann::json;
+
+namespace {
+
+// Parsing context: every error names the file and the dotted field path.
+class Reader {
+ public:
+  explicit Reader(std::string source) : source_(std::move(source)) {}
+
+  [[noreturn]] void fail(const std::string& field, const std::string& why) const {
+    throw ScenarioError(source_ + ": " + (field.empty() ? std::string("(top level)") : field) + ": " + why);
+  }
+
+  void only_keys(const json& obj, const std::string& field, std::initializer_list<const char*> keys) const {
+    if (!obj.is_object()) fail(field, "must be an object");
+    std::set<std::string> allowed;
+    for (const char* k : keys) allowed.insert(k);
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+      if (!allowed.count(it.key())) {
+        std::string list;
+        for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
+        fail(join(field, it.key()), "unknown key (allowed: " + list + ")");
+      }
+  }
+
+  static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+
+  double number(const json& v, const std::string& field) const {
+    if (!v.is_number()) fail(field, "must be a number, got " + std::string(v.type_name()));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(field, "must be finite");
+    return d;
+  }
+  double positive(const json& v, const std::string& field) const {
+    const double d = number(v, field);
+    if (!(d > 0)) fail(field, "must be > 0, got " + fmt(d));
+    return d;
+  }
+  double non_negative(const json& v, const std::string& field) const {
+    const double d = number(v, field);
+    if (d < 0) fail(field, "must be >= 0, got " + fmt(d));
+    return d;
+  }
+  double poisson(const json& v, const std::string& field) const {
+    const double d = number(v, field);
+    if (!(d > -1.0 && d < 0.5)) fail(field, "must be in (-1, 0.5), got " + fmt(d));
+    return d;
+  }
+  int integer(const json& v, const std::string& field, int lo, int hi) const {
+    if (!v.is_number_integer()) fail(field, "must be an integer");
+    const auto i = v.get<long long>();
+    if (i < lo || i > hi) fail(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return static_cast<int>(i);
+  }
+  std::string string(const json& v, const std::string& field) const {
+    if (!v.is_string()) fail(field, "must be a string");
+    return v.get<std::string>();
+  }
+  std::string choice(const json& v, const std::string& field, std::initializer_list<const char*> options) const {
+    const std::string s = string(v, field);
+    std::string list;
+    for (const char* o : options) {
+      if (s == o) return s;
+      list += std::string(list.empty() ? "" : ", ") + o;
+    }
+    fail(field, "must be one of " + list + ", got \"" + s + "\"");
+  }
+  Eigen::Vector3d vec3(const json& v, const std::string& field) const {
+    if (!v.is_array() || v.size() != 3) fail(field, "must be an array of 3 numbers");
+    return {number(v[0], field + "[0]"), number(v[1], field + "[1]"), number(v[2], field + "[2]")};
+  }
+  static std::string fmt(double d) {
+    std::ostringstream o;
+    o << d;
+    return o.str();
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace
+
+void FingerPath::sample(double t, Eigen::Vector3d& pos, Eigen::Vector3d& vel) const {
+  vel.setZero();
+  if (keys.empty()) {
+    pos.setZero();
+    return;
+  }
+  auto at = [this](std::size_t i) { return Eigen::Vector3d(keys[i][1], keys[i][2], keys[i][3]); };
+  if (t <= keys.front()[0]) {
+    pos = at(0);
+    return;
+  }
+  if (t >= keys.back()[0]) {
+    pos = at(keys.size() - 1);
+    return;
+  }
+  // Binary search for the segment.
+  std::size_t lo = 0, hi = keys.size() - 1;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (keys[mid][0] <= t ? lo : hi) = mid;
+  }
+  const double t0 = keys[lo][0], t1 = keys[hi][0];
+  const double u = (t - t0) / (t1 - t0);
+  pos = (1 - u) * at(lo) + u * at(hi);
+  vel = (at(hi) - at(lo)) / (t1 - t0);
+}
+
+std::vector<std::string> resolution_names() { return {"coarse", "paper", "fine", "xfine"}; }
+
+std::optional<double> resolution_edge(const std::string& phantom, const std::string& name) {
+  // Breast edge lengths were chosen so that "paper" gives about the paper's 9,100 nodes /
+  // 44,000 tetrahedra and "xfine" about ten times that (see docs/benchmarks.md).
+  if (phantom == "breast") {
+    if (name == "coarse") return 0.0105;
+    if (name == "paper") return 0.0050;
+    if (name == "fine") return 0.0033;
+    if (name == "xfine") return 0.00225;
+  } else {
+    if (name == "coarse") return 0.01;
+    if (name == "paper") return 0.005;
+    if (name == "fine") return 0.0025;
+    if (name == "xfine") return 0.00125;
+  }
+  return std::nullopt;
+}
+
+Scenario parse_scenario(const std::string& text, const std::string& source) {
+  Reader rd(source);
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    throw ScenarioError(source + ": (syntax): malformed JSON at byte " + std::to_string(e.byte) + ": " +
+                        what.substr(what.find(':') + 2));
+  }
+  rd.only_keys(j, "", {"patient", "tissue", "inclusions", "solver", "contact", "fingers", "duration", "gravity"});
+  Scenario s;
+  s.source = source;
+
+  if (!j.contains("patient")) rd.fail("patient", "is required");
+  {
+    const json& p = j["patient"];
+    rd.only_keys(p, "patient", {"phantom", "mesh", "resolution", "size", "grading"});
+    if (p.contains("mesh") == p.contains("phantom")) rd.fail("patient", "give exactly one of \"phantom\" or \"mesh\"");
+    if (p.contains("phantom")) s.patient.phantom = rd.choice(p["phantom"], "patient.phantom", {"breast", "box"});
+    if (p.contains("mesh")) {
+      s.patient.phantom.clear();
+      std::filesystem::path mp = rd.string(p["mesh"], "patient.mesh");
+      if (mp.empty()) rd.fail("patient.mesh", "is empty");
+      if (mp.is_relative()) mp = std::filesystem::path(source).parent_path() / mp;
+      s.patient.mesh = mp.string();
+    }
+    if (p.contains("size")) {
+      if (s.patient.phantom != "box") rd.fail("patient.size", "only the box phantom takes a size");
+      s.patient.size = rd.vec3(p["size"], "patient.size");
+      for (int k = 0; k < 3; ++k)
+        if (!(s.patient.size[k] > 0)) rd.fail("patient.size", "every side must be > 0");
+    }
+    if (p.contains("grading")) {
+      if (s.patient.phantom != "box") rd.fail("patient.grading", "only the box phantom takes a grading");
+      s.patient.grading = rd.number(p["grading"], "patient.grading");
+      if (s.patient.grading < 1.0 || s.patient.grading > 3.0) rd.fail("patient.grading", "must be in [1, 3]");
+    }
+    if (p.contains("resolution")) {
+      const json& r = p["resolution"];
+      if (r.is_string()) {
+        s.patient.resolution = r.get<std::string>();
+        auto e = resolution_edge(s.patient.phantom, s.patient.resolution);
+        if (!e) rd.fail("patient.resolution", "unknown level \"" + s.patient.resolution + "\" (coarse, paper, fine, xfine, or an edge length in m)");
+        s.patient.edge = *e;
+      } else {
+        s.patient.edge = rd.positive(r, "patient.resolution");
+        s.patient.resolution.clear();
+        if (s.patient.edge < 5e-4 || s.patient.edge > 0.05)
+          rd.fail("patient.resolution", "edge length must be in [0.0005, 0.05] m");
+      }
+    } else {
+      s.patient.edge = *resolution_edge(s.patient.phantom, s.patient.resolution);
+    }
+  }
+
+  if (j.contains("tissue")) {
+    const json& t = j["tissue"];
+    rd.only_keys(t, "tissue", {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness"});
+    if (t.contains("young_modulus")) s.young_modulus = rd.positive(t["young_modulus"], "tissue.young_modulus");
+    if (t.contains("poisson_ratio")) s.poisson_ratio = rd.poisson(t["poisson_ratio"], "tissue.poisson_ratio");
+    if (t.contains("density")) s.density = rd.positive(t["density"], "tissue.density");
+    if (t.contains("damping_mass")) s.params.damping.mass = rd.non_negative(t["damping_mass"], "tissue.damping_mass");
+    if (t.contains("damping_stiffness"))
+      s.params.damping.stiffness = rd.non_negative(t["damping_stiffness"], "tissue.damping_stiffness");
+  }
+
+  if (j.contains("inclusions")) {
+    const json& arr = j["inclusions"];
+    if (!arr.is_array()) rd.fail("inclusions", "must be an array");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string f = "inclusions[" + std::to_string(i) + "]";
+      const json& in = arr[i];
+      rd.only_keys(in, f, {"shape", "center", "radius", "radii", "young_modulus", "poisson_ratio"});
+      Inclusion inc;
+      inc.shape = in.contains("shape") ? rd.choice(in["shape"], f + ".shape", {"sphere", "ellipsoid"}) : "sphere";
+      if (!in.contains("center")) rd.fail(f + ".center", "is required");
+      inc.center = rd.vec3(in["center"], f + ".center");
+      if (inc.shape == "sphere") {
+        if (!in.contains("radius")) rd.fail(f + ".radius", "is required for a sphere");
+        if (in.contains("radii")) rd.fail(f + ".radii", "a sphere takes \"radius\"");
+        inc.radii = Eigen::Vector3d::Constant(rd.positive(in["radius"], f + ".radius"));
+      } else {
+        if (!in.contains("radii")) rd.fail(f + ".radii", "is required for an ellipsoid");
+        if (in.contains("radius")) rd.fail(f + ".radius", "an ellipsoid takes \"radii\"");
+        inc.radii = rd.vec3(in["radii"], f + ".radii");
+        for (int k = 0; k < 3; ++k)
+          if (!(inc.radii[k] > 0)) rd.fail(f + ".radii", "every radius must be > 0");
+      }
+      inc.young_modulus = in.contains("young_modulus") ? rd.positive(in["young_modulus"], f + ".young_modulus") : 107000.0;
+      inc.poisson_ratio = in.contains("poisson_ratio") ? rd.poisson(in["poisson_ratio"], f + ".poisson_ratio") : s.poisson_ratio;
+      s.inclusions.push_back(inc);
+    }
+  }
+
+  if (j.contains("solver")) {
+    const json& sv = j["solver"];
+    rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations", "threads"});
+    if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
+    if (sv.contains("dt")) {
+      s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
+      if (s.params.solver.dt > 0.1) rd.fail("solver.dt", "must be <= 0.1 s");
+    }
+    if (sv.contains("precision"))
+      s.params.solver.precision =
+          rd.choice(sv["precision"], "solver.precision", {"double", "float"}) == "float" ? Precision::Float : Precision::Double;
+    if (sv.contains("cg_tolerance")) {
+      s.params.solver.cg_tolerance = rd.positive(sv["cg_tolerance"], "solver.cg_tolerance");
+      if (s.params.solver.cg_tolerance >= 1) rd.fail("solver.cg_tolerance", "must be < 1");
+    }
+    if (sv.contains("cg_max_iterations"))
+      s.params.solver.cg_max_iterations = rd.integer(sv["cg_max_iterations"], "solver.cg_max_iterations", 1, 100000);
+    if (sv.contains("threads")) s.params.solver.threads = rd.integer(sv["threads"], "solver.threads", 0, 256);
+  }
+
+  if (j.contains("contact")) {
+    const json& c = j["contact"];
+    rd.only_keys(c, "contact", {"stiffness", "damping", "force_filter_hz"});
+    if (c.contains("stiffness")) s.params.contact.stiffness = rd.positive(c["stiffness"], "contact.stiffness");
+    if (c.contains("damping")) s.params.contact.damping = rd.non_negative(c["damping"], "contact.damping");
+    if (c.contains("force_filter_hz")) s.params.contact.force_filter_hz = rd.positive(c["force_filter_hz"], "contact.force_filter_hz");
+  }
+
+  if (j.contains("gravity")) s.params.gravity = rd.vec3(j["gravity"], "gravity");
+
+  if (!j.contains("fingers")) rd.fail("fingers", "is required (1 to 5 fingers)");
+  {
+    const json& arr = j["fingers"];
+    if (!arr.is_array() || arr.empty() || arr.size() > 5) rd.fail("fingers", "must be an array of 1 to 5 fingers");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string f = "fingers[" + std::to_string(i) + "]";
+      rd.only_keys(arr[i], f, {"radius", "path"});
+      FingerPath fp;
+      if (arr[i].contains("radius")) fp.radius = rd.positive(arr[i]["radius"], f + ".radius");
+      if (!arr[i].contains("path")) rd.fail(f + ".path", "is required");
+      const json& path = arr[i]["path"];
+      if (!path.is_array() || path.empty()) rd.fail(f + ".path", "must be a non-empty array of [t, x, y, z]");
+      for (std::size_t k = 0; k < path.size(); ++k) {
+        const std::string pf = f + ".path[" + std::to_string(k) + "]";
+        if (!path[k].is_array() || path[k].size() != 4) rd.fail(pf, "must be [t, x, y, z]");
+        std::array<double, 4> key{};
+        for (int c = 0; c < 4; ++c) key[c] = rd.number(path[k][c], pf + "[" + std::to_string(c) + "]");
+        if (!fp.keys.empty() && !(key[0] > fp.keys.back()[0]))
+          rd.fail(pf, "keyframe times must increase (" + Reader::fmt(key[0]) + " after " + Reader::fmt(fp.keys.back()[0]) + ")");
+        if (key[0] < 0) rd.fail(pf + "[0]", "time must be >= 0");
+        fp.keys.push_back(key);
+      }
+      s.fingers.push_back(std::move(fp));
+    }
+  }
+  if (j.contains("duration")) {
+    s.duration = rd.positive(j["duration"], "duration");
+    if (s.duration > 3600) rd.fail("duration", "must be <= 3600 s");
+  }
+  if (s.duration / s.params.solver.dt > 1e7) rd.fail("duration", "more than 10 million steps at this dt");
+  return s;
+}
+
+Scenario load_scenario(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ScenarioError(path + ": (file): cannot be read (" + std::string(std::strerror(errno)) + ")");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_scenario(ss.str(), path);
+}
+
+std::string scenario_to_json(const Scenario& s) {
+  json j;
+  json p;
+  if (!s.patient.mesh.empty()) {
+    p["mesh"] = s.patient.mesh;
+  } else {
+    p["phantom"] = s.patient.phantom;
+    if (s.patient.phantom == "box") {
+      p["size"] = {s.patient.size.x(), s.patient.size.y(), s.patient.size.z()};
+      if (s.patient.grading != 1.0) p["grading"] = s.patient.grading;
+    }
+  }
+  if (!s.patient.resolution.empty())
+    p["resolution"] = s.patient.resolution;
+  else
+    p["resolution"] = s.patient.edge;
+  j["patient"] = p;
+  j["tissue"] = {{"young_modulus", s.young_modulus},
+                 {"poisson_ratio", s.poisson_ratio},
+                 {"density", s.density},
+                 {"damping_mass", s.params.damping.mass},
+                 {"damping_stiffness", s.params.damping.stiffness}};
+  j["inclusions"] = json::array();
+  for (const auto& inc : s.inclusions) {
+    json ji = {{"shape", inc.shape},
+               {"center", {inc.center.x(), inc.center.y(), inc.center.z()}},
+               {"young_modulus", inc.young_modulus},
+               {"poisson_ratio", inc.poisson_ratio}};
+    if (inc.shape == "sphere")
+      ji["radius"] = inc.radii.x();
+    else
+      ji["radii"] = {inc.radii.x(), inc.radii.y(), inc.radii.z()};
+    j["inclusions"].push_back(ji);
+  }
+  const auto& sv = s.params.solver;
+  j["solver"] = {{"backend", s.backend},
+                 {"dt", sv.dt},
+                 {"precision", sv.precision == Precision::Float ? "float" : "double"},
+                 {"cg_tolerance", sv.cg_tolerance},
+                 {"cg_max_iterations", sv.cg_max_iterations}};
+  j["contact"] = {{"stiffness", s.params.contact.stiffness},
+                  {"damping", s.params.contact.damping},
+                  {"force_filter_hz", s.params.contact.force_filter_hz}};
+  if (s.params.gravity.squaredNorm() > 0) j["gravity"] = {s.params.gravity.x(), s.params.gravity.y(), s.params.gravity.z()};
+  j["fingers"] = json::array();
+  for (const auto& f : s.fingers) {
+    json path = json::array();
+    for (const auto& k : f.keys) path.push_back({k[0], k[1], k[2], k[3]});
+    j["fingers"].push_back({{"radius", f.radius}, {"path", path}});
+  }
+  j["duration"] = s.duration;
+  return j.dump(2);
+}
+
+}  // namespace palpation::sim

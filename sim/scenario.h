@@ -1,0 +1,80 @@
+// Scenarios: the JSON contract of design.md section 5, parsed and validated.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "params.h"
+
+namespace palpation::sim {
+
+/// A bad scenario: what() is one line naming the file, the field and the reason.
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A stiff region: elements whose centroid lies inside get its material.
+struct Inclusion {
+  std::string shape = "sphere";                          // "sphere" | "ellipsoid"
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();       // m
+  Eigen::Vector3d radii = Eigen::Vector3d::Constant(0.01);  // m (sphere: all equal)
+  double young_modulus = 107000.0;                        // Pa
+  double poisson_ratio = 0.45;
+  bool contains(const Eigen::Vector3d& p) const {
+    return ((p - center).array() / radii.array()).square().sum() <= 1.0;
+  }
+};
+
+struct PatientSpec {
+  std::string phantom = "breast";     // "breast" | "box" | "" when mesh is set
+  std::string mesh;                   // mesh file (resolved against the scenario's folder)
+  std::string resolution = "paper";   // named level, or empty when edge is numeric
+  double edge = 0.0;                  // m, target edge length (resolved from the level)
+  Eigen::Vector3d size = Eigen::Vector3d(0.1, 0.1, 0.05);  // box only, m
+  double grading = 1.0;               // box only: >1 concentrates cells at the top centre
+};
+
+struct FingerPath {
+  double radius = 0.008;                        // m
+  std::vector<std::array<double, 4>> keys;      // [t, x, y, z], t increasing
+  /// Centre position and velocity at time t (linear between keys, held outside).
+  void sample(double t, Eigen::Vector3d& pos, Eigen::Vector3d& vel) const;
+};
+
+struct Scenario {
+  std::string source;                 // file it came from (for messages)
+  PatientSpec patient;
+  double young_modulus = 19000.0;     // tissue, Pa
+  double poisson_ratio = 0.45;
+  double density = 1000.0;            // kg/m^3
+  std::vector<Inclusion> inclusions;
+  std::string backend = "auto";       // "auto" | "cpu" | "cuda"
+  SimParams params;
+  std::vector<FingerPath> fingers;    // 1..5
+  double duration = 1.0;              // s
+};
+
+/// Parses and validates. Throws ScenarioError("FILE: FIELD: reason").
+Scenario parse_scenario(const std::string& json_text, const std::string& source_name);
+/// Reads a file and parses it. Throws ScenarioError on unreadable files too.
+Scenario load_scenario(const std::string& path);
+/// Serialises (round-trips through parse_scenario).
+std::string scenario_to_json(const Scenario& s);
+
+/// Built-in scenarios: "paper-sweep", "paper-sweep-no-tumour", "hertz", "idle".
+std::vector<std::string> builtin_scenario_names();
+/// Throws ScenarioError for an unknown name.
+Scenario builtin_scenario(const std::string& name);
+
+/// Edge length (m) of a named resolution for a phantom: coarse, paper, fine, xfine.
+/// Returns nullopt for an unknown name.
+std::optional<double> resolution_edge(const std::string& phantom, const std::string& name);
+std::vector<std::string> resolution_names();
+
+}  // namespace palpation::sim
