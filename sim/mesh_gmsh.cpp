@@ -1,14 +1,19 @@
 // Gmsh meshing of the breast phantom and import of volume mesh files. The only file of
 // the project that includes gmsh.h (design.md section 2). Gmsh keeps global state, so
-// every use holds one process-wide lock from gmsh::initialize to gmsh::finalize.
+// every use holds one process-wide lock from gmsh::initialize to gmsh::finalize; files
+// are read in a forked child process, because Gmsh's readers crash on some corrupt files.
 #include "mesh_gmsh.h"
 
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -18,22 +23,40 @@
 #include <unordered_map>
 #include <utility>
 
+#if defined(__unix__)
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
+
 namespace palpation::sim {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// One Gmsh API session: the process-wide lock, initialize on entry, finalize on every
-/// exit (also on exceptions). Gmsh cannot be initialised twice at the same time.
+/// Serialises all use of Gmsh in this process (its state is global; gmsh::initialize
+/// cannot be called twice at the same time).
+std::mutex& gmsh_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+/// One Gmsh API session: initialize on entry, finalize on every exit (also on
+/// exceptions). The caller holds gmsh_mutex(), or is a forked child that owns its copy
+/// of Gmsh alone.
 class GmshSession {
  public:
-  GmshSession() : lock_(mutex()) {
+  explicit GmshSession(int threads) {
     // No argv, no gmshrc/gmsh-options files: the same result on every machine.
     gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-    gmsh::option::setNumber("General.Terminal", 0);  // no console output
-    gmsh::option::setNumber("General.Verbosity", 2);  // keep errors and warnings in the logger
+    gmsh::option::setNumber("General.Terminal", 0);      // no console output
+    gmsh::option::setNumber("General.Verbosity", 2);     // errors and warnings reach the logger
     gmsh::option::setNumber("General.AbortOnError", 3);  // errors throw (the API default is 2)
+    gmsh::option::setNumber("General.NumThreads", threads);
     gmsh::logger::start();
   }
   ~GmshSession() {
@@ -54,17 +77,10 @@ class GmshSession {
       gmsh::logger::getLastError(e);
     } catch (...) {
     }
-    // Gmsh prefixes "Error   : "-style tags in some builds; keep the message only.
+    // Without trailing line breaks.
     while (!e.empty() && (e.back() == '\n' || e.back() == ' ')) e.pop_back();
     return e;
   }
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-  std::lock_guard<std::mutex> lock_;
 };
 
 /// Text of an exception Gmsh threw: std::exception, a string, or anything else.
@@ -83,6 +99,10 @@ std::string reason_of(std::exception_ptr p) {
   const std::string last = GmshSession::last_error();
   if (r.empty() || r == "std::exception") r = last;
   if (r.empty()) r = "unknown Gmsh error";
+  // One printable line: readers quote bytes of a garbage file in their messages.
+  for (char& ch : r)
+    if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) > 0x7e) ch = '?';
+  if (r.size() > 200) r = r.substr(0, 200) + "...";
   return r;
 }
 
@@ -155,6 +175,191 @@ std::string normalized_radius_expr(const Inclusion& inc) {
   return f.str();
 }
 
+/// Refuses files Gmsh would not read with a mesh reader. Gmsh runs any file it does not
+/// recognise, and a .msh file without a mesh header, through its .geo script
+/// interpreter, which can execute shell commands (System) and end the process (Exit);
+/// it also hands .gz files to the shell and some extensions to solvers. Only
+/// extensions with a dedicated mesh reader pass, and .msh only with a mesh header (the
+/// same test Gmsh's MergeFile makes before calling its MSH reader).
+void check_mesh_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot be read");
+  if (ext == ".msh") {
+    char header[16] = {};
+    in.read(header, sizeof(header));
+    const std::string head(header, static_cast<std::size_t>(in.gcount()));
+    for (const char* magic : {"$MeshFormat", "$NOD", "$ELM", "$Comments"})
+      if (head.rfind(magic, 0) == 0) return;
+    throw std::runtime_error(path + ": not a Gmsh mesh file (no $MeshFormat header)");
+  }
+  for (const char* ok : {".vtk", ".mesh", ".unv", ".bdf", ".nas"})
+    if (ext == ok) return;
+  throw std::runtime_error(path + ": unsupported mesh format \"" + ext +
+                           "\" (volume meshes: .msh, .vtk, .mesh, .unv, .bdf, .nas, .pmesh)");
+}
+
+/// Reads `path` with Gmsh in this process (caller holds the lock or is the child).
+/// On failure leaves `mesh` empty and sets `error` to the reason.
+void read_here(const std::string& path, TetMesh& mesh, std::string& error) {
+  try {
+    GmshSession session(1);
+    gmsh::model::add("import");
+    gmsh::merge(path);
+    gmsh::vectorpair vols;
+    gmsh::model::getEntities(vols, 3);
+    std::unordered_map<int, int> order;  // volume entity tag -> 0-based index
+    for (std::size_t i = 0; i < vols.size(); ++i) order[vols[i].second] = static_cast<int>(i);
+    mesh = extract_tets([&order](int tag) {
+      auto it = order.find(tag);
+      return it == order.end() ? -1 : it->second;
+    });
+  } catch (...) {
+    mesh = TetMesh{};
+    error = reason_of(std::current_exception());
+  }
+}
+
+#if defined(__unix__)
+/// Pipe message from the child: u8 ok; ok: u64 nnode, u64 ntet, f64[3 nnode], i32[4 ntet],
+/// i32[ntet]; not ok: the error text.
+std::string encode(const TetMesh& m, const std::string& error) {
+  std::string b;
+  auto put = [&b](const void* d, std::size_t n) { b.append(static_cast<const char*>(d), n); };
+  const char ok = error.empty() ? 1 : 0;
+  put(&ok, 1);
+  if (!ok) {
+    b += error;
+    return b;
+  }
+  const std::uint64_t nn = m.nodes.size(), nt = m.tets.size();
+  put(&nn, 8);
+  put(&nt, 8);
+  for (const auto& p : m.nodes) put(p.data(), 3 * sizeof(double));
+  put(m.tets.data(), nt * 4 * sizeof(int));
+  put(m.region.data(), nt * sizeof(int));
+  return b;
+}
+
+bool decode(const std::string& b, TetMesh& m, std::string& error) {
+  if (b.empty()) return false;
+  if (b[0] != 1) {
+    error = b.substr(1);
+    if (error.empty()) error = "unknown Gmsh error";
+    return true;
+  }
+  std::uint64_t nn = 0, nt = 0;
+  if (b.size() < 17) return false;
+  std::memcpy(&nn, b.data() + 1, 8);
+  std::memcpy(&nt, b.data() + 9, 8);
+  if (nn > (1ull << 31) || nt > (1ull << 31) ||
+      b.size() != 17 + nn * 3 * sizeof(double) + nt * 5 * sizeof(int))
+    return false;
+  m.nodes.resize(nn);
+  m.tets.resize(nt);
+  m.region.resize(nt);
+  const char* p = b.data() + 17;
+  for (auto& v : m.nodes) {
+    std::memcpy(v.data(), p, 3 * sizeof(double));
+    p += 3 * sizeof(double);
+  }
+  std::memcpy(m.tets.data(), p, nt * 4 * sizeof(int));
+  p += nt * 4 * sizeof(int);
+  std::memcpy(m.region.data(), p, nt * sizeof(int));
+  return true;
+}
+
+/// Runs read_here in a forked child. Returns false only when no child could be started
+/// (the caller then reads in process); otherwise fills `mesh` or `error`.
+bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std::string& error) {
+  int fd[2];
+  if (pipe(fd) != 0) return false;
+  pid_t pid;
+  {
+    // Fork while no other thread is inside Gmsh, so the child's copy is consistent.
+    std::lock_guard<std::mutex> lock(gmsh_mutex());
+    pid = fork();
+  }
+  if (pid < 0) {
+    close(fd[0]);
+    close(fd[1]);
+    return false;
+  }
+  if (pid == 0) {
+    // Child: only this thread exists; it owns its copy of Gmsh. Never return from here.
+    close(fd[0]);
+    // A reader crash must end this child quietly: default fatal-signal actions (not the
+    // parent's crash handlers, e.g. QtTest's), no core file, no console output.
+    for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) signal(sig, SIG_DFL);
+    const rlimit no_core{0, 0};
+    setrlimit(RLIMIT_CORE, &no_core);
+    if (const int null = open("/dev/null", O_WRONLY); null >= 0) {
+      dup2(null, STDOUT_FILENO);
+      dup2(null, STDERR_FILENO);
+      close(null);
+    }
+    TetMesh m;
+    std::string why;
+    read_here(path, m, why);
+    const std::string b = encode(m, why);
+    std::size_t done = 0;
+    while (done < b.size()) {
+      const ssize_t w = write(fd[1], b.data() + done, b.size() - done);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) break;
+      done += static_cast<std::size_t>(w);
+    }
+    close(fd[1]);
+    _exit(0);  // no atexit handlers or static destructors of the parent's copy
+  }
+  close(fd[1]);
+  std::string buf;
+  bool timed_out = false;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  char chunk[1 << 16];
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd pf{fd[0], POLLIN, 0};
+    const int r = poll(&pf, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    if (r < 0 && errno == EINTR) continue;
+    if (r < 0) break;
+    if (r == 0) continue;
+    const ssize_t n = read(fd[0], chunk, sizeof(chunk));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // end of data (child closed the pipe or died)
+    buf.append(chunk, static_cast<std::size_t>(n));
+  }
+  close(fd[0]);
+  if (timed_out) kill(pid, SIGKILL);
+  int status = 0;
+  pid_t w;
+  do {
+    w = waitpid(pid, &status, 0);
+  } while (w < 0 && errno == EINTR);
+  if (timed_out) {
+    std::ostringstream o;
+    o << "the Gmsh reader did not finish within " << static_cast<int>(timeout_s) << " s (stopped)";
+    error = o.str();
+    return true;
+  }
+  if (w == pid && WIFSIGNALED(status)) {
+    error = "the Gmsh reader crashed on this file (signal " + std::to_string(WTERMSIG(status)) +
+            "): it is corrupt or not a supported volume mesh";
+    return true;
+  }
+  if (!decode(buf, mesh, error)) {
+    mesh = TetMesh{};
+    error = "the Gmsh reader stopped without a result (corrupt file?)";
+  }
+  return true;
+}
+#endif
+
 }  // namespace
 
 bool gmsh_available() { return true; }
@@ -164,9 +369,20 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
   if (!(edge > 0) || !std::isfinite(edge)) throw std::runtime_error("edge length must be positive");
   if (!(shape.base_radius > 0) || !(shape.height > 0)) throw std::runtime_error("breast shape must have positive size");
   const double a = shape.base_radius, h = shape.height, cx = shape.center_x;  // m
+  // Unrefined HXT meshes of the dome have about 4.2 V / edge^3 tetrahedra (measured);
+  // beyond ~10 million Gmsh needs several GB and many minutes: refuse up front.
+  const double expected_tets = 4.2 * (2.0 / 3.0 * kPi * a * a * h) / (edge * edge * edge);
+  if (expected_tets > 1e7) {
+    std::ostringstream o;
+    o.precision(3);
+    o << "edge " << edge << " m would give about " << expected_tets / 1e6
+      << " million tetrahedra (limit 10 million): use a larger edge length";
+    throw std::runtime_error(o.str());
+  }
   const auto t0 = std::chrono::steady_clock::now();
 
-  GmshSession session;
+  std::lock_guard<std::mutex> lock(gmsh_mutex());
+  GmshSession session(2);
   TetMesh mesh;
   int algorithm = 10;
   try {
@@ -179,7 +395,7 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
     occ::dilate({{3, dome}}, cx, 0, 0, 1.0, 1.0, h / a);
 
     // Inclusions whose bounding box reaches into the dome's bounding box. Spheres stay
-    // exact spheres; ellipsoids are unit spheres stretched per axis.
+    // exact spheres; ellipsoids are spheres of radius rx stretched along y and z.
     std::vector<int> inc_index;  // tool entity k -> inclusion index
     gmsh::vectorpair tools;
     for (std::size_t i = 0; i < inclusions.size(); ++i) {
@@ -199,6 +415,7 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
     // Volume tag -> region. Fragmenting makes the inclusion surfaces interior faces of
     // one conforming mesh; pieces of inclusions outside the dome are removed.
     std::unordered_map<int, int> region_of;
+    std::vector<char> embedded(tools.size(), 0);  // tool k has a piece inside the dome
     if (tools.empty()) {
       occ::synchronize();
       region_of[dome] = 0;
@@ -212,7 +429,10 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
       // The first inclusion that contains a piece names it (as apply_inclusions does).
       for (std::size_t k = tools.size(); k-- > 0;)
         for (const auto& [dim, tag] : map[k + 1])
-          if (dim == 3 && region_of.count(tag)) region_of[tag] = inc_index[k] + 1;
+          if (dim == 3 && region_of.count(tag)) {
+            region_of[tag] = inc_index[k] + 1;
+            embedded[k] = 1;
+          }
       gmsh::vectorpair outside;
       for (const auto& [dim, tag] : out)
         if (dim == 3 && !region_of.count(tag)) outside.push_back({dim, tag});
@@ -231,6 +451,7 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
     gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
     std::vector<double> thresholds;
     for (std::size_t k = 0; k < tools.size(); ++k) {
+      if (!embedded[k]) continue;
       const Inclusion& inc = inclusions[static_cast<std::size_t>(inc_index[k])];
       const double fine = std::max(std::min(0.6 * edge, 0.5 * inc.radii.minCoeff()), 0.05 * edge);
       const int f = gmsh::model::mesh::field::add("MathEval");
@@ -249,7 +470,6 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
       gmsh::model::mesh::field::setAsBackgroundMesh(m);
     }
 
-    gmsh::option::setNumber("General.NumThreads", 2);
     gmsh::option::setNumber("Mesh.Optimize", 1);
     gmsh::option::setNumber("Mesh.ElementOrder", 1);
     gmsh::model::mesh::generate(2);
@@ -293,22 +513,25 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
 TetMesh gmsh_read_volume(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw std::runtime_error(path + ": no such file");
-  if (!std::ifstream(path, std::ios::binary)) throw std::runtime_error(path + ": cannot be read");
+  if (!fs::exists(path, ec)) throw std::runtime_error(path + ": no such file");
+  if (!fs::is_regular_file(path, ec)) throw std::runtime_error(path + ": not a regular file");
+  check_mesh_file(path);
 
-  GmshSession session;
   TetMesh mesh;
-  try {
-    gmsh::model::add("import");
-    gmsh::merge(path);
-    gmsh::vectorpair vols;
-    gmsh::model::getEntities(vols, 3);
-    std::unordered_map<int, int> order;  // volume entity tag -> 0-based index
-    for (std::size_t i = 0; i < vols.size(); ++i) order[vols[i].second] = static_cast<int>(i);
-    mesh = extract_tets([&order](int tag) { return order.at(tag); });
-  } catch (...) {
-    throw std::runtime_error(path + ": " + reason_of(std::current_exception()));
+  std::string error;
+#if defined(__unix__)
+  // Gmsh's readers trust the file (a corrupt node tag in a .msh file is a segfault), so
+  // they run in a forked child that sends the mesh back through a pipe; a crash or a
+  // hang there costs an error message, not the process.
+  const double size_mb = static_cast<double>(fs::file_size(path, ec)) / 1e6;
+  const double timeout_s = 60.0 + 5.0 * size_mb;  // generous: readers do ~50 MB/s
+  if (!read_in_child(path, timeout_s, mesh, error))
+#endif
+  {
+    std::lock_guard<std::mutex> lock(gmsh_mutex());
+    read_here(path, mesh, error);
   }
+  if (!error.empty()) throw std::runtime_error(path + ": " + error);
   if (mesh.tets.empty()) throw std::runtime_error(path + ": contains no tetrahedra");
   mesh.orient();
   return mesh;

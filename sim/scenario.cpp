@@ -130,10 +130,10 @@ std::optional<double> resolution_edge(const std::string& phantom, const std::str
   // Breast edge lengths were chosen so that "paper" gives about the paper's 9,100 nodes /
   // 44,000 tetrahedra and "xfine" about ten times that (see docs/benchmarks.md).
   if (phantom == "breast") {
-    if (name == "coarse") return 0.0105;
-    if (name == "paper") return 0.0050;
-    if (name == "fine") return 0.0033;
-    if (name == "xfine") return 0.00225;
+    if (name == "coarse") return 0.0115;
+    if (name == "paper") return 0.00515;
+    if (name == "fine") return 0.0035;
+    if (name == "xfine") return 0.00232;
   } else {
     if (name == "coarse") return 0.01;
     if (name == "paper") return 0.005;
