@@ -2,7 +2,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <memory>
+
 #include <QFont>
+#include <QGuiApplication>
 #include <QImage>
 #include <QPainter>
 #include <QPainterPath>
@@ -59,6 +62,17 @@ struct Axis {
 }  // namespace
 
 bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* why) {
+  // Text needs Qt's font database, which needs a QGuiApplication: the command line makes
+  // an offscreen one on first use (no display needed).
+  // Deliberately never destroyed: Qt's own statics may be gone by then at exit.
+  static QGuiApplication* app = nullptr;
+  if (!QCoreApplication::instance()) {
+    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+    static int argc = 1;
+    static char arg0[] = "palpation";
+    static char* argv[] = {arg0, nullptr};
+    app = new QGuiApplication(argc, argv);
+  }
   QImage img(spec.width, spec.height, QImage::Format_RGB32);
   img.fill(Qt::white);
   QPainter p(&img);
@@ -120,7 +134,7 @@ bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* 
     QPen pen(kColours[i % 8], 1.6);
     if (s.dashed) pen.setStyle(Qt::DashLine);
     p.setPen(pen);
-    QPainterPath path;
+    QPainterPath line;
     bool started = false;
     for (std::size_t k = 0; k < s.x.size() && k < s.y.size(); ++k) {
       if (!std::isfinite(s.x[k]) || !std::isfinite(s.y[k]) || (ay.log && s.y[k] <= 0) || (ax.log && s.x[k] <= 0)) {
@@ -128,11 +142,11 @@ bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* 
         continue;
       }
       const QPointF q(px(s.x[k]), py(ay, s.y[k]));
-      if (started) path.lineTo(q); else path.moveTo(q);
+      if (started) line.lineTo(q); else line.moveTo(q);
       started = true;
       if (s.markers) p.drawEllipse(q, 3, 3);
     }
-    p.drawPath(path);
+    p.drawPath(line);
   }
   p.setClipping(false);
   // Legend.

@@ -208,13 +208,29 @@ class CpuBackend final : public Backend {
         b_[3 * ia + k] += f[a][k];
         kv_[3 * ia + k] += kv[a][k];
       }
-      for (int b = 0; b < 4; ++b) {
-        const int blk = m_.tet_block[e][4 * a + b];
-        if (blk < 0) continue;
-        const M3 K = fem::stiffness_block<T>(r[a], r[b], g[a].dot(g[b]), vol, lambda_[e], mu_[e]);
-        T* dst = &blocks_[9 * std::size_t(blk)];
+    }
+    // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
+    const T vs = kscale * vol;
+    for (int a = 0; a < 4; ++a) {
+      for (int b = a; b < 4; ++b) {
+        const int ab = m_.tet_block[e][4 * a + b];
+        if (ab < 0) continue;
+        const T gab = T(m_.grad[e][a].dot(m_.grad[e][b]));
+        const T la = vs * lambda_[e], mb = vs * mu_[e];
+        T* dst = &blocks_[9 * std::size_t(ab)];
+        // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I), scaled.
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) dst[3 * i + j] += kscale * K(i, j);
+          for (int j = 0; j < 3; ++j) dst[3 * i + j] += la * r[a][i] * r[b][j] + mb * r[b][i] * r[a][j];
+        dst[0] += mb * gab;
+        dst[4] += mb * gab;
+        dst[8] += mb * gab;
+        if (b == a) continue;
+        T* tr = &blocks_[9 * std::size_t(m_.tet_block[e][4 * b + a])];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) tr[3 * j + i] += la * r[a][i] * r[b][j] + mb * r[b][i] * r[a][j];
+        tr[0] += mb * gab;
+        tr[4] += mb * gab;
+        tr[8] += mb * gab;
       }
     }
   }

@@ -5,6 +5,8 @@
 #include <map>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
 namespace palpation::sim {
 
 double tet_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,

@@ -63,14 +63,15 @@ class TestFemCorotational : public QObject {
 
   void rigidRotation90GivesZeroForce() {
     Tet t;
-    for (const V3 axis : {V3(0, 0, 1), V3(1, 0, 0), V3(1, 1, 1).normalized()}) {
+    for (const V3& axis : {V3(0, 0, 1), V3(1, 0, 0), V3(1, 1, 1).normalized()}) {
       const M3 R = Eigen::AngleAxisd(M_PI / 2, axis).toRotationMatrix();
       V3 x[4], f[4];
       for (int a = 0; a < 4; ++a) x[a] = R * t.X[a] + V3(0.01, 0.02, 0.03);
       Eigen::Quaterniond q = Eigen::Quaterniond::Identity();  // cold start: 90 degrees away
       forces(t, x, q, f);
       QVERIFY2(max_norm(f) < 1e-9, qPrintable(QString::number(max_norm(f))));
-      QVERIFY((q.toRotationMatrix() - R).norm() < 1e-9);
+      // The iteration stops when the update angle is below 1e-9 rad: R within ~1e-8.
+      QVERIFY((q.toRotationMatrix() - R).norm() < 1e-7);
     }
   }
 
