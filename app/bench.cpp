@@ -166,8 +166,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
   report["floors"] = nlohmann::json::array();
   std::map<std::string, std::string> devices;
 
-  std::printf("%-7s %-9s %-6s %8s %6s | %9s %9s %6s %6s | %10s %10s\n", "mesh", "backend", "prec", "tol", "cap",
-              "med_ms", "p99_ms", "it_med", "it_max", "force_err", "disp_err");
+  std::printf("%-7s %-9s %-6s %8s %6s | %9s %9s %6s %6s | %10s %10s | %9s %7s\n", "mesh", "backend", "prec", "tol", "cap",
+              "med_ms", "p99_ms", "it_med", "it_max", "force_err", "disp_err", "floor_ms", "x_floor");
   for (const auto& level : opt.meshes) {
     sim::Scenario s = sim::builtin_scenario(opt.scenario);
     auto edge = sim::resolution_edge(s.patient.phantom, level);
@@ -201,6 +201,15 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
       save_ref(ref_path, ref);
     }
 
+    // The GPU floor of this mesh (bytes and barriers of one CG iteration, bandwidth and
+    // barrier cost measured now): each GPU point is also shown as measured / floor, with
+    // floor = step_fixed + (median iterations) x iteration.
+    std::map<std::string, sim::FloorEstimate> floors;
+    for (const auto& prec : opt.precisions) {
+      sim::FloorEstimate fl;
+      if (sim::cuda_floor(model, prec == "float" ? sim::Precision::Float : sim::Precision::Double, fl)) floors[prec] = fl;
+    }
+
     for (const auto& backend : opt.backends) {
       if (backend == "cpu" && !opt.quick && (level == "xfine") &&
           std::find(opt_in.backends.begin(), opt_in.backends.end(), "cpu") == opt_in.backends.end()) {
@@ -220,9 +229,15 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
           const double med = percentile(timed, 50), p99 = percentile(timed, 99);
           const double ferr = rel_l2(tr.force, ref.force), derr = disp_error(tr, ref);
           const int itmax = its.empty() ? 0 : int(*std::max_element(its.begin(), its.end()));
-          std::printf("%-7s %-9s %-6s %8.0e %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e%s\n", level.c_str(), backend.c_str(),
-                      prec.c_str(), set.tolerance, set.max_iterations, med, p99, percentile(its, 50), itmax, ferr, derr,
-                      tr.finite ? "" : "  NOT FINITE");
+          double floor_ms = 0, x_floor = 0;
+          if (backend.rfind("cuda", 0) == 0 && floors.count(prec)) {
+            const auto& fl = floors[prec];
+            floor_ms = (fl.step_fixed_us + percentile(its, 50) * fl.iteration_us) / 1000.0;
+            x_floor = floor_ms > 0 ? med / floor_ms : 0;
+          }
+          std::printf("%-7s %-9s %-6s %8.0e %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
+                      backend.c_str(), prec.c_str(), set.tolerance, set.max_iterations, med, p99, percentile(its, 50), itmax,
+                      ferr, derr, floor_ms, x_floor, tr.finite ? "" : "  NOT FINITE");
           std::fflush(stdout);
           if (!devices.count(backend)) devices[backend] = sim::make_named_backend(backend, model, s.params)->device_name();
           report["points"].push_back({{"mesh", level},
@@ -240,14 +255,15 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"force_error", ferr},
                                       {"displacement_error", derr},
                                       {"finite", tr.finite},
+                                      {"floor_ms", floor_ms},
+                                      {"x_floor", x_floor},
                                       {"mesh_seconds", mesh_s}});
         }
       }
     }
     // The floor of one CG iteration on this mesh (GPU only).
-    for (const auto& prec : opt.precisions) {
-      sim::FloorEstimate fl;
-      if (sim::cuda_floor(model, prec == "float" ? sim::Precision::Float : sim::Precision::Double, fl)) {
+    for (const auto& [prec, fl] : floors) {
+      {
         report["floors"].push_back({{"mesh", level},
                                     {"precision", prec},
                                     {"bytes_per_iteration", fl.bytes_per_iteration},
@@ -274,14 +290,14 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     {
       std::ofstream csv(out.path("bench.csv"));
       csv << "mesh,nodes,tetrahedra,backend,device,precision,cg_tolerance,cg_max_iterations,step_ms_median,step_ms_p99,"
-             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit\n";
+             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit,floor_ms,x_floor\n";
       for (const auto& p : report["points"])
         csv << p["mesh"].get<std::string>() << ',' << p["nodes"] << ',' << p["tetrahedra"] << ',' << p["backend"].get<std::string>()
             << ",\"" << p["device"].get<std::string>() << "\"," << p["precision"].get<std::string>() << ',' << p["cg_tolerance"]
             << ',' << p["cg_max_iterations"] << ',' << p["step_ms_median"] << ',' << p["step_ms_p99"] << ','
             << p["cg_iterations_median"] << ',' << p["cg_iterations_max"] << ',' << p["force_error"] << ','
             << p["displacement_error"] << ',' << (p["finite"].get<bool>() ? "true" : "false") << ',' << report["date"].get<std::string>()
-            << ',' << PALPATION_GIT_COMMIT << '\n';
+            << ',' << PALPATION_GIT_COMMIT << ',' << p["floor_ms"] << ',' << p["x_floor"] << '\n';
     }
     if (can_plot()) {
       PlotSpec plot;

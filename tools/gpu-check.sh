@@ -1,0 +1,159 @@
+#!/usr/bin/env bash
+# GPU check (issue 3): build the Qt-free configuration with CUDA, check GPU against CPU,
+# benchmark. Meant for the lent GPU machine (no Qt, Eigen, Gmsh, JSON or CLI11 packages
+# there): run from the repository root through the device tool with .gpu-carry carried,
+#   run(command="bash tools/gpu-check.sh", carry=[".gpu-carry"])
+# .gpu-carry/include holds eigen3/, nlohmann/, CLI/; .gpu-carry/models the model cache
+# (breast meshes coarse/paper/xfine, generated on a machine with Gmsh, and the cached CPU
+# reference traces of check-backends). See docs/gpu-notes.md.
+#
+# Stages (arguments; default: all): build check micro bench idle
+#   build  cmake + ninja (Release, -DCMAKE_CUDA_ARCHITECTURES=90)
+#   check  palpation check-backends (paper-sweep + hertz, 1,000 steps): exit 1 on disagreement
+#   micro  design alternatives on the paper and xfine meshes (palpation run + env switches)
+#   bench  palpation bench (coarse, paper, xfine x cuda, cuda-csr x double, float x settings)
+#   idle   palpation bench --scenario idle (no contact, at rest)
+# Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
+# micro.txt, bench.json, bench.csv, bench.png (matplotlib where present), idle.csv.
+set -uo pipefail
+OUT=${OUT:-$PWD/gpu-out}
+mkdir -p "$OUT"
+ROOT=$(pwd)
+BUILD=${BUILD:-/tmp/palpation-build-gpu}
+export PALPATION_CACHE_DIR=${PALPATION_CACHE_DIR:-$ROOT/.gpu-carry/models}
+export PATH=/usr/local/cuda/bin:$PATH
+STAGES=${*:-build check micro bench idle}
+BENCH_MESHES=${BENCH_MESHES:-coarse,paper,xfine}
+BENCH_BACKENDS=${BENCH_BACKENDS:-cuda,cuda-csr}
+BENCH_TIMEOUT=${BENCH_TIMEOUT:-330}
+LOG=$OUT/run.log
+exec > >(tee -a "$LOG") 2>&1
+say() { echo "[gpu-check $(date +%H:%M:%S)] $*"; }
+has() { [[ " $STAGES " == *" $1 "* ]]; }
+status=0
+
+say "stages: $STAGES; commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm,clocks.mem,temperature.gpu,power.draw \
+  --format=csv || true
+
+P=$BUILD/app/palpation
+if has build; then
+  say "configure + build"
+  cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPALPATION_WITH_QT=OFF -DPALPATION_WITH_GMSH=OFF \
+    -DPALPATION_WITH_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc \
+    >"$BUILD.cmake.log" 2>&1 || { tail -40 "$BUILD.cmake.log"; say "configure FAILED"; exit 2; }
+  grep -E "palpation:" "$BUILD.cmake.log"
+  ninja -C "$BUILD" -j"$(nproc)" palpation >"$BUILD.ninja.log" 2>&1 || { grep -E "error|FAILED" -A3 "$BUILD.ninja.log" | head -60; say "build FAILED"; exit 2; }
+  say "built $P"
+fi
+[[ -x $P ]] || { say "no $P"; exit 2; }
+
+if has check; then
+  say "check-backends (GPU vs CPU, 1,000 steps, CG 1e-10)"
+  timeout 300 "$P" check-backends --out "$OUT/check" ; rc=$?
+  [[ -f $OUT/check/check.json ]] && mv "$OUT/check/check.json" "$OUT/check.json" && rmdir "$OUT/check" 2>/dev/null
+  say "check-backends exit $rc"
+  [[ $rc -ne 0 ]] && status=1
+fi
+
+if has micro; then
+  say "micro: design alternatives (palpation run, paper-sweep 1 s = 1,000 steps)"
+  M=/tmp/palpation-micro
+  mkdir -p $M
+  "$P" scenario paper-sweep >$M/sweep.json
+  mk() {  # mk NAME RESOLUTION TOL CAP PRECISION
+    python3 - "$M/sweep.json" "$M/$1.json" "$2" "$3" "$4" "$5" <<'EOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["duration"] = 1.0
+s["patient"]["resolution"] = sys.argv[3]
+s["solver"].update({"backend": "cuda", "cg_tolerance": float(sys.argv[4]), "cg_max_iterations": int(sys.argv[5]),
+                    "precision": sys.argv[6]})
+json.dump(s, open(sys.argv[2], "w"))
+EOF
+  }
+  one() {  # one LABEL SCENARIO [ENV...]
+    local label=$1 sc=$2
+    shift 2
+    local out
+    out=$(env "$@" PALPATION_CUDA_PROFILE=1 timeout 120 "$P" run "$M/$sc.json" --out "$M/out" --quiet 2>&1 | grep "cuda profile")
+    python3 - "$M/out/summary.json" "$label" "$out" <<'EOF' | tee -a "$OUT/micro.txt"
+import json, sys
+d = json.load(open(sys.argv[1]))
+print(f"{sys.argv[2]:<34} med {d['step_ms_median']:.4f} ms  p99 {d['step_ms_p99']:.4f}  it_mean {d['cg_iterations_mean']:.1f}  "
+      f"solved {d['steps_solved']}  | {sys.argv[3].split(':',1)[-1].strip()}")
+EOF
+  }
+  : >"$OUT/micro.txt"
+  mk p6 paper 1e-6 1000 double
+  mk p3 paper 1e-3 1000 double
+  mk p6f paper 1e-6 1000 float
+  mk x6 xfine 1e-6 1000 double
+  mk x3 xfine 1e-3 1000 double
+  one "paper d 1e-6 fused (default)" p6
+  one "paper d 1e-6 fused again" p6
+  one "paper d 1e-6 3 barriers" p6 PALPATION_CUDA_CG=3sync
+  one "paper d 1e-6 1 block/SM" p6 PALPATION_CUDA_BLOCKS_PER_SM=1
+  one "paper d 1e-6 2 blocks/SM" p6 PALPATION_CUDA_BLOCKS_PER_SM=2
+  one "paper d 1e-6 grid 132" p6 PALPATION_CUDA_GRID=132
+  one "paper d 1e-6 grid 528" p6 PALPATION_CUDA_GRID=528
+  one "paper d 1e-3 fused" p3
+  one "paper f 1e-6 fused" p6f
+  one "xfine d 1e-6 fused" x6
+  one "xfine d 1e-6 3 barriers" x6 PALPATION_CUDA_CG=3sync
+  one "xfine d 1e-6 2 blocks/SM" x6 PALPATION_CUDA_BLOCKS_PER_SM=2
+  one "xfine d 1e-3 fused" x3
+fi
+
+if has bench; then
+  say "bench: $BENCH_MESHES x $BENCH_BACKENDS (timeout ${BENCH_TIMEOUT}s)"
+  timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BENCH_MESHES" --backends "$BENCH_BACKENDS" --out /tmp/palpation-bench
+  rc=$?
+  say "bench exit $rc"
+  for f in bench.json bench.csv; do [[ -f /tmp/palpation-bench/$f ]] && cp /tmp/palpation-bench/$f "$OUT/"; done
+  if [[ -f $OUT/bench.csv ]]; then
+    python3 - "$OUT/bench.csv" "$OUT/bench.png" <<'EOF' || say "no plot (matplotlib?)"
+# Step time against force error, one curve per mesh x backend x precision (the Qt-free
+# build cannot draw PNGs itself).
+import csv, sys
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+rows = list(csv.DictReader(open(sys.argv[1])))
+curves = {}
+for r in rows:
+    curves.setdefault((r["mesh"], r["backend"], r["precision"]), []).append(
+        (max(float(r["force_error"]), 1e-12), float(r["step_ms_median"])))
+fig, ax = plt.subplots(figsize=(11, 6.5))
+colours = {"coarse": "tab:green", "paper": "tab:blue", "fine": "tab:purple", "xfine": "tab:red"}
+for (mesh, backend, prec), pts in sorted(curves.items()):
+    pts.sort()
+    ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o" if prec == "double" else "s",
+            linestyle="-" if backend == "cuda" else (":" if backend == "cpu" else "--"),
+            color=colours.get(mesh, "black"), label=f"{mesh} {backend} {prec}")
+ax.axvline(1e-2, color="grey", lw=0.8)
+ax.axhline(0.2, color="tab:blue", lw=0.8, ls="-.")
+ax.axhline(1.0, color="tab:red", lw=0.8, ls="-.")
+ax.text(1.1e-2, 0.21, "paper target 0.2 ms", color="tab:blue", fontsize=8)
+ax.text(1.1e-2, 1.05, "xfine target 1 ms", color="tab:red", fontsize=8)
+ax.set_xscale("log"); ax.set_yscale("log")
+ax.set_xlabel("force error (relative L2 against the reference: double, CG 1e-10)")
+ax.set_ylabel("median step time [ms]")
+dev = rows[0]["device"] if rows else ""
+ax.set_title(f"paper-sweep, dt = 1 ms: step time against error on {dev} ({rows[0]['date'][:10] if rows else ''})")
+ax.grid(True, which="both", lw=0.3)
+ax.legend(fontsize=7, ncol=2)
+fig.tight_layout()
+fig.savefig(sys.argv[2], dpi=110)
+EOF
+  fi
+fi
+
+if has idle; then
+  say "idle: no contact, at rest"
+  timeout 120 "$P" bench --scenario idle --meshes paper,xfine --backends cuda,cuda-csr,cpu --precisions double,float \
+    --steps 1000 --out /tmp/palpation-idle
+  [[ -f /tmp/palpation-idle/bench.csv ]] && cp /tmp/palpation-idle/bench.csv "$OUT/idle.csv"
+fi
+say "done (status $status)"
+exit $status
