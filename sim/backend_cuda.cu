@@ -993,6 +993,11 @@ __global__ void __launch_bounds__(kBlock) k_stream_passes(const T* __restrict__ 
   }
 }
 
+/// An empty phase: what a kernel boundary costs when each CG phase is its own kernel.
+__global__ void __launch_bounds__(kBlock) k_empty(int* sink) {
+  if (blockIdx.x == 0 && threadIdx.x == 0 && sink[0] < 0) sink[0] = 0;
+}
+
 __global__ void __launch_bounds__(kBlock) k_sync_only(int syncs, int* sink) {
   coop::grid_group grid = coop::this_grid();
   for (int s = 0; s < syncs; ++s) grid.sync();
@@ -1708,6 +1713,63 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   int* sinkp = sink.get();
   void* sargs[] = {&syncs, &sinkp};
   const double t_sync = time_coop(reinterpret_cast<const void*>(&k_sync_only), sargs, grid) * 1000.0 / syncs;
+  // The alternatives to a grid barrier, measured once per process for docs/gpu-notes.md:
+  // a kernel boundary in a stream and in a replayed CUDA graph, same grid.
+  static std::once_flag said;
+  std::call_once(said, [&] {
+    constexpr int kLaunches = 200;
+    auto time_stream = [&] {
+      CU(cudaEventRecord(e0, s));
+      for (int l = 0; l < kLaunches; ++l) k_empty<<<grid, kBlock, 0, s>>>(sinkp);
+      CU(cudaPeekAtLastError());
+      CU(cudaEventRecord(e1, s));
+      CU(cudaEventSynchronize(e1));
+      float ms = 0;
+      CU(cudaEventElapsedTime(&ms, e0, e1));
+      return ms * 1000.0 / kLaunches;
+    };
+    time_stream();
+    const double t_stream = time_stream();
+    cudaGraph_t g;
+    cudaGraphExec_t ge;
+    CU(cudaStreamBeginCapture(s, cudaStreamCaptureModeThreadLocal));
+    for (int l = 0; l < kLaunches; ++l) k_empty<<<grid, kBlock, 0, s>>>(sinkp);
+    CU(cudaStreamEndCapture(s, &g));
+    CU(cudaGraphInstantiate(&ge, g, 0));
+    CU(cudaGraphLaunch(ge, s));
+    CU(cudaStreamSynchronize(s));
+    std::vector<float> t;
+    for (int rep = 0; rep < 5; ++rep) {
+      CU(cudaEventRecord(e0, s));
+      CU(cudaGraphLaunch(ge, s));
+      CU(cudaEventRecord(e1, s));
+      CU(cudaEventSynchronize(e1));
+      float ms = 0;
+      CU(cudaEventElapsedTime(&ms, e0, e1));
+      t.push_back(ms);
+    }
+    std::sort(t.begin(), t.end());
+    const double t_graph = t[t.size() / 2] * 1000.0 / kLaunches;
+    cudaGraphExecDestroy(ge);
+    cudaGraphDestroy(g);
+    // Host round trip: launch + 4-byte copy back + synchronise.
+    int* host = nullptr;
+    CU(cudaMallocHost(reinterpret_cast<void**>(&host), sizeof(int)));
+    std::vector<double> rt;
+    for (int rep = 0; rep < 50; ++rep) {
+      const auto a0 = std::chrono::steady_clock::now();
+      k_empty<<<1, 32, 0, s>>>(sinkp);
+      CU(cudaMemcpyAsync(host, sinkp, sizeof(int), cudaMemcpyDeviceToHost, s));
+      CU(cudaStreamSynchronize(s));
+      rt.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a0).count());
+    }
+    cudaFreeHost(host);
+    std::sort(rt.begin(), rt.end());
+    std::fprintf(stderr,
+                 "cuda floor: %s, grid %d x %d: grid barrier %.2f us; kernel boundary %.2f us (stream), %.2f us "
+                 "(graph replay); host round trip %.1f us (median)\n",
+                 d.name.c_str(), grid, kBlock, t_sync, t_stream, t_graph, rt[rt.size() / 2]);
+  });
   // Bandwidth at the iteration's working-set size: passes that read and write it.
   std::size_t n = std::max<std::size_t>(1024, std::size_t(out.bytes_per_iteration / (2 * S)));
   DeviceArray<T> a, b;
