@@ -204,7 +204,9 @@ Comparison compare(const Trace& a, const Trace& ref, const sim::Model& m, int nf
 
 int run_check(const CheckOptions& o) {
   std::string why;
-  if (!o.cpu_only && !sim::cuda_available(&why)) {
+  const bool cpu_vs_cpu = !o.backends.empty() && std::all_of(o.backends.begin(), o.backends.end(),
+                                                             [](const std::string& b) { return b == "cpu"; });
+  if (!o.cpu_only && !cpu_vs_cpu && !sim::cuda_available(&why)) {
     std::printf("check-backends: SKIP: %s (nothing to compare)\n", why.c_str());
     return 77;
   }
@@ -235,7 +237,7 @@ int run_check(const CheckOptions& o) {
     }
     const sim::Model model = sim::build_scenario_model(s, sim::patient_mesh(s));
     std::fprintf(stderr, "check-backends: %s: %d nodes, %d tetrahedra\n", name.c_str(), model.num_nodes(), model.num_tets());
-    if (!o.cpu_only) {
+    if (!o.cpu_only && !cpu_vs_cpu) {
       std::string reason;
       sim::Scenario sa = s;
       auto b = sim::make_backend(sim::BackendKind::Auto, model, sa.params, &reason);
@@ -275,10 +277,13 @@ int run_check(const CheckOptions& o) {
       double limit;
     };
     std::vector<Run> runs;
-    for (const auto& b : backends) runs.push_back({b, sim::Precision::Double, o.limit});
+    for (const auto& b : backends)
+      if (b != "cpu") runs.push_back({b, sim::Precision::Double, o.limit});
+    // Float on the GPU; "cpu" in --backends adds float on the CPU: the error that float
+    // arithmetic itself brings, whichever device runs it.
     if (o.with_float)
       for (const auto& b : backends)
-        if (b == "cuda") runs.push_back({b, sim::Precision::Float, o.float_limit});
+        if (b == "cuda" || b == "cpu") runs.push_back({b, sim::Precision::Float, o.float_limit});
     for (const auto& r : runs) {
       sim::Scenario sg = sd;
       sg.params.solver.precision = r.prec;
@@ -350,7 +355,9 @@ CommandAction add_check_backends_command(CLI::App& app) {
                                  "disagreement, 77 without a GPU)");
   auto o = std::make_shared<CheckOptions>();
   sub->add_option("--scenarios", o->scenarios, "Built-in scenarios (paper-sweep, hertz, ...)")->delimiter(',');
-  sub->add_option("--backends", o->backends, "GPU backends to check (cuda, cuda-csr); default all")->delimiter(',');
+  sub->add_option("--backends", o->backends,
+                  "Backends to check (cuda, cuda-csr; cpu adds float on the CPU against double); default all GPU ones")
+      ->delimiter(',');
   sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, ...)");
   sub->add_option("--steps", o->steps, "Steps per run")->check(CLI::Range(4, 1000000));
   sub->add_option("--tolerance", o->tolerance, "CG tolerance of both (double) runs")->check(CLI::PositiveNumber);

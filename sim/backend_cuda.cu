@@ -253,32 +253,20 @@ struct DetectArgs {
   const int* surf_dof;   // (nsurf) free index or -1
   const T* x;            // (nnode x 3)
   const T* v;            // (nnode x 3)
-  double* cA;            // (nsurf x 6) contact matrix h^2 ks + h ke) n n^T, summed over fingers
+  double* cA;            // (nsurf x 6) contact matrix (h^2 ks + h ke) n n^T, summed over fingers
   double* cb;            // (nsurf x 3) contact rhs
   DevScratch* scr;
-  DevResult* res;
+  DevResult* res;        // mapped host memory
 };
 
-/// start = true: start of step (system terms, contact count, zero the step scratch).
-/// start = false: finish (finger outputs of the end state, reset the step scratch).
-/// Both: per-finger sums; the last block to finish copies them into the result.
+/// Tests surface nodes s = first, first + stride, ... against the fingers.
+/// system: write the per-node contact terms of the linear system and count contacts
+/// (start of step). sacc != nullptr: accumulate the per-finger sums into it (shared).
 template <class T>
-__global__ void __launch_bounds__(kBlock) k_detect(DetectArgs<T> a, FingersArg F, StepConsts k, int start) {
-  __shared__ double sacc[kMaxFingers * kFingerVals];
-  __shared__ int scount;
-  __shared__ bool last;
-  for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) sacc[t] = 0.0;
-  if (threadIdx.x == 0) scount = 0;
-  if (start && blockIdx.x == 0 && threadIdx.x == 0) {
-    for (int s = 0; s < 4; ++s)
-      for (int j = 0; j < 4; ++j) a.scr->red[s][j] = 0.0;
-    a.scr->vmax_bits = 0ull;
-    a.scr->dvmax_bits = 0ull;
-    a.scr->rested = 0;
-  }
-  __syncthreads();
+__device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const StepConsts& k, bool system,
+                             double* sacc, int* scount, int first, int stride) {
   const double ks = k.ks, ke = k.ke, h = k.h;
-  for (int s = blockIdx.x * blockDim.x + threadIdx.x; s < a.nsurf; s += gridDim.x * blockDim.x) {
+  for (int s = first; s < a.nsurf; s += stride) {
     const int node = a.surf[s];
     const double p0 = double(a.x[3 * node]), p1 = double(a.x[3 * node + 1]), p2 = double(a.x[3 * node + 2]);
     const double v0 = double(a.v[3 * node]), v1 = double(a.v[3 * node + 1]), v2 = double(a.v[3 * node + 2]);
@@ -302,21 +290,23 @@ __global__ void __launch_bounds__(kBlock) k_detect(DetectArgs<T> a, FingersArg F
       const double fpen = ks * depth + ke * rate;
       const double mag = fpen > 0 ? fpen : 0.0;
       ++count;
-      double* acc = sacc + f * kFingerVals;
-      atomicAdd(acc + 0, -mag * n0);
-      atomicAdd(acc + 1, -mag * n1);
-      atomicAdd(acc + 2, -mag * n2);
-      atomicAdd(acc + 3, -ks * n0 * n0);
-      atomicAdd(acc + 4, -ks * n0 * n1);
-      atomicAdd(acc + 5, -ks * n0 * n2);
-      atomicAdd(acc + 6, -ks * n1 * n1);
-      atomicAdd(acc + 7, -ks * n1 * n2);
-      atomicAdd(acc + 8, -ks * n2 * n2);
-      atomicAdd(acc + 9, p0);
-      atomicAdd(acc + 10, p1);
-      atomicAdd(acc + 11, p2);
-      atomicAdd(acc + 12, 1.0);
-      if (start && a.surf_dof[s] >= 0 && mag > 0) {
+      if (sacc) {
+        double* acc = sacc + f * kFingerVals;
+        atomicAdd(acc + 0, -mag * n0);
+        atomicAdd(acc + 1, -mag * n1);
+        atomicAdd(acc + 2, -mag * n2);
+        atomicAdd(acc + 3, -ks * n0 * n0);
+        atomicAdd(acc + 4, -ks * n0 * n1);
+        atomicAdd(acc + 5, -ks * n0 * n2);
+        atomicAdd(acc + 6, -ks * n1 * n1);
+        atomicAdd(acc + 7, -ks * n1 * n2);
+        atomicAdd(acc + 8, -ks * n2 * n2);
+        atomicAdd(acc + 9, p0);
+        atomicAdd(acc + 10, p1);
+        atomicAdd(acc + 11, p2);
+        atomicAdd(acc + 12, 1.0);
+      }
+      if (system && a.surf_dof[s] >= 0 && mag > 0) {
         // Linearised penalty: rhs h (mag n - h ks n n^T v), matrix (h^2 ks + h ke) n n^T.
         const double nv = n0 * v0 + n1 * v1 + n2 * v2;
         const double hks = h * ks;
@@ -332,12 +322,57 @@ __global__ void __launch_bounds__(kBlock) k_detect(DetectArgs<T> a, FingersArg F
         A[5] += c * n2 * n2;
       }
     }
-    if (start) {
+    if (system) {
       for (int j = 0; j < 6; ++j) a.cA[6 * s + j] = A[j];
       for (int j = 0; j < 3; ++j) a.cb[3 * s + j] = b[j];
-      if (count) atomicAdd(&scount, count);
+      if (count) atomicAdd(scount, count);
     }
   }
+}
+
+/// Zeroes what one step accumulates (before the PCG kernel runs).
+__device__ __forceinline__ void zero_step_scratch(DevScratch* s) {
+  for (int r = 0; r < 4; ++r)
+    for (int j = 0; j < 4; ++j) s->red[r][j] = 0.0;
+  s->vmax_bits = 0ull;
+  s->dvmax_bits = 0ull;
+  s->rested = 0;
+}
+
+/// Copies the finger sums and step results to the host-mapped result, resets the scratch.
+/// Called by one block after every block's sums reached facc.
+__device__ void finalize_result(DevScratch* scr, DevResult* res, bool end_of_step) {
+  __threadfence();
+  volatile double* facc = &scr->facc[0][0];
+  for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) {
+    (&res->finger[0][0])[t] = facc[t];
+    facc[t] = 0.0;
+  }
+  if (threadIdx.x == 0) {
+    volatile DevScratch* sc = scr;
+    res->start_contacts = sc->start_contacts;
+    res->vmax = bits_to_double(sc->vmax_bits);
+    res->dvmax = bits_to_double(sc->dvmax_bits);
+    res->rested = sc->rested;
+    sc->detect_done = 0u;
+    if (end_of_step) sc->start_contacts = 0;  // the next step counts afresh
+  }
+}
+
+/// Stand-alone detection. start = 1: start of step (system terms, contact count, zero the
+/// step scratch) and finger sums (the outputs when the step is skipped at rest).
+/// start = 0: finger outputs of the end state (baseline path). The last block to finish
+/// writes the result.
+template <class T>
+__global__ void __launch_bounds__(kBlock) k_detect(DetectArgs<T> a, FingersArg F, StepConsts k, int start) {
+  __shared__ double sacc[kMaxFingers * kFingerVals];
+  __shared__ int scount;
+  __shared__ bool last;
+  for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) sacc[t] = 0.0;
+  if (threadIdx.x == 0) scount = 0;
+  if (start && blockIdx.x == 0 && threadIdx.x == 0) zero_step_scratch(a.scr);
+  __syncthreads();
+  detect_nodes(a, F, k, start != 0, sacc, &scount, blockIdx.x * blockDim.x + threadIdx.x, gridDim.x * blockDim.x);
   __syncthreads();
   for (int t = threadIdx.x; t < F.n * kFingerVals; t += blockDim.x)
     if (sacc[t] != 0.0) atomicAdd(&a.scr->facc[0][0] + t, sacc[t]);
@@ -346,26 +381,7 @@ __global__ void __launch_bounds__(kBlock) k_detect(DetectArgs<T> a, FingersArg F
   __syncthreads();
   if (threadIdx.x == 0) last = atomicAdd(&a.scr->detect_done, 1u) == gridDim.x - 1;
   __syncthreads();
-  if (!last) return;
-  // Last block: every other block's atomics are visible (threadfence before the ticket).
-  __threadfence();
-  volatile double* facc = &a.scr->facc[0][0];
-  for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) {
-    (&a.res->finger[0][0])[t] = facc[t];
-    facc[t] = 0.0;
-  }
-  if (threadIdx.x == 0) {
-    volatile DevScratch* sc = a.scr;
-    a.res->start_contacts = sc->start_contacts;
-    a.res->vmax = bits_to_double(sc->vmax_bits);
-    a.res->dvmax = bits_to_double(sc->dvmax_bits);
-    a.res->rested = sc->rested;
-    sc->detect_done = 0u;
-    if (!start) {
-      // End of a solved step: reset the step scratch for the next one.
-      sc->start_contacts = 0;
-    }
-  }
+  if (last) finalize_result(a.scr, a.res, !start);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -399,10 +415,14 @@ __device__ __forceinline__ T rot_tol() {
   return sizeof(T) == sizeof(double) ? T(1e-9) : T(1e-6);
 }
 
-/// extract_rotation of fem_corotational.h (Mueller et al. 2016), A row-major.
+/// extract_rotation of fem_corotational.h (Mueller et al. 2016), A row-major. Same
+/// iteration, threshold and Taylor branch; the divisions are reciprocals and the stopping
+/// and branch tests compare squares (w < t <=> w^2 < t^2), which removes most of the
+/// long-latency double-precision operations from this dependent chain.
 template <class T>
 __device__ void extract_rotation(const T A[9], Quat<T>& q) {
   constexpr int kIterations = 4;  // fem::kRotationIterations
+  const T tol2 = rot_tol<T>() * rot_tol<T>();
   for (int it = 0; it < kIterations; ++it) {
     T R[9];
     quat_to_mat(q, R);
@@ -416,16 +436,16 @@ __device__ void extract_rotation(const T A[9], Quat<T>& q) {
       on2 += r0 * a1 - r1 * a0;
       den += r0 * a0 + r1 * a1 + r2 * a2;
     }
-    const T denom = fabs(den) + T(1e-9);
-    const T o0 = on0 / denom, o1 = on1 / denom, o2 = on2 / denom;
+    const T inv = T(1) / (fabs(den) + T(1e-9));
+    const T o0 = on0 * inv, o1 = on1 * inv, o2 = on2 * inv;
     const T w2 = o0 * o0 + o1 * o1 + o2 * o2;
-    const T w = sqrt(w2);
-    if (w < rot_tol<T>()) break;
+    if (w2 < tol2) break;
     T c, s;
-    if (w < T(1e-2)) {
-      c = T(1) - w2 / T(8) + w2 * w2 / T(384);
-      s = T(0.5) - w2 / T(48);
+    if (w2 < T(1e-4)) {  // w < 1e-2: Taylor series of cos(w/2), sin(w/2)/w
+      c = T(1) - w2 * T(0.125) + w2 * w2 * (T(1) / T(384));
+      s = T(0.5) - w2 * (T(1) / T(48));
     } else {
+      const T w = sqrt(w2);
       c = cos(T(0.5) * w);
       s = sin(T(0.5) * w) / w;
     }
@@ -435,21 +455,24 @@ __device__ void extract_rotation(const T A[9], Quat<T>& q) {
     n.x = dw * q.x + dx * q.w + dy * q.z - dz * q.y;
     n.y = dw * q.y - dx * q.z + dy * q.w + dz * q.x;
     n.z = dw * q.z + dx * q.y - dy * q.x + dz * q.w;
-    const T nrm = sqrt(n.w * n.w + n.x * n.x + n.y * n.y + n.z * n.z);
-    if (nrm > T(0)) {
-      n.w /= nrm;
-      n.x /= nrm;
-      n.y /= nrm;
-      n.z /= nrm;
+    const T nn = n.w * n.w + n.x * n.x + n.y * n.y + n.z * n.z;
+    if (nn > T(0)) {
+      const T in = rsqrt(nn);
+      n.w *= in;
+      n.x *= in;
+      n.y *= in;
+      n.z *= in;
     }
     q = n;
   }
 }
 
-// Element record A (16 T): r_0..r_3 (12), V lambda, V mu, 2 pad.
-// Element record B (24 T): per local node a: f_a (3), (K v)_a (3).
-constexpr int kRecA = 16;
-constexpr int kRecB = 24;
+// Element record (kRec T): r_a = R g_a (12), V lambda, V mu, and Q (6: xx xy xz yy yz zz),
+// the symmetric matrix with which the element adds Q r_a to the right-hand side of node a:
+//   h (f_a - (beta + h) (K v)_a) = -h V (R S R^T + (beta + h) Sv) r_a = Q r_a,
+// since f_a = -V R S g_a = -V (R S R^T) r_a and (K v)_a = V Sv r_a (fem_corotational.h).
+constexpr int kRec = 20;
+constexpr int kElemBlock = 128;
 
 template <class T>
 struct ElementArgs {
@@ -462,19 +485,33 @@ struct ElementArgs {
   T* quat;          // (ne x 4) w x y z
   const T* x;
   const T* v;
-  T* recA;
-  T* recB;
+  T* rec;           // (ne x kRec)
+  T h, beta;
+  int elem_blocks;  // blocks [0, elem_blocks) do elements; the others detect contacts
 };
 
+/// Elements, and (in the extra blocks) the start-of-step contact detection: the two are
+/// independent and both feed the assembly, so one launch does both.
 template <class T>
-__global__ void __launch_bounds__(kBlock) k_element(ElementArgs<T> a) {
+__global__ void __launch_bounds__(kElemBlock) k_element(ElementArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
+  if (int(blockIdx.x) >= a.elem_blocks) {
+    const int db = blockIdx.x - a.elem_blocks, nblk = gridDim.x - a.elem_blocks;
+    if (db == 0 && threadIdx.x == 0) zero_step_scratch(d.scr);
+    __shared__ int scount;
+    if (threadIdx.x == 0) scount = 0;
+    __syncthreads();
+    detect_nodes(d, F, k, true, nullptr, &scount, db * blockDim.x + threadIdx.x, nblk * blockDim.x);
+    __syncthreads();
+    if (threadIdx.x == 0 && scount) atomicAdd(&d.scr->start_contacts, scount);
+    return;
+  }
   const int e = blockIdx.x * blockDim.x + threadIdx.x;
   if (e >= a.ne) return;
-  const int4 t = a.tets[e];
+  const int4 t = __ldg(a.tets + e);
   const int nodes[4] = {t.x, t.y, t.z, t.w};
   T g[12], xx[12], vv[12];
 #pragma unroll
-  for (int j = 0; j < 12; ++j) g[j] = a.grad[12 * e + j];
+  for (int j = 0; j < 12; ++j) g[j] = __ldg(a.grad + 12 * std::size_t(e) + j);
 #pragma unroll
   for (int n = 0; n < 4; ++n)
 #pragma unroll
@@ -483,7 +520,7 @@ __global__ void __launch_bounds__(kBlock) k_element(ElementArgs<T> a) {
       vv[3 * n + c] = a.v[3 * nodes[n] + c];
     }
   // F = sum_a x_a g_a^T (row-major).
-  T F[9];
+  T F9[9];
 #pragma unroll
   for (int i = 0; i < 3; ++i)
 #pragma unroll
@@ -491,10 +528,10 @@ __global__ void __launch_bounds__(kBlock) k_element(ElementArgs<T> a) {
       T s = xx[i] * g[j];
 #pragma unroll
       for (int n = 1; n < 4; ++n) s += xx[3 * n + i] * g[3 * n + j];
-      F[3 * i + j] = s;
+      F9[3 * i + j] = s;
     }
   Quat<T> q{a.quat[4 * e], a.quat[4 * e + 1], a.quat[4 * e + 2], a.quat[4 * e + 3]};
-  extract_rotation(F, q);
+  extract_rotation(F9, q);
   a.quat[4 * e] = q.w;
   a.quat[4 * e + 1] = q.x;
   a.quat[4 * e + 2] = q.y;
@@ -507,29 +544,33 @@ __global__ void __launch_bounds__(kBlock) k_element(ElementArgs<T> a) {
 #pragma unroll
   for (int i = 0; i < 3; ++i)
 #pragma unroll
-    for (int j = 0; j < 3; ++j) H[3 * i + j] = R[i] * F[j] + R[3 + i] * F[3 + j] + R[6 + i] * F[6 + j] - (i == j ? T(1) : T(0));
+    for (int j = 0; j < 3; ++j)
+      H[3 * i + j] = R[i] * F9[j] + R[3 + i] * F9[3 + j] + R[6 + i] * F9[6 + j] - (i == j ? T(1) : T(0));
   T S[9];
   {
     const T tr = H[0] + H[4] + H[8];
 #pragma unroll
     for (int i = 0; i < 3; ++i)
 #pragma unroll
-      for (int j = 0; j < 3; ++j) S[3 * i + j] = T(2) * mu * (T(0.5) * (H[3 * i + j] + H[3 * j + i])) + (i == j ? lam * tr : T(0));
+      for (int j = 0; j < 3; ++j)
+        S[3 * i + j] = T(2) * mu * (T(0.5) * (H[3 * i + j] + H[3 * j + i])) + (i == j ? lam * tr : T(0));
   }
-  T r[12], f[12];
+  T r[12];
 #pragma unroll
-  for (int n = 0; n < 4; ++n) {
-    const T* gn = g + 3 * n;
-    T sg[3];
+  for (int n = 0; n < 4; ++n)
 #pragma unroll
-    for (int i = 0; i < 3; ++i) sg[i] = S[3 * i] * gn[0] + S[3 * i + 1] * gn[1] + S[3 * i + 2] * gn[2];
+    for (int i = 0; i < 3; ++i) r[3 * n + i] = R[3 * i] * g[3 * n] + R[3 * i + 1] * g[3 * n + 1] + R[3 * i + 2] * g[3 * n + 2];
+  // Sw = R S R^T (world-frame stress).
+  T RS[9], Sw[9];
 #pragma unroll
-    for (int i = 0; i < 3; ++i) {
-      f[3 * n + i] = -V * (R[3 * i] * sg[0] + R[3 * i + 1] * sg[1] + R[3 * i + 2] * sg[2]);
-      r[3 * n + i] = R[3 * i] * gn[0] + R[3 * i + 1] * gn[1] + R[3 * i + 2] * gn[2];
-    }
-  }
-  // K v: P = sum_b v_b r_b^T, Sv = sigma(P), (K v)_a = V Sv r_a.
+  for (int i = 0; i < 3; ++i)
+#pragma unroll
+    for (int j = 0; j < 3; ++j) RS[3 * i + j] = R[3 * i] * S[j] + R[3 * i + 1] * S[3 + j] + R[3 * i + 2] * S[6 + j];
+#pragma unroll
+  for (int i = 0; i < 3; ++i)
+#pragma unroll
+    for (int j = 0; j < 3; ++j) Sw[3 * i + j] = RS[3 * i] * R[3 * j] + RS[3 * i + 1] * R[3 * j + 1] + RS[3 * i + 2] * R[3 * j + 2];
+  // K v: P = sum_b v_b r_b^T, Sv = sigma(P).
   T P[9];
 #pragma unroll
   for (int i = 0; i < 3; ++i)
@@ -540,46 +581,47 @@ __global__ void __launch_bounds__(kBlock) k_element(ElementArgs<T> a) {
       for (int n = 1; n < 4; ++n) s += vv[3 * n + i] * r[3 * n + j];
       P[3 * i + j] = s;
     }
-  T Sv[9];
-  {
-    const T tr = P[0] + P[4] + P[8];
+  const T trP = P[0] + P[4] + P[8];
+  const T c1 = a.beta + a.h, hV = a.h * V;
+  auto q_ij = [&](int i, int j) {
+    const T sv = T(2) * mu * (T(0.5) * (P[3 * i + j] + P[3 * j + i])) + (i == j ? lam * trP : T(0));
+    return -hV * (T(0.5) * (Sw[3 * i + j] + Sw[3 * j + i]) + c1 * sv);
+  };
+  T out[kRec];
 #pragma unroll
-    for (int i = 0; i < 3; ++i)
+  for (int j = 0; j < 12; ++j) out[j] = r[j];
+  out[12] = V * lam;
+  out[13] = V * mu;
+  out[14] = q_ij(0, 0);
+  out[15] = q_ij(0, 1);
+  out[16] = q_ij(0, 2);
+  out[17] = q_ij(1, 1);
+  out[18] = q_ij(1, 2);
+  out[19] = q_ij(2, 2);
+  T* dst = a.rec + std::size_t(kRec) * e;
+  if constexpr (sizeof(T) == 8) {
+    double2* d2 = reinterpret_cast<double2*>(dst);  // kRec * 8 B = 160 B: 16-byte aligned
 #pragma unroll
-      for (int j = 0; j < 3; ++j) Sv[3 * i + j] = T(2) * mu * (T(0.5) * (P[3 * i + j] + P[3 * j + i])) + (i == j ? lam * tr : T(0));
-  }
-  T* A = a.recA + std::size_t(kRecA) * e;
-  T* B = a.recB + std::size_t(kRecB) * e;
+    for (int j = 0; j < kRec / 2; ++j) d2[j] = make_double2(out[2 * j], out[2 * j + 1]);
+  } else {
+    float4* d4 = reinterpret_cast<float4*>(dst);  // 80 B
 #pragma unroll
-  for (int j = 0; j < 12; ++j) A[j] = r[j];
-  A[12] = V * lam;
-  A[13] = V * mu;
-#pragma unroll
-  for (int n = 0; n < 4; ++n) {
-#pragma unroll
-    for (int i = 0; i < 3; ++i) {
-      B[6 * n + i] = f[3 * n + i];
-      B[6 * n + 3 + i] = V * (Sv[3 * i] * r[3 * n] + Sv[3 * i + 1] * r[3 * n + 1] + Sv[3 * i + 2] * r[3 * n + 2]);
-    }
+    for (int j = 0; j < kRec / 4; ++j) d4[j] = make_float4(out[4 * j], out[4 * j + 1], out[4 * j + 2], out[4 * j + 3]);
   }
 }
 
 // ---------------------------------------------------------------------------------------
-// Assembly by gathering.
+// Assembly by gathering: one warp per block row.
 
 template <class T>
 struct AssembleArgs {
-  int nb, nf;
+  int nf;
   const int* row_ptr;   // (nf + 1)
-  const int* col;       // (nb)
-  const int* blk_row;   // (nb)
-  const int* list_ptr;  // (nb + 1) contributions of each block
-  const int* list;      // e << 4 | a << 2 | b
-  const T* list_g;      // g_a . g_b
-  const T* recA;
-  const T* recB;
+  const int* col_node;  // (nb) node of each block's column
   const int* inc_ptr;   // (nf + 1) incidences of each free node
   const int* inc;       // e << 2 | a
+  const int4* tets;
+  const T* rec;
   const int* free_nodes;
   const int* free_surf;  // (nf) surface index or -1
   const T* mass;         // (nnode)
@@ -589,7 +631,7 @@ struct AssembleArgs {
   T* vals;               // (9 nb) system matrix, CSR-compatible layout
   T* precond;            // (nf x 9)
   T* b;                  // (nf x 3)
-  T kscale, mscale, h, alpha, beta;
+  T kscale, mscale, h, alpha;
   T g0, g1, g2;
 };
 
@@ -616,91 +658,99 @@ __device__ void invert3(const T m[9], T inv[9]) {
     for (int j = 0; j < 9; ++j) inv[j] = T(0);
 }
 
+/// Block row i is one warp: lane l owns block k0 + l (rows longer than 32 blocks take more
+/// passes). The warp walks the elements around node i (each record read once per warp, a
+/// broadcast); the lane whose column node is element node b adds
+///   K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (r_a . r_b) I)     (r_a . r_b = g_a . g_b)
+/// and lanes 0..2 add component c of Q r_a to the right-hand side. Every output is
+/// written once: no atomics, no element colouring.
 template <class T>
 __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t < a.nb) {
-    const int k = t;
-    T acc[9];
+  const int lane = threadIdx.x & 31;
+  const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
+  const int nwarps = (gridDim.x * blockDim.x) >> 5;
+  for (int i = warp; i < a.nf; i += nwarps) {
+    const int k0 = a.row_ptr[i], len = a.row_ptr[i + 1] - k0, len3 = 3 * len;
+    const int node_i = a.free_nodes[i];
+    const int l0 = a.inc_ptr[i], l1 = a.inc_ptr[i + 1];
+    for (int base = 0; base < len; base += 32) {
+      const int kk = base + lane;
+      const int jnode = kk < len ? a.col_node[k0 + kk] : -1;
+      T acc[9];
 #pragma unroll
-    for (int j = 0; j < 9; ++j) acc[j] = T(0);
-    const int l1 = a.list_ptr[k + 1];
-    for (int l = a.list_ptr[k]; l < l1; ++l) {
-      const int packed = a.list[l];
-      const int e = packed >> 4, ia = (packed >> 2) & 3, ib = packed & 3;
-      const T* rec = a.recA + std::size_t(kRecA) * e;
-      const T ra0 = rec[3 * ia], ra1 = rec[3 * ia + 1], ra2 = rec[3 * ia + 2];
-      const T rb0 = rec[3 * ib], rb1 = rec[3 * ib + 1], rb2 = rec[3 * ib + 2];
-      const T lv = rec[12], mv = rec[13];
-      const T ra[3] = {ra0, ra1, ra2}, rb[3] = {rb0, rb1, rb2};
-      // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I)
+      for (int j = 0; j < 9; ++j) acc[j] = T(0);
+      T rhs = 0;
+#pragma unroll 2
+      for (int l = l0; l < l1; ++l) {
+        const int packed = __ldg(a.inc + l);
+        const int e = packed >> 2, ia = packed & 3;
+        const int4 t = __ldg(a.tets + e);
+        const T* rec = a.rec + std::size_t(kRec) * e;
+        const int ib = t.x == jnode ? 0 : t.y == jnode ? 1 : t.z == jnode ? 2 : t.w == jnode ? 3 : -1;
+        const T ra0 = rec[3 * ia], ra1 = rec[3 * ia + 1], ra2 = rec[3 * ia + 2];
+        if (ib >= 0) {
+          const T rb0 = rec[3 * ib], rb1 = rec[3 * ib + 1], rb2 = rec[3 * ib + 2];
+          const T lv = rec[12], mv = rec[13];
+          const T ra[3] = {ra0, ra1, ra2}, rb[3] = {rb0, rb1, rb2};
 #pragma unroll
-      for (int i = 0; i < 3; ++i)
+          for (int r = 0; r < 3; ++r)
 #pragma unroll
-        for (int j = 0; j < 3; ++j) acc[3 * i + j] += lv * ra[i] * rb[j] + mv * rb[i] * ra[j];
-      const T d = mv * a.list_g[l];
-      acc[0] += d;
-      acc[4] += d;
-      acc[8] += d;
-    }
-#pragma unroll
-    for (int j = 0; j < 9; ++j) acc[j] *= a.kscale;
-    const int i = a.blk_row[k];
-    const int k0 = a.row_ptr[i], len3 = 3 * (a.row_ptr[i + 1] - k0);
-    if (a.col[k] == i) {
-      const T mm = a.mscale * a.mass[a.free_nodes[i]];
-      acc[0] += mm;
-      acc[4] += mm;
-      acc[8] += mm;
-      const int s = a.free_surf[i];
-      if (s >= 0) {
-        const double* c = a.cA + 6 * s;
-        acc[0] += T(c[0]);
-        acc[1] += T(c[1]);
-        acc[2] += T(c[2]);
-        acc[3] += T(c[1]);
-        acc[4] += T(c[3]);
-        acc[5] += T(c[4]);
-        acc[6] += T(c[2]);
-        acc[7] += T(c[4]);
-        acc[8] += T(c[5]);
+            for (int c = 0; c < 3; ++c) acc[3 * r + c] += lv * ra[r] * rb[c] + mv * rb[r] * ra[c];
+          const T d = mv * (ra0 * rb0 + ra1 * rb1 + ra2 * rb2);
+          acc[0] += d;
+          acc[4] += d;
+          acc[8] += d;
+        }
+        if (base == 0 && lane < 3) {
+          // Q row `lane` (symmetric, stored xx xy xz yy yz zz) times r_a.
+          const int q0 = lane == 0 ? 14 : (lane == 1 ? 15 : 16);
+          const int q1 = lane == 0 ? 15 : (lane == 1 ? 17 : 18);
+          const int q2 = lane == 0 ? 16 : (lane == 1 ? 18 : 19);
+          rhs += rec[q0] * ra0 + rec[q1] * ra1 + rec[q2] * ra2;
+        }
       }
-      T inv[9];
-      invert3(acc, inv);
+      if (kk < len) {
 #pragma unroll
-      for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
+        for (int j = 0; j < 9; ++j) acc[j] *= a.kscale;
+        if (jnode == node_i) {
+          const T mm = a.mscale * a.mass[node_i];
+          acc[0] += mm;
+          acc[4] += mm;
+          acc[8] += mm;
+          const int s = a.free_surf[i];
+          if (s >= 0) {
+            const double* c = a.cA + 6 * s;
+            acc[0] += T(c[0]);
+            acc[1] += T(c[1]);
+            acc[2] += T(c[2]);
+            acc[3] += T(c[1]);
+            acc[4] += T(c[3]);
+            acc[5] += T(c[4]);
+            acc[6] += T(c[2]);
+            acc[7] += T(c[4]);
+            acc[8] += T(c[5]);
+          }
+          T inv[9];
+          invert3(acc, inv);
+#pragma unroll
+          for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
+        }
+        T* dst = a.vals + 9 * std::size_t(k0) + 3 * kk;
+#pragma unroll
+        for (int r = 0; r < 3; ++r)
+#pragma unroll
+          for (int c = 0; c < 3; ++c) dst[r * len3 + c] = acc[3 * r + c];
+      }
+      if (base == 0 && lane < 3) {
+        // b = h (f + m g - alpha M v - (beta + h) K v) + contact; the element terms are in rhs.
+        const T m = a.mass[node_i];
+        const T gc = lane == 0 ? a.g0 : (lane == 1 ? a.g1 : a.g2);
+        T bc = rhs + a.h * (m * gc - a.alpha * m * a.v[3 * node_i + lane]);
+        const int s = a.free_surf[i];
+        if (s >= 0) bc += T(a.cb[3 * s + lane]);
+        a.b[3 * i + lane] = bc;
+      }
     }
-    T* dst = a.vals + 9 * std::size_t(k0) + 3 * (k - k0);
-#pragma unroll
-    for (int r = 0; r < 3; ++r)
-#pragma unroll
-      for (int c = 0; c < 3; ++c) dst[r * len3 + c] = acc[3 * r + c];
-    return;
-  }
-  const int i = t - a.nb;
-  if (i >= a.nf) return;
-  T f0 = 0, f1 = 0, f2 = 0, k0 = 0, k1 = 0, k2 = 0;
-  const int l1 = a.inc_ptr[i + 1];
-  for (int l = a.inc_ptr[i]; l < l1; ++l) {
-    const int packed = a.inc[l];
-    const T* rec = a.recB + std::size_t(kRecB) * (packed >> 2) + 6 * (packed & 3);
-    f0 += rec[0];
-    f1 += rec[1];
-    f2 += rec[2];
-    k0 += rec[3];
-    k1 += rec[4];
-    k2 += rec[5];
-  }
-  const int node = a.free_nodes[i];
-  const T m = a.mass[node];
-  const T fv[3] = {f0, f1, f2}, kv[3] = {k0, k1, k2}, gg[3] = {a.g0, a.g1, a.g2};
-  const int s = a.free_surf[i];
-#pragma unroll
-  for (int c = 0; c < 3; ++c) {
-    const T f = fv[c] + m * gg[c] - a.alpha * m * a.v[3 * node + c] - (a.beta + a.h) * kv[c];
-    T bc = a.h * f;
-    if (s >= 0) bc += T(a.cb[3 * s + c]);
-    a.b[3 * i + c] = bc;
   }
 }
 
@@ -773,13 +823,21 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, Fetch fetch, Em
 struct Ring {
   int m = 0;
   __device__ double* slot(DevScratch* s) const { return s->red[m & 3]; }
-  /// After the barrier: read slot m % 4, zero slot (m + 2) % 4, advance.
+  /// After the barrier: read slot m % 4, zero slot (m + 2) % 4, advance. One thread per
+  /// block reads the slot and shares it: every thread of the grid reading one L2 line is a
+  /// hot spot that cost ~3 us per reduction (measured, docs/gpu-notes.md).
   template <int K>
   __device__ void take(DevScratch* s, double (&out)[K]) {
+    __shared__ double sh[K];
+    if (threadIdx.x == 0) {
 #pragma unroll
-    for (int k = 0; k < K; ++k) out[k] = __ldcg(&s->red[m & 3][k]);
-    if (blockIdx.x == 0 && threadIdx.x == 0)
-      for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
+      for (int k = 0; k < K; ++k) sh[k] = __ldcg(&s->red[m & 3][k]);
+      if (blockIdx.x == 0)
+        for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
+    }
+    __syncthreads();
+#pragma unroll
+    for (int k = 0; k < K; ++k) out[k] = sh[k];
     ++m;
   }
   /// A barrier that carries no reduction still advances the ring (and zeroes ahead).
@@ -828,16 +886,21 @@ __device__ void update_state(const PcgArgs<T>& a) {
 /// v = 0. Every thread reads the same global values and takes the same branch.
 template <class T>
 __device__ void rest_rule(const PcgArgs<T>& a) {
-  const volatile DevScratch* sc = a.scr;
-  const T vmax = T(bits_to_double(sc->vmax_bits)), dvmax = T(bits_to_double(sc->dvmax_bits));
-  const bool rested = sc->start_contacts == 0 && vmax < T(1e-6) && dvmax < T(1e-7);
+  __shared__ bool sh_rested;
+  if (threadIdx.x == 0) {
+    const volatile DevScratch* sc = a.scr;
+    const T vmax = T(bits_to_double(sc->vmax_bits)), dvmax = T(bits_to_double(sc->dvmax_bits));
+    sh_rested = sc->start_contacts == 0 && vmax < T(1e-6) && dvmax < T(1e-7);
+  }
+  __syncthreads();
+  const bool rested = sh_rested;
   if (rested)
     for (int j = blockIdx.x * blockDim.x + threadIdx.x; j < 3 * a.nnode; j += gridDim.x * blockDim.x) a.vel[j] = T(0);
   if (blockIdx.x == 0 && threadIdx.x == 0) a.scr->rested = rested ? 1 : 0;
 }
 
 template <class T>
-__global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a) {
+__global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
   coop::grid_group grid = coop::this_grid();
   const int tid = blockIdx.x * blockDim.x + threadIdx.x, nthreads = gridDim.x * blockDim.x;
   Ring ring;
@@ -964,6 +1027,17 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a) {
   update_state(a);
   grid.sync();
   rest_rule(a);
+  grid.sync();
+  // Finger outputs at the end state (v already zeroed when the body came to rest).
+  __shared__ double sacc[kMaxFingers * kFingerVals];
+  for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) sacc[t] = 0.0;
+  __syncthreads();
+  detect_nodes(d, F, k, false, sacc, nullptr, tid, nthreads);
+  __syncthreads();
+  for (int t = threadIdx.x; t < F.n * kFingerVals; t += blockDim.x)
+    if (sacc[t] != 0.0) atomicAdd(&a.scr->facc[0][0] + t, sacc[t]);
+  grid.sync();
+  if (blockIdx.x == 0) finalize_result(a.scr, a.res, true);
 }
 
 // Separate-kernel versions for the baseline.
@@ -996,6 +1070,11 @@ __global__ void __launch_bounds__(kBlock) k_stream_passes(const T* __restrict__ 
 /// An empty phase: what a kernel boundary costs when each CG phase is its own kernel.
 __global__ void __launch_bounds__(kBlock) k_empty(int* sink) {
   if (blockIdx.x == 0 && threadIdx.x == 0 && sink[0] < 0) sink[0] = 0;
+}
+
+/// Writes a flag (to mapped host memory in the round-trip measurement).
+__global__ void k_flag(int* p) {
+  if (threadIdx.x == 0) *p = 1;
 }
 
 __global__ void __launch_bounds__(kBlock) k_sync_only(int syncs, int* sink) {
@@ -1087,8 +1166,7 @@ template <class T>
 struct HostLayout {
   std::vector<int4> tets;
   std::vector<T> grad, vol;
-  std::vector<int> list_ptr, list, blk_row, inc_ptr, inc, free_surf, surf_dof;
-  std::vector<T> list_g;
+  std::vector<int> col_node, inc_ptr, inc, free_surf, surf_dof;
   std::vector<T> mass;
   std::vector<int> srow_ptr, scol;  // scalar CSR pattern (baseline)
 
@@ -1103,29 +1181,9 @@ struct HostLayout {
         for (int c = 0; c < 3; ++c) grad[12 * std::size_t(e) + 3 * a + c] = T(m.grad[e][a][c]);
       vol[e] = T(m.volume[e]);
     }
-    // Contributions of each block, sorted by block then element.
-    list_ptr.assign(nb + 1, 0);
-    for (int e = 0; e < ne; ++e)
-      for (int ab = 0; ab < 16; ++ab)
-        if (m.tet_block[e][ab] >= 0) ++list_ptr[m.tet_block[e][ab] + 1];
-    for (int k = 0; k < nb; ++k) list_ptr[k + 1] += list_ptr[k];
-    list.resize(list_ptr[nb]);
-    list_g.resize(list_ptr[nb]);
-    {
-      std::vector<int> fill(list_ptr.begin(), list_ptr.end() - 1);
-      for (int e = 0; e < ne; ++e)
-        for (int a = 0; a < 4; ++a)
-          for (int b = 0; b < 4; ++b) {
-            const int k = m.tet_block[e][4 * a + b];
-            if (k < 0) continue;
-            const int at = fill[k]++;
-            list[at] = (e << 4) | (a << 2) | b;
-            list_g[at] = T(m.grad[e][a].dot(m.grad[e][b]));
-          }
-    }
-    blk_row.resize(nb);
-    for (int i = 0; i < nf; ++i)
-      for (int k = m.row_ptr[i]; k < m.row_ptr[i + 1]; ++k) blk_row[k] = i;
+    // Node of each block's column (what the assembly warp matches element nodes with).
+    col_node.resize(nb);
+    for (int k = 0; k < nb; ++k) col_node[k] = m.free_nodes[m.col[k]];
     // Incidences of each free node.
     inc_ptr.assign(nf + 1, 0);
     for (int e = 0; e < ne; ++e)
@@ -1171,8 +1229,8 @@ enum class Solver { Persistent, Csr };
 /// Stage timing with events (PALPATION_CUDA_PROFILE=1): printed when the backend dies.
 struct Profiler {
   bool on = false;
-  static constexpr int kStages = 5;
-  const char* names[kStages] = {"detect", "element", "assemble", "solve", "finish+copy"};
+  static constexpr int kStages = 4;
+  const char* names[kStages] = {"element+detect", "assemble", "solve+finish", "wait"};
   cudaEvent_t ev[kStages + 1]{};
   std::vector<float> ms[kStages];
   int steps = 0;
@@ -1227,10 +1285,7 @@ class CudaBackend final : public Backend {
     tets_.upload(L.tets, stream_);
     grad_.upload(L.grad, stream_);
     vol_.upload(L.vol, stream_);
-    list_ptr_.upload(L.list_ptr, stream_);
-    list_.upload(L.list, stream_);
-    list_g_.upload(L.list_g, stream_);
-    blk_row_.upload(L.blk_row, stream_);
+    col_node_.upload(L.col_node, stream_);
     inc_ptr_.upload(L.inc_ptr, stream_);
     inc_.upload(L.inc, stream_);
     free_surf_.upload(L.free_surf, stream_);
@@ -1245,16 +1300,16 @@ class CudaBackend final : public Backend {
     quat_.alloc(4 * std::size_t(ne_));
     lambda_.alloc(ne_);
     mu_.alloc(ne_);
-    recA_.alloc(kRecA * std::size_t(ne_));
-    recB_.alloc(kRecB * std::size_t(ne_));
+    rec_.alloc(kRec * std::size_t(ne_));
     vals_.alloc(9 * std::size_t(nb_));
     precond_.alloc(9 * std::size_t(nf_));
     for (auto* v : {&b_, &dv_, &r_, &z_, &p0_, &p1_, &q_}) v->alloc(3 * std::size_t(nf_));
     cA_.alloc(6 * std::size_t(std::max(ns_, 1)));
     cb_.alloc(3 * std::size_t(std::max(ns_, 1)));
     scratch_.alloc(1);
-    result_.alloc(1);
-    CU(cudaMallocHost(reinterpret_cast<void**>(&host_res_), sizeof(DevResult)));
+    // The result lives in mapped pinned memory: the kernels write it, no copy is queued.
+    CU(cudaHostAlloc(reinterpret_cast<void**>(&host_res_), sizeof(DevResult), cudaHostAllocMapped));
+    CU(cudaHostGetDevicePointer(reinterpret_cast<void**>(&dev_res_), host_res_, 0));
     rest_.resize(3 * std::size_t(nn_));
     for (int j = 0; j < nn_; ++j)
       for (int c = 0; c < 3; ++c) rest_[3 * j + c] = T(m_.rest[j][c]);
@@ -1313,8 +1368,8 @@ class CudaBackend final : public Backend {
     for (int e = 0; e < ne_; ++e) q[4 * std::size_t(e)] = T(1);
     CU(cudaMemcpyAsync(quat_.get(), q.data(), sizeof(T) * q.size(), cudaMemcpyHostToDevice, stream_));
     scratch_.zero(stream_);
-    result_.zero(stream_);
     CU(cudaStreamSynchronize(stream_));
+    std::memset(static_cast<void*>(host_res_), 0, sizeof(DevResult));
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
   }
@@ -1345,10 +1400,11 @@ class CudaBackend final : public Backend {
     k.ke = p_.contact.damping;
     for (int c = 0; c < 3; ++c) k.g[c] = p_.gravity[c];
 
-    prof_.mark(0, stream_);
-    launch_detect(F, k, true);
+    bool detected = false;
     if (rested_) {
-      // At rest: the solve is needed only if something touches. One tiny copy decides.
+      // At rest: the solve is needed only if something touches. Detection on the GPU and
+      // the result in mapped memory: one launch and one synchronisation decide.
+      launch_detect(F, k, true);
       fetch_result();
       if (host_res_->start_contacts == 0) {
         finger_outputs(fingers, out);
@@ -1357,25 +1413,26 @@ class CudaBackend final : public Backend {
         for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
         return st;
       }
+      detected = true;
     }
+    prof_.mark(0, stream_);
+    launch_element(F, k, !detected);
     prof_.mark(1, stream_);
-    launch_element();
-    prof_.mark(2, stream_);
     launch_assemble(k);
-    prof_.mark(3, stream_);
+    prof_.mark(2, stream_);
     int iterations = 0;
     double residual = 0;
     if (solver_ == Solver::Persistent) {
-      launch_pcg();
+      launch_pcg(F, k);
     } else {
       solve_csr(iterations, residual);
+      launch_detect(F, k, false);
     }
-    prof_.mark(4, stream_);
-    launch_detect(F, k, false);
+    prof_.mark(3, stream_);
     fetch_result();
-    prof_.mark(5, stream_);
+    prof_.mark(4, stream_);
     if (prof_.on) {
-      CU(cudaEventSynchronize(prof_.ev[5]));
+      CU(cudaEventSynchronize(prof_.ev[4]));
       prof_.collect();
     }
     const DevResult& R = *host_res_;
@@ -1402,14 +1459,11 @@ class CudaBackend final : public Backend {
     xyz.assign(tmp.begin(), tmp.end());
   }
 
-  void fetch_result() {
-    CU(cudaMemcpyAsync(host_res_, result_.get(), sizeof(DevResult), cudaMemcpyDeviceToHost, stream_));
-    CU(cudaStreamSynchronize(stream_));
-  }
+  void fetch_result() { CU(cudaStreamSynchronize(stream_)); }
 
   DetectArgs<T> detect_args() {
     return DetectArgs<T>{ns_, surf_.get(), surf_dof_.get(), x_.get(), v_.get(), cA_.get(), cb_.get(), scratch_.get(),
-                         result_.get()};
+                         dev_res_};
   }
 
   void launch_detect(const FingersArg& F, const StepConsts& k, bool start) {
@@ -1417,27 +1471,24 @@ class CudaBackend final : public Backend {
     CU_LAUNCHED(k_detect);
   }
 
-  void launch_element() {
+  /// Elements, plus the start-of-step contact detection in extra blocks when `detect`.
+  void launch_element(const FingersArg& F, const StepConsts& k, bool detect) {
     ElementArgs<T> a{ne_, tets_.get(), grad_.get(), vol_.get(), lambda_.get(), mu_.get(), quat_.get(), x_.get(), v_.get(),
-                     recA_.get(), recB_.get()};
-    k_element<T><<<(ne_ + kBlock - 1) / kBlock, kBlock, 0, stream_>>>(a);
+                     rec_.get(), T(k.h), T(k.beta), (ne_ + kElemBlock - 1) / kElemBlock};
+    const int dblocks = detect ? std::max(1, (ns_ + kElemBlock - 1) / kElemBlock) : 0;
+    k_element<T><<<a.elem_blocks + dblocks, kElemBlock, 0, stream_>>>(a, detect_args(), F, k);
     CU_LAUNCHED(k_element);
   }
 
   void launch_assemble(const StepConsts& k) {
     AssembleArgs<T> a{};
-    a.nb = nb_;
     a.nf = nf_;
     a.row_ptr = row_ptr_.get();
-    a.col = col_.get();
-    a.blk_row = blk_row_.get();
-    a.list_ptr = list_ptr_.get();
-    a.list = list_.get();
-    a.list_g = list_g_.get();
-    a.recA = recA_.get();
-    a.recB = recB_.get();
+    a.col_node = col_node_.get();
     a.inc_ptr = inc_ptr_.get();
     a.inc = inc_.get();
+    a.tets = tets_.get();
+    a.rec = rec_.get();
     a.free_nodes = free_nodes_.get();
     a.free_surf = free_surf_.get();
     a.mass = mass_.get();
@@ -1452,12 +1503,11 @@ class CudaBackend final : public Backend {
     a.mscale = T(1) + h * T(k.alpha);
     a.h = h;
     a.alpha = T(k.alpha);
-    a.beta = T(k.beta);
     a.g0 = T(k.g[0]);
     a.g1 = T(k.g[1]);
     a.g2 = T(k.g[2]);
-    const int threads = nb_ + nf_;
-    k_assemble<T><<<(threads + kBlock - 1) / kBlock, kBlock, 0, stream_>>>(a);
+    const int warps_per_block = kBlock / 32;
+    k_assemble<T><<<(nf_ + warps_per_block - 1) / warps_per_block, kBlock, 0, stream_>>>(a);
     CU_LAUNCHED(k_assemble);
   }
 
@@ -1484,13 +1534,16 @@ class CudaBackend final : public Backend {
     a.max_it = p_.solver.cg_max_iterations;
     a.fused = fused_ ? 1 : 0;
     a.scr = scratch_.get();
-    a.res = result_.get();
+    a.res = dev_res_;
     return a;
   }
 
-  void launch_pcg() {
+  void launch_pcg(const FingersArg& F, const StepConsts& k) {
     PcgArgs<T> a = pcg_args();
-    void* args[] = {&a};
+    DetectArgs<T> d = detect_args();
+    FingersArg f = F;
+    StepConsts kk = k;
+    void* args[] = {&a, &d, &f, &kk};
     CU(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(&k_pcg<T>), dim3(grid_), dim3(kBlock), args, 0, stream_));
   }
 
@@ -1647,13 +1700,13 @@ class CudaBackend final : public Backend {
   bool fused_ = true;
   cudaStream_t stream_ = nullptr;
   DeviceArray<int4> tets_;
-  DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_, list_g_;
-  DeviceArray<int> list_ptr_, list_, blk_row_, inc_ptr_, inc_, free_surf_, surf_dof_, row_ptr_, col_, free_nodes_, surf_;
-  DeviceArray<T> x_, v_, recA_, recB_, vals_, precond_, b_, dv_, r_, z_, p0_, p1_, q_;
+  DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_;
+  DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, surf_dof_, row_ptr_, col_, free_nodes_, surf_;
+  DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, r_, z_, p0_, p1_, q_;
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
-  DeviceArray<DevResult> result_;
-  DevResult* host_res_ = nullptr;
+  DevResult* host_res_ = nullptr;  // mapped pinned memory
+  DevResult* dev_res_ = nullptr;   // its device address
   std::vector<T> rest_;
   std::vector<Eigen::Vector3d> filtered_;
   bool rested_ = true;
@@ -1662,6 +1715,26 @@ class CudaBackend final : public Backend {
 
 // ---------------------------------------------------------------------------------------
 // Floor.
+
+/// Median of: launch a tiny kernel that writes 4 bytes of mapped host memory, synchronise.
+double host_round_trip_us(cudaStream_t s, int* dev_scratch) {
+  (void)dev_scratch;
+  int* host = nullptr;
+  int* dev = nullptr;
+  CU(cudaHostAlloc(reinterpret_cast<void**>(&host), sizeof(int), cudaHostAllocMapped));
+  CU(cudaHostGetDevicePointer(reinterpret_cast<void**>(&dev), host, 0));
+  std::vector<double> rt;
+  for (int rep = 0; rep < 101; ++rep) {
+    const auto a0 = std::chrono::steady_clock::now();
+    k_flag<<<1, 32, 0, s>>>(dev);
+    CU(cudaPeekAtLastError());
+    CU(cudaStreamSynchronize(s));
+    rt.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a0).count());
+  }
+  cudaFreeHost(host);
+  std::sort(rt.begin(), rt.end());
+  return rt[rt.size() / 2];
+}
 
 template <class T>
 bool measure_floor(const Model& m, FloorEstimate& out) {
@@ -1676,13 +1749,12 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   const double vectors = 11.0 * 3.0 * nf * S + 9.0 * nf * S;
   out.bytes_per_iteration = matrix + vectors;
   out.syncs_per_iteration = 2;
-  // Per step outside CG: the element pass (read tets, grads, x, v, quats; write quats and
-  // two records), assembly (contribution lists, element records once, matrix and
-  // preconditioner written once, right-hand side), and the state update.
-  const double lists = 4.0 * 16 * ne;  // upper bound of contributions x 4 B (+ g_ab)
-  const double elem = ne * (16.0 + 12 * S + 8 * S + 3 * S + (kRecA + kRecB) * S) + 2 * 3.0 * nn * S;
-  const double assemble = lists * (1.0 + S / 4.0) + ne * (kRecA + kRecB) * S + 9.0 * nb * S + 9.0 * nf * S + 4.0 * nb +
-                          4.0 * 3 * nf * S;
+  // Per step outside CG: the element pass (read tets, gradients, materials, quaternions and
+  // each node's x and v once; write quaternions and one record per element), the assembly
+  // (incidences, each element record and tet once, the matrix, preconditioner and
+  // right-hand side written once) and the state update.
+  const double elem = ne * (16.0 + 12 * S + 8 * S + 3 * S + kRec * S) + 2 * 3.0 * nn * S;
+  const double assemble = ne * (4 * 4.0 + 16.0 + kRec * S) + 4.0 * nb + 9.0 * nb * S + 9.0 * nf * S + 3.0 * nf * S + 4.0 * nn * S;
   const double update = 3.0 * nf * S * 5;
   const double step_bytes = elem + assemble + update;
 
@@ -1752,23 +1824,10 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
     const double t_graph = t[t.size() / 2] * 1000.0 / kLaunches;
     cudaGraphExecDestroy(ge);
     cudaGraphDestroy(g);
-    // Host round trip: launch + 4-byte copy back + synchronise.
-    int* host = nullptr;
-    CU(cudaMallocHost(reinterpret_cast<void**>(&host), sizeof(int)));
-    std::vector<double> rt;
-    for (int rep = 0; rep < 50; ++rep) {
-      const auto a0 = std::chrono::steady_clock::now();
-      k_empty<<<1, 32, 0, s>>>(sinkp);
-      CU(cudaMemcpyAsync(host, sinkp, sizeof(int), cudaMemcpyDeviceToHost, s));
-      CU(cudaStreamSynchronize(s));
-      rt.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - a0).count());
-    }
-    cudaFreeHost(host);
-    std::sort(rt.begin(), rt.end());
     std::fprintf(stderr,
                  "cuda floor: %s, grid %d x %d: grid barrier %.2f us; kernel boundary %.2f us (stream), %.2f us "
                  "(graph replay); host round trip %.1f us (median)\n",
-                 d.name.c_str(), grid, kBlock, t_sync, t_stream, t_graph, rt[rt.size() / 2]);
+                 d.name.c_str(), grid, kBlock, t_sync, t_stream, t_graph, host_round_trip_us(s, sinkp));
   });
   // Bandwidth at the iteration's working-set size: passes that read and write it.
   std::size_t n = std::max<std::size_t>(1024, std::size_t(out.bytes_per_iteration / (2 * S)));
@@ -1794,9 +1853,10 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   out.sync_us = t_sync;
   out.iteration_us = out.bytes_per_iteration / (out.bandwidth_gbs * 1e3) + out.syncs_per_iteration * t_sync;
   // Step floor outside CG: its bytes at the same bandwidth (an optimistic figure where the
-  // data does not fit in L2) plus the dependent phases that need a grid-wide barrier:
-  // detect, element, assemble, two in the PCG set-up, update, rest rule, finish.
-  out.step_fixed_us = step_bytes / (out.bandwidth_gbs * 1e3) + 8 * t_sync;
+  // data does not fit in L2), the dependent phases that need a grid-wide barrier (element,
+  // assembly, two in the PCG set-up, update, rest rule, finger sums: 7), and one host
+  // round trip (a synchronous step() must launch and wait at least once).
+  out.step_fixed_us = step_bytes / (out.bandwidth_gbs * 1e3) + 7 * t_sync + host_round_trip_us(s, sinkp);
   out.device = d.name;
   cudaEventDestroy(e0);
   cudaEventDestroy(e1);

@@ -7,14 +7,16 @@
 # (breast meshes coarse/paper/xfine, generated on a machine with Gmsh, and the cached CPU
 # reference traces of check-backends). See docs/gpu-notes.md.
 #
-# Stages (arguments; default: all): build check micro bench idle
+# Stages (arguments; default: build check micro bench idle): build check micro ncu bench idle
 #   build  cmake + ninja (Release, -DCMAKE_CUDA_ARCHITECTURES=90)
 #   check  palpation check-backends (paper-sweep + hertz, 1,000 steps): exit 1 on disagreement
 #   micro  design alternatives on the paper and xfine meshes (palpation run + env switches)
-#   bench  palpation bench (coarse, paper, xfine x cuda, cuda-csr x double, float x settings)
+#   ncu    Nsight Compute on one step's kernels (paper mesh, in contact)
+#   bench  palpation bench: cuda on coarse, paper, xfine in double and float; the textbook
+#          baseline cuda-csr on paper and xfine in double (the equal-error comparison)
 #   idle   palpation bench --scenario idle (no contact, at rest)
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
-# micro.txt, bench.json, bench.csv, bench.png (matplotlib where present), idle.csv.
+# micro.txt, ncu.txt, bench.csv, bench.png (matplotlib where present), idle.csv.
 set -uo pipefail
 OUT=${OUT:-$PWD/gpu-out}
 mkdir -p "$OUT"
@@ -24,7 +26,7 @@ export PALPATION_CACHE_DIR=${PALPATION_CACHE_DIR:-$ROOT/.gpu-carry/models}
 export PATH=/usr/local/cuda/bin:$PATH
 STAGES=${*:-build check micro bench idle}
 BENCH_MESHES=${BENCH_MESHES:-coarse,paper,xfine}
-BENCH_BACKENDS=${BENCH_BACKENDS:-cuda,cuda-csr}
+BASELINE_MESHES=${BASELINE_MESHES:-paper,xfine}
 BENCH_TIMEOUT=${BENCH_TIMEOUT:-330}
 LOG=$OUT/run.log
 exec > >(tee -a "$LOG") 2>&1
@@ -87,31 +89,66 @@ EOF
   : >"$OUT/micro.txt"
   mk p6 paper 1e-6 1000 double
   mk p3 paper 1e-3 1000 double
-  mk p6f paper 1e-6 1000 float
-  mk x6 xfine 1e-6 1000 double
+  mk p2 paper 1e-2 1000 double
+  mk p3f paper 1e-3 1000 float
   mk x3 xfine 1e-3 1000 double
+  mk x2 xfine 1e-2 1000 double
+  mk x2f xfine 1e-2 1000 float
   one "paper d 1e-6 fused (default)" p6
   one "paper d 1e-6 fused again" p6
   one "paper d 1e-6 3 barriers" p6 PALPATION_CUDA_CG=3sync
   one "paper d 1e-6 1 block/SM" p6 PALPATION_CUDA_BLOCKS_PER_SM=1
-  one "paper d 1e-6 2 blocks/SM" p6 PALPATION_CUDA_BLOCKS_PER_SM=2
   one "paper d 1e-6 grid 132" p6 PALPATION_CUDA_GRID=132
-  one "paper d 1e-6 grid 528" p6 PALPATION_CUDA_GRID=528
+  one "paper d 1e-6 grid 512" p6 PALPATION_CUDA_GRID=512
   one "paper d 1e-3 fused" p3
-  one "paper f 1e-6 fused" p6f
-  one "xfine d 1e-6 fused" x6
-  one "xfine d 1e-6 3 barriers" x6 PALPATION_CUDA_CG=3sync
-  one "xfine d 1e-6 2 blocks/SM" x6 PALPATION_CUDA_BLOCKS_PER_SM=2
+  one "paper d 1e-2 fused" p2
+  one "paper f 1e-3 fused" p3f
   one "xfine d 1e-3 fused" x3
+  one "xfine d 1e-3 3 barriers" x3 PALPATION_CUDA_CG=3sync
+  one "xfine d 1e-2 fused" x2
+  one "xfine f 1e-2 fused" x2f
+fi
+
+if has ncu; then
+  say "ncu: one step's kernels (paper mesh, CG 1e-3, in contact)"
+  M=/tmp/palpation-micro
+  mkdir -p $M
+  "$P" scenario paper-sweep | python3 -c '
+import json, sys
+s = json.load(sys.stdin)
+s["duration"] = 0.1
+s["solver"].update({"backend": "cuda", "cg_tolerance": 1e-3, "cg_max_iterations": 1000})
+json.dump(s, open("/tmp/palpation-micro/ncu.json", "w"))'
+  timeout 150 ncu --clock-control none --kernel-name regex:'k_element|k_assemble|k_pcg' --launch-skip 60 --launch-count 3 \
+    --section SpeedOfLight --section Occupancy --section LaunchStats --section WarpStateStats \
+    "$P" run $M/ncu.json --out $M/ncu-out --quiet >"$OUT/ncu.txt" 2>&1
+  say "ncu exit $?"
+  grep -E "k_element|k_assemble|k_pcg|Duration|Memory Throughput|DRAM Throughput|Compute \(SM\)|Achieved Occupancy|Registers Per|Warp Cycles Per Issued|Grid Size" "$OUT/ncu.txt" | head -60
 fi
 
 if has bench; then
-  say "bench: $BENCH_MESHES x $BENCH_BACKENDS (timeout ${BENCH_TIMEOUT}s)"
-  timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BENCH_MESHES" --backends "$BENCH_BACKENDS" --out /tmp/palpation-bench
-  rc=$?
-  say "bench exit $rc"
-  for f in bench.json bench.csv; do [[ -f /tmp/palpation-bench/$f ]] && cp /tmp/palpation-bench/$f "$OUT/"; done
+  say "bench: cuda on $BENCH_MESHES (double, float); cuda-csr on $BASELINE_MESHES (double); timeout ${BENCH_TIMEOUT}s each"
+  rm -rf /tmp/palpation-bench-a /tmp/palpation-bench-b
+  timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BENCH_MESHES" --backends cuda --precisions double,float \
+    --out /tmp/palpation-bench-a
+  say "bench (cuda) exit $?"
+  timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BASELINE_MESHES" --backends cuda-csr --precisions double \
+    --out /tmp/palpation-bench-b
+  say "bench (cuda-csr) exit $?"
+  python3 - /tmp/palpation-bench-a/bench.csv /tmp/palpation-bench-b/bench.csv "$OUT/bench.csv" <<'EOF'
+import os, sys
+rows, header = [], None
+for f in sys.argv[1:-1]:
+    if os.path.exists(f):
+        lines = open(f).read().splitlines()
+        header = header or lines[0]
+        rows += lines[1:]
+if header:
+    open(sys.argv[-1], "w").write("\n".join([header] + rows) + "\n")
+EOF
+  cp /tmp/palpation-bench-a/bench.json "$OUT/bench.json" 2>/dev/null
   if [[ -f $OUT/bench.csv ]]; then
+
     python3 - "$OUT/bench.csv" "$OUT/bench.png" <<'EOF' || say "no plot (matplotlib?)"
 # Step time against force error, one curve per mesh x backend x precision (the Qt-free
 # build cannot draw PNGs itself).
