@@ -2,24 +2,23 @@
 // specification; this file does the same step on the GPU (docs/gpu-notes.md has the
 // design, the alternatives measured and the numbers).
 //
-// Per step, in one stream:
-//   k_detect (start)  contact detection at start-of-step positions against the end-of-step
-//                     fingers; per surface node the contact system terms; finger sums.
-//   k_element         per element: F, rotation (warm-started quaternion), elastic forces,
-//                     r_a = R g_a, K v; written as one record per element.
-//   k_assemble        one thread per 3x3 block of the system: sums its element
-//                     contributions from a precomputed list (a gather: no atomics, each
-//                     block written once), adds mass and contact terms, inverts the
-//                     diagonal blocks (block-Jacobi); one thread per free node gathers the
-//                     right-hand side.
-//   solve             "cuda": k_pcg, a persistent cooperative kernel: the whole PCG
-//                     (warm start, restart rule, stopping rule of solve_cg.h), then
-//                     v += dv, x += h v, rest detection. Two grid barriers per iteration
-//                     (the search-direction update is fused into the SpMV).
-//                     "cuda-csr": cuSPARSE SpMV + cuBLAS, the host drives each iteration.
-//   k_detect (finish) finger outputs at the end state; the last block writes the result.
-//   one cudaMemcpyAsync of the result (~0.7 kB) and one stream synchronisation.
-// At rest with no contact only k_detect and the copy run.
+// Per step, in one stream (three launches and one synchronisation when in motion):
+//   k_element   per element: F, rotation (warm-started quaternion), r_a = R g_a and the
+//               element's right-hand-side matrix Q (elastic force and K v folded in), one
+//               compact record per element; extra blocks do the contact detection at
+//               start-of-step positions against the end-of-step fingers.
+//   k_assemble  one warp per block row: stages the records of the elements around the node
+//               in shared memory and gathers its 3x3 blocks, the block-Jacobi inverse of
+//               its diagonal and its right-hand side (no atomics, every output written once).
+//   k_pcg       one persistent cooperative kernel: the PCG of solve_cg.h (warm start,
+//               restart and stopping rules), two grid barriers per iteration (the search
+//               direction is formed inside the SpMV), rows held in registers when they fit;
+//               then v += dv, x += h v, the rest rule, and the finger outputs at the end state.
+//   The kernels write the small result (finger sums, statistics) into mapped pinned memory:
+//   no copy is queued; the host synchronises once.
+// At rest with no contact only k_detect runs (GPU detection, the result read the same way).
+// "cuda-csr" shares k_element and k_assemble and replaces k_pcg by the host-driven
+// cuSPARSE/cuBLAS loop, k_update, k_rest and k_detect (finish).
 //
 // Matrix layout: the blocks of block-row i (k0 = row_ptr[i], len blocks) are stored so
 // that the whole matrix is also a valid scalar CSR matrix (rows 3i..3i+2, columns sorted):
@@ -153,11 +152,12 @@ struct StepConsts {
   double g[3];
 };
 
-/// Scratch that lives across kernels of one step. Invariant at step entry: everything
-/// except `red` is zero; k_detect(start) zeroes `red` and the maxima.
+/// Scratch that lives across kernels of one step. Invariant at step entry: facc,
+/// detect_done and start_contacts are zero; the start-of-step detection zeroes the maxima.
+constexpr int kMaxGrid = 1024;  // most blocks a persistent kernel is launched with
 struct DevScratch {
   double facc[kMaxFingers][kFingerVals];
-  double red[4][4];  // reduction ring of the persistent kernel
+  double part[2][3][kMaxGrid];  // per-block partial sums of the persistent kernel, two slots
   unsigned long long vmax_bits, dvmax_bits;
   unsigned int detect_done;
   int start_contacts;
@@ -182,28 +182,6 @@ struct DevResult {
 __device__ __forceinline__ double warp_sum(double v) {
   for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
   return v;
-}
-
-/// Sums K values over the block and atomically adds them to dst[0..K). All threads call.
-template <int K>
-__device__ void block_sum_atomic(double (&v)[K], double* dst) {
-  __shared__ double sh[K][32];
-  const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5, nw = (blockDim.x + 31) >> 5;
-#pragma unroll
-  for (int k = 0; k < K; ++k) v[k] = warp_sum(v[k]);
-  if (lane == 0)
-#pragma unroll
-    for (int k = 0; k < K; ++k) sh[k][warp] = v[k];
-  __syncthreads();
-  if (warp == 0) {
-#pragma unroll
-    for (int k = 0; k < K; ++k) {
-      double t = lane < nw ? sh[k][lane] : 0.0;
-      t = warp_sum(t);
-      if (lane == 0) atomicAdd(dst + k, t);
-    }
-  }
-  __syncthreads();
 }
 
 /// Max of non-negative values over the block, atomically into the bit pattern at dst
@@ -332,8 +310,6 @@ __device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const 
 
 /// Zeroes what one step accumulates (before the PCG kernel runs).
 __device__ __forceinline__ void zero_step_scratch(DevScratch* s) {
-  for (int r = 0; r < 4; ++r)
-    for (int j = 0; j < 4; ++j) s->red[r][j] = 0.0;
   s->vmax_bits = 0ull;
   s->dvmax_bits = 0ull;
   s->rested = 0;
@@ -659,14 +635,19 @@ __device__ void invert3(const T m[9], T inv[9]) {
 }
 
 /// Block row i is one warp: lane l owns block k0 + l (rows longer than 32 blocks take more
-/// passes). The warp walks the elements around node i (each record read once per warp, a
-/// broadcast); the lane whose column node is element node b adds
+/// passes). The warp stages the records of the elements around node i in shared memory
+/// (up to 32 at a time, all loads issued together, coalesced), then walks them: the lane
+/// whose column node is element node b adds
 ///   K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (r_a . r_b) I)     (r_a . r_b = g_a . g_b)
 /// and lanes 0..2 add component c of Q r_a to the right-hand side. Every output is
 /// written once: no atomics, no element colouring.
 template <class T>
 __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
-  const int lane = threadIdx.x & 31;
+  constexpr int kWarps = kBlock / 32;
+  __shared__ T srec[kWarps][32][kRec];
+  __shared__ int4 stet[kWarps][32];
+  __shared__ int sinc[kWarps][32];
+  const int lane = threadIdx.x & 31, w = threadIdx.x >> 5;
   const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
   const int nwarps = (gridDim.x * blockDim.x) >> 5;
   for (int i = warp; i < a.nf; i += nwarps) {
@@ -680,33 +661,43 @@ __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
 #pragma unroll
       for (int j = 0; j < 9; ++j) acc[j] = T(0);
       T rhs = 0;
-#pragma unroll 2
-      for (int l = l0; l < l1; ++l) {
-        const int packed = __ldg(a.inc + l);
-        const int e = packed >> 2, ia = packed & 3;
-        const int4 t = __ldg(a.tets + e);
-        const T* rec = a.rec + std::size_t(kRec) * e;
-        const int ib = t.x == jnode ? 0 : t.y == jnode ? 1 : t.z == jnode ? 2 : t.w == jnode ? 3 : -1;
-        const T ra0 = rec[3 * ia], ra1 = rec[3 * ia + 1], ra2 = rec[3 * ia + 2];
-        if (ib >= 0) {
-          const T rb0 = rec[3 * ib], rb1 = rec[3 * ib + 1], rb2 = rec[3 * ib + 2];
-          const T lv = rec[12], mv = rec[13];
-          const T ra[3] = {ra0, ra1, ra2}, rb[3] = {rb0, rb1, rb2};
-#pragma unroll
-          for (int r = 0; r < 3; ++r)
-#pragma unroll
-            for (int c = 0; c < 3; ++c) acc[3 * r + c] += lv * ra[r] * rb[c] + mv * rb[r] * ra[c];
-          const T d = mv * (ra0 * rb0 + ra1 * rb1 + ra2 * rb2);
-          acc[0] += d;
-          acc[4] += d;
-          acc[8] += d;
+      for (int c0 = l0; c0 < l1; c0 += 32) {
+        const int cnt = min(32, l1 - c0);
+        __syncwarp();
+        if (lane < cnt) sinc[w][lane] = __ldg(a.inc + c0 + lane);
+        __syncwarp();
+        if (lane < cnt) stet[w][lane] = __ldg(a.tets + (sinc[w][lane] >> 2));
+        for (int idx = lane; idx < cnt * kRec; idx += 32) {
+          const int j = idx / kRec, comp = idx - j * kRec;
+          srec[w][j][comp] = a.rec[std::size_t(kRec) * (sinc[w][j] >> 2) + comp];
         }
-        if (base == 0 && lane < 3) {
-          // Q row `lane` (symmetric, stored xx xy xz yy yz zz) times r_a.
-          const int q0 = lane == 0 ? 14 : (lane == 1 ? 15 : 16);
-          const int q1 = lane == 0 ? 15 : (lane == 1 ? 17 : 18);
-          const int q2 = lane == 0 ? 16 : (lane == 1 ? 18 : 19);
-          rhs += rec[q0] * ra0 + rec[q1] * ra1 + rec[q2] * ra2;
+        __syncwarp();
+        for (int j = 0; j < cnt; ++j) {
+          const int ia = sinc[w][j] & 3;
+          const int4 t = stet[w][j];
+          const T* rec = srec[w][j];
+          const int ib = t.x == jnode ? 0 : t.y == jnode ? 1 : t.z == jnode ? 2 : t.w == jnode ? 3 : -1;
+          const T ra0 = rec[3 * ia], ra1 = rec[3 * ia + 1], ra2 = rec[3 * ia + 2];
+          if (ib >= 0) {
+            const T rb0 = rec[3 * ib], rb1 = rec[3 * ib + 1], rb2 = rec[3 * ib + 2];
+            const T lv = rec[12], mv = rec[13];
+            const T ra[3] = {ra0, ra1, ra2}, rb[3] = {rb0, rb1, rb2};
+#pragma unroll
+            for (int r = 0; r < 3; ++r)
+#pragma unroll
+              for (int c = 0; c < 3; ++c) acc[3 * r + c] += lv * ra[r] * rb[c] + mv * rb[r] * ra[c];
+            const T d = mv * (ra0 * rb0 + ra1 * rb1 + ra2 * rb2);
+            acc[0] += d;
+            acc[4] += d;
+            acc[8] += d;
+          }
+          if (base == 0 && lane < 3) {
+            // Q row `lane` (symmetric, stored xx xy xz yy yz zz) times r_a.
+            const int q0 = lane == 0 ? 14 : (lane == 1 ? 15 : 16);
+            const int q1 = lane == 0 ? 15 : (lane == 1 ? 17 : 18);
+            const int q2 = lane == 0 ? 16 : (lane == 1 ? 18 : 19);
+            rhs += rec[q0] * ra0 + rec[q1] * ra1 + rec[q2] * ra2;
+          }
         }
       }
       if (kk < len) {
@@ -784,23 +775,87 @@ struct PcgArgs {
   DevResult* res;
 };
 
+/// The first block row of each lane group, held in registers for the whole solve: lane gl
+/// keeps blocks gl, gl + G, ..., gl + (B - 1) G of it (9 values and the column each). When
+/// every row fits (the paper mesh: rows of at most 24 blocks, one row per group) the
+/// iterations read no matrix data from memory at all.
+template <class T, int B>
+struct RowCache {
+  T v[B > 0 ? B : 1][9];
+  int j[B > 0 ? B : 1];
+  int k0 = 0, len = 0;
+};
+
+template <class T, int B>
+__device__ void load_row_cache(const PcgArgs<T>& a, RowCache<T, B>& rc) {
+  constexpr int G = kGroup, RPW = 32 / G;
+  const int lane = threadIdx.x & 31, gl = lane % G, gw = lane / G;
+  const int i = ((blockIdx.x * blockDim.x + threadIdx.x) >> 5) * RPW + gw;
+  if constexpr (B > 0) {
+    if (i < a.n) {
+      rc.k0 = a.row_ptr[i];
+      rc.len = a.row_ptr[i + 1] - rc.k0;
+      const int len3 = 3 * rc.len;
+      const T* rv = a.vals + 9 * std::size_t(rc.k0);
+#pragma unroll
+      for (int b = 0; b < B; ++b) {
+        const int kk = gl + b * G;
+        rc.j[b] = 0;
+#pragma unroll
+        for (int c = 0; c < 9; ++c) rc.v[b][c] = T(0);
+        if (kk < rc.len) {
+          rc.j[b] = a.col[rc.k0 + kk];
+          const T* bv = rv + 3 * kk;
+#pragma unroll
+          for (int r = 0; r < 3; ++r)
+#pragma unroll
+            for (int c = 0; c < 3; ++c) rc.v[b][3 * r + c] = bv[r * len3 + c];
+        }
+      }
+    }
+  }
+}
+
 /// y_i = sum_k A_k u_col(k) for the block rows of this thread's group, then
 /// emit(i, c, y_c) on lanes c = 0..2 of the group. `fetch(j, c)` reads the input vector.
-/// Warp-uniform loop bounds: every lane of a warp takes part in every shuffle.
-template <class T, class Fetch, class Emit>
-__device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, Fetch fetch, Emit emit) {
+/// The first pass takes its row from the register cache; other passes (rows beyond one
+/// per group, on large meshes) stream the matrix. Warp-uniform loop bounds: every lane of
+/// a warp takes part in every shuffle.
+template <class T, int B, class Fetch, class Emit>
+__device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<T, B>& rc, Fetch fetch, Emit emit) {
   constexpr int G = kGroup, RPW = 32 / G;
   const int lane = threadIdx.x & 31;
   const int gl = lane % G, gw = lane / G;
   const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
   const int nwarps = (gridDim.x * blockDim.x) >> 5;
+  bool first_pass = true;
   for (int base = warp * RPW; base < a.n; base += nwarps * RPW) {
     const int i = base + gw;
     T y0 = 0, y1 = 0, y2 = 0;
     if (i < a.n) {
-      const int k0 = a.row_ptr[i], len = a.row_ptr[i + 1] - k0, len3 = 3 * len;
+      int k0, len, kstart = gl;
+      if (B > 0 && first_pass) {
+        k0 = rc.k0;
+        len = rc.len;
+#pragma unroll
+        for (int b = 0; b < (B > 0 ? B : 1); ++b) {
+          if (gl + b * G < len) {
+            const int jj = rc.j[b];
+            const T u0 = fetch(jj, 0), u1 = fetch(jj, 1), u2 = fetch(jj, 2);
+            const T* m = rc.v[b];
+            y0 += m[0] * u0 + m[1] * u1 + m[2] * u2;
+            y1 += m[3] * u0 + m[4] * u1 + m[5] * u2;
+            y2 += m[6] * u0 + m[7] * u1 + m[8] * u2;
+          }
+        }
+        kstart = gl + B * G;
+      } else {
+        k0 = a.row_ptr[i];
+        len = a.row_ptr[i + 1] - k0;
+      }
+      const int len3 = 3 * len;
       const T* rv = a.vals + 9 * std::size_t(k0);
-      for (int kk = gl; kk < len; kk += G) {
+      for (int kk = kstart; kk < len; kk += G) {
         const int j = __ldg(a.col + k0 + kk);
         const T u0 = fetch(j, 0), u1 = fetch(j, 1), u2 = fetch(j, 2);
         const T* bv = rv + 3 * kk;
@@ -809,6 +864,7 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, Fetch fetch, Em
         y2 += __ldg(bv + 2 * len3) * u0 + __ldg(bv + 2 * len3 + 1) * u1 + __ldg(bv + 2 * len3 + 2) * u2;
       }
     }
+    first_pass = false;
 #pragma unroll
     for (int o = G / 2; o > 0; o >>= 1) {
       y0 += __shfl_xor_sync(0xffffffffu, y0, o);
@@ -819,34 +875,53 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, Fetch fetch, Em
   }
 }
 
-/// Reduction ring: the values reduced before barrier m live in slot m % 4.
-struct Ring {
+/// Grid-wide sums without atomics: before barrier m each block writes its partial sums to
+/// slot m % 2; after it every block adds all partials in the same order (deterministic,
+/// identical in every block) and shares the totals through shared memory. A same-address
+/// atomic from every block serialises in one L2 slice; these are plain stores and reads.
+struct Partials {
   int m = 0;
-  __device__ double* slot(DevScratch* s) const { return s->red[m & 3]; }
-  /// After the barrier: read slot m % 4, zero slot (m + 2) % 4, advance. One thread per
-  /// block reads the slot and shares it: every thread of the grid reading one L2 line is a
-  /// hot spot that cost ~3 us per reduction (measured, docs/gpu-notes.md).
+  template <int K>
+  __device__ void put(DevScratch* s, double (&v)[K]) {
+    __shared__ double sh[K][32];
+    const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5, nw = (blockDim.x + 31) >> 5;
+#pragma unroll
+    for (int k = 0; k < K; ++k) v[k] = warp_sum(v[k]);
+    if (lane == 0)
+#pragma unroll
+      for (int k = 0; k < K; ++k) sh[k][warp] = v[k];
+    __syncthreads();
+    if (warp == 0) {
+#pragma unroll
+      for (int k = 0; k < K; ++k) {
+        double t = lane < nw ? sh[k][lane] : 0.0;
+        t = warp_sum(t);
+        if (lane == 0) s->part[m & 1][k][blockIdx.x] = t;
+      }
+    }
+  }
+  /// After the barrier.
   template <int K>
   __device__ void take(DevScratch* s, double (&out)[K]) {
     __shared__ double sh[K];
-    if (threadIdx.x == 0) {
+    if (threadIdx.x < 32) {
+      const int lane = threadIdx.x;
 #pragma unroll
-      for (int k = 0; k < K; ++k) sh[k] = __ldcg(&s->red[m & 3][k]);
-      if (blockIdx.x == 0)
-        for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
+      for (int k = 0; k < K; ++k) {
+        double t = 0;
+        for (int b = lane; b < int(gridDim.x); b += 32) t += __ldcg(&s->part[m & 1][k][b]);
+        t = warp_sum(t);
+        if (lane == 0) sh[k] = t;
+      }
     }
     __syncthreads();
 #pragma unroll
     for (int k = 0; k < K; ++k) out[k] = sh[k];
     ++m;
   }
-  /// A barrier that carries no reduction still advances the ring (and zeroes ahead).
-  __device__ void skip(DevScratch* s) {
-    if (blockIdx.x == 0 && threadIdx.x == 0)
-      for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
-    ++m;
-  }
+  __device__ void skip() { ++m; }
 };
+
 
 template <class T>
 __device__ __forceinline__ void precondition_row(const T* P, const T* r, T* z, int i) {
@@ -899,17 +974,25 @@ __device__ void rest_rule(const PcgArgs<T>& a) {
   if (blockIdx.x == 0 && threadIdx.x == 0) a.scr->rested = rested ? 1 : 0;
 }
 
-template <class T>
-__global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
+/// The whole PCG of solve_cg.h (same warm start, restart rule, stopping rule and
+/// breakdown test) in one persistent cooperative kernel, then the state update, the rest
+/// rule and the finger outputs. Per iteration two grid barriers: the search direction
+/// p = z + beta p is formed inside the SpMV from z and the previous p (double-buffered),
+/// so its own barrier disappears. B > 0: the first row of each lane group is held in
+/// registers (k_pcg is then launched with at most two blocks per multiprocessor).
+template <class T, int B>
+__global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
   coop::grid_group grid = coop::this_grid();
   const int tid = blockIdx.x * blockDim.x + threadIdx.x, nthreads = gridDim.x * blockDim.x;
-  Ring ring;
+  Partials red;
+  RowCache<T, B> rc;
+  load_row_cache(a, rc);
 
   // r = b - A x (warm start), ||b||^2, ||r||^2.
   {
     double acc[2] = {0, 0};
-    spmv_groups<T>(
-        a, [&](int j, int c) { return a.x[3 * j + c]; },
+    spmv_groups<T, B>(
+        a, rc, [&](int j, int c) { return a.x[3 * j + c]; },
         [&](int i, int c, T y) {
           const T bi = a.b[3 * i + c];
           const T ri = bi - y;
@@ -917,13 +1000,13 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
           acc[0] += double(bi) * double(bi);
           acc[1] += double(ri) * double(ri);
         });
-    block_sum_atomic<2>(acc, ring.slot(a.scr));
+    red.put<2>(a.scr, acc);
   }
   grid.sync();
-  double red[2];
-  ring.take<2>(a.scr, red);
-  const T bnorm = sqrt(T(red[0]));
-  T rnorm = sqrt(T(red[1]));
+  double br[2];
+  red.take<2>(a.scr, br);
+  const T bnorm = sqrt(T(br[0]));
+  T rnorm = sqrt(T(br[1]));
   int it = 0;
   if (bnorm > T(0)) {
     const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
@@ -938,11 +1021,11 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
         precondition_row(a.P, a.r, a.z, i);
         for (int c = 0; c < 3; ++c) acc[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
       }
-      block_sum_atomic<1>(acc, ring.slot(a.scr));
+      red.put<1>(a.scr, acc);
     }
     grid.sync();
     double rz1[1];
-    ring.take<1>(a.scr, rz1);
+    red.take<1>(a.scr, rz1);
     T rz = T(rz1[0]);
     if (restart) rnorm = bnorm;
     T beta = 0;
@@ -954,7 +1037,7 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
       if (!a.fused) {
         for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];
         grid.sync();
-        ring.skip(a.scr);
+        red.skip();
       }
       double acc[1] = {0};
       if (a.fused) {
@@ -964,7 +1047,7 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
         const bool fst = first;
         const T bt = beta;
         auto pfly = [=](int j, int c) { return fst ? z[3 * j + c] : fma(bt, po[3 * j + c], z[3 * j + c]); };
-        spmv_groups<T>(a, pfly, [&](int i, int c, T y) {
+        spmv_groups<T, B>(a, rc, pfly, [&](int i, int c, T y) {
           const T pi = pfly(i, c);
           pn[3 * i + c] = pi;
           a.q[3 * i + c] = y;
@@ -972,17 +1055,17 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
         });
       } else {
         const T* pn = pnew;
-        spmv_groups<T>(
-            a, [=](int j, int c) { return pn[3 * j + c]; },
+        spmv_groups<T, B>(
+            a, rc, [=](int j, int c) { return pn[3 * j + c]; },
             [&](int i, int c, T y) {
               a.q[3 * i + c] = y;
               acc[0] += double(pn[3 * i + c]) * double(y);
             });
       }
-      block_sum_atomic<1>(acc, ring.slot(a.scr));
+      red.put<1>(a.scr, acc);
       grid.sync();
       double pq1[1];
-      ring.take<1>(a.scr, pq1);
+      red.take<1>(a.scr, pq1);
       const T pq = T(pq1[0]);
       if (!(pq > T(0))) break;
       const T alpha = rz / pq;
@@ -1000,11 +1083,11 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
             acc2[1] += rr * rr;
           }
         }
-        block_sum_atomic<2>(acc2, ring.slot(a.scr));
+        red.put<2>(a.scr, acc2);
       }
       grid.sync();
       double rr2[2];
-      ring.take<2>(a.scr, rr2);
+      red.take<2>(a.scr, rr2);
       const T rz_new = T(rr2[0]);
       rnorm = sqrt(T(rr2[1]));
       beta = rz_new / rz;
@@ -1018,7 +1101,7 @@ __global__ void __launch_bounds__(kBlock) k_pcg(PcgArgs<T> a, DetectArgs<T> d, F
   } else {
     for (int j = tid; j < 3 * a.n; j += nthreads) a.x[j] = T(0);
     grid.sync();
-    ring.skip(a.scr);
+    red.skip();
   }
   if (tid == 0) {
     a.res->cg_iterations = it;
@@ -1142,23 +1225,45 @@ const DeviceInfo& device_info() {
   return info;
 }
 
+constexpr int kCacheBlocks = 3;  // blocks per lane held in registers: rows of up to 24 blocks
+
 /// Launch configuration of the persistent kernel for n block rows.
+struct PcgLaunch {
+  const void* fn = nullptr;
+  int grid = 1;
+  bool cached = false;  // every row's matrix held in registers
+};
+
 template <class T>
-int pcg_grid(int n) {
+PcgLaunch pcg_launch(int n) {
   const DeviceInfo& d = device_info();
-  int per_sm = 0;
-  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T>, kBlock, 0));
-  per_sm = std::max(per_sm, 1);
+  constexpr int rows_per_block = kBlock / kGroup;
+  const int forced = env_int("PALPATION_CUDA_GRID", 0);
   const int cap_per_sm = env_int("PALPATION_CUDA_BLOCKS_PER_SM", 0);
+  PcgLaunch L;
+  // Register-resident rows when one pass of lane groups covers every row.
+  int per_sm_c = 0;
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks>, kBlock, 0));
+  if (cap_per_sm > 0) per_sm_c = std::min(per_sm_c, cap_per_sm);
+  const int need = (n + rows_per_block - 1) / rows_per_block;
+  if (env_int("PALPATION_CUDA_CACHE", 1) != 0 && per_sm_c > 0 && need <= per_sm_c * d.sms) {
+    L.fn = reinterpret_cast<const void*>(&k_pcg<T, kCacheBlocks>);
+    L.cached = true;
+    L.grid = std::max(need, 1);
+    if (forced > 0) L.grid = std::min(forced, per_sm_c * d.sms);
+    return L;
+  }
+  int per_sm = 0;
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0>, kBlock, 0));
+  per_sm = std::max(per_sm, 1);
   if (cap_per_sm > 0) per_sm = std::min(per_sm, cap_per_sm);
-  const int max_blocks = per_sm * d.sms;
+  const int max_blocks = std::min(per_sm * d.sms, kMaxGrid);
   // Enough blocks that each lane group gets about one block row per SpMV pass; more only
   // makes the barriers dearer.
-  const int want = (n + (kBlock / kGroup) - 1) / (kBlock / kGroup);
-  int grid = std::clamp(want, 1, max_blocks);
-  const int forced = env_int("PALPATION_CUDA_GRID", 0);
-  if (forced > 0) grid = std::min(forced, max_blocks);
-  return grid;
+  L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0>);
+  L.grid = std::clamp(need, 1, max_blocks);
+  if (forced > 0) L.grid = std::min(forced, max_blocks);
+  return L;
 }
 
 /// Host copies of the model arrays in the GPU layout (built once per backend).
@@ -1315,7 +1420,7 @@ class CudaBackend final : public Backend {
       for (int c = 0; c < 3; ++c) rest_[3 * j + c] = T(m_.rest[j][c]);
     detect_grid_ = std::max(1, std::min((ns_ + kBlock - 1) / kBlock, 4 * d.sms));
     if (solver_ == Solver::Persistent) {
-      grid_ = pcg_grid<T>(nf_);
+      launch_ = pcg_launch<T>(nf_);
       fused_ = env_str("PALPATION_CUDA_CG", "fused") != "3sync";
     } else {
       init_csr(L);
@@ -1544,7 +1649,7 @@ class CudaBackend final : public Backend {
     FingersArg f = F;
     StepConsts kk = k;
     void* args[] = {&a, &d, &f, &kk};
-    CU(cudaLaunchCooperativeKernel(reinterpret_cast<const void*>(&k_pcg<T>), dim3(grid_), dim3(kBlock), args, 0, stream_));
+    CU(cudaLaunchCooperativeKernel(launch_.fn, dim3(launch_.grid), dim3(kBlock), args, 0, stream_));
   }
 
   void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
@@ -1696,7 +1801,8 @@ class CudaBackend final : public Backend {
   SimParams p_;
   Solver solver_;
   int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0;
-  int grid_ = 1, detect_grid_ = 1;
+  PcgLaunch launch_;
+  int detect_grid_ = 1;
   bool fused_ = true;
   cudaStream_t stream_ = nullptr;
   DeviceArray<int4> tets_;
@@ -1747,7 +1853,10 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   // writes p and q; phase B reads p, q, x, r and writes x, r, z: 11 vector passes.
   const double matrix = 9.0 * nb * S + 4.0 * nb + 4.0 * (nf + 1);
   const double vectors = 11.0 * 3.0 * nf * S + 9.0 * nf * S;
-  out.bytes_per_iteration = matrix + vectors;
+  // Where the rows live in registers the iterations do not read the matrix: it is read
+  // once per step (counted with the step), and the floor of an iteration is its vectors.
+  const PcgLaunch launch = pcg_launch<T>(nf);
+  out.bytes_per_iteration = (launch.cached ? 0.0 : matrix) + vectors;
   out.syncs_per_iteration = 2;
   // Per step outside CG: the element pass (read tets, gradients, materials, quaternions and
   // each node's x and v once; write quaternions and one record per element), the assembly
@@ -1756,11 +1865,11 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   const double elem = ne * (16.0 + 12 * S + 8 * S + 3 * S + kRec * S) + 2 * 3.0 * nn * S;
   const double assemble = ne * (4 * 4.0 + 16.0 + kRec * S) + 4.0 * nb + 9.0 * nb * S + 9.0 * nf * S + 3.0 * nf * S + 4.0 * nn * S;
   const double update = 3.0 * nf * S * 5;
-  const double step_bytes = elem + assemble + update;
+  const double step_bytes = elem + assemble + update + (launch.cached ? matrix : 0.0);
 
   cudaStream_t s;
   CU(cudaStreamCreateWithFlags(&s, cudaStreamNonBlocking));
-  const int grid = pcg_grid<T>(nf);
+  const int grid = launch.grid;
   cudaEvent_t e0, e1;
   CU(cudaEventCreate(&e0));
   CU(cudaEventCreate(&e1));
@@ -1825,9 +1934,10 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
     cudaGraphExecDestroy(ge);
     cudaGraphDestroy(g);
     std::fprintf(stderr,
-                 "cuda floor: %s, grid %d x %d: grid barrier %.2f us; kernel boundary %.2f us (stream), %.2f us "
+                 "cuda floor: %s, grid %d x %d%s: grid barrier %.2f us; kernel boundary %.2f us (stream), %.2f us "
                  "(graph replay); host round trip %.1f us (median)\n",
-                 d.name.c_str(), grid, kBlock, t_sync, t_stream, t_graph, host_round_trip_us(s, sinkp));
+                 d.name.c_str(), grid, kBlock, launch.cached ? " (rows in registers)" : "", t_sync, t_stream, t_graph,
+                 host_round_trip_us(s, sinkp));
   });
   // Bandwidth at the iteration's working-set size: passes that read and write it.
   std::size_t n = std::max<std::size_t>(1024, std::size_t(out.bytes_per_iteration / (2 * S)));

@@ -91,22 +91,24 @@ EOF
   mk p3 paper 1e-3 1000 double
   mk p2 paper 1e-2 1000 double
   mk p3f paper 1e-3 1000 float
+  mk p2f paper 1e-2 1000 float
   mk x3 xfine 1e-3 1000 double
-  mk x2 xfine 1e-2 1000 double
-  mk x2f xfine 1e-2 1000 float
-  one "paper d 1e-6 fused (default)" p6
-  one "paper d 1e-6 fused again" p6
+  mk x4 xfine 1e-4 1000 double
+  mk x4f xfine 1e-4 1000 float
+  one "paper d 1e-6 (default)" p6
+  one "paper d 1e-6 again" p6
   one "paper d 1e-6 3 barriers" p6 PALPATION_CUDA_CG=3sync
-  one "paper d 1e-6 1 block/SM" p6 PALPATION_CUDA_BLOCKS_PER_SM=1
+  one "paper d 1e-6 rows not in registers" p6 PALPATION_CUDA_CACHE=0
+  one "paper d 1e-6 no regs, 3 barriers" p6 PALPATION_CUDA_CACHE=0 PALPATION_CUDA_CG=3sync
   one "paper d 1e-6 grid 132" p6 PALPATION_CUDA_GRID=132
-  one "paper d 1e-6 grid 512" p6 PALPATION_CUDA_GRID=512
-  one "paper d 1e-3 fused" p3
-  one "paper d 1e-2 fused" p2
-  one "paper f 1e-3 fused" p3f
-  one "xfine d 1e-3 fused" x3
+  one "paper d 1e-3" p3
+  one "paper d 1e-2" p2
+  one "paper f 1e-3" p3f
+  one "paper f 1e-2" p2f
+  one "xfine d 1e-3" x3
   one "xfine d 1e-3 3 barriers" x3 PALPATION_CUDA_CG=3sync
-  one "xfine d 1e-2 fused" x2
-  one "xfine f 1e-2 fused" x2f
+  one "xfine d 1e-4" x4
+  one "xfine f 1e-4" x4f
 fi
 
 if has ncu; then
