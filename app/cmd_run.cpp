@@ -8,6 +8,7 @@
 #include "output_dir.h"
 #include "plot_png.h"
 #include "scenario.h"
+#include "sweep_analysis.h"
 
 namespace palpation::app {
 
@@ -70,6 +71,9 @@ CommandAction add_run_command(CLI::App& app) {
       std::string why;
       if (!write_plot_png(out.path("forces.png"), plot, &why)) throw std::runtime_error(why);
     }
+    // Sweeps (periodic pushes): the peak of each push and where each pass peaked.
+    const SweepAnalysis sweep = analyze_sweep(r.samples);
+    if (!sweep.pushes.empty()) r.summary["sweep"] = sweep.to_json();
     {
       std::ofstream js(out.path("summary.json"));
       js << r.summary.dump(2) << "\n";

@@ -105,7 +105,7 @@ class CpuBackend final : public Backend {
 
     // Contact detection at the start-of-step positions against end-of-step fingers.
     surface_bounds();
-    contact::detect<T>(fingers, m_.surface_nodes, x_.data(), bounds_, contacts_);
+    contact::detect<T>(fingers, m_.surface, x_.data(), bounds_, contacts_);
     st.contacts = static_cast<int>(contacts_.size());
 
     // Skip what the scene does not need: no contact and at rest -> no solve.
@@ -211,26 +211,25 @@ class CpuBackend final : public Backend {
     }
     // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
     const T vs = kscale * vol;
+    const T la = vs * lambda_[e], mb = vs * mu_[e];
     for (int a = 0; a < 4; ++a) {
       for (int b = a; b < 4; ++b) {
         const int ab = m_.tet_block[e][4 * a + b];
         if (ab < 0) continue;
-        const T gab = T(m_.grad[e][a].dot(m_.grad[e][b]));
-        const T la = vs * lambda_[e], mb = vs * mu_[e];
-        T* dst = &blocks_[9 * std::size_t(ab)];
+        const T mg = mb * T(m_.grad[e][a].dot(m_.grad[e][b]));
         // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I), scaled.
+        T k[9];
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) dst[3 * i + j] += la * r[a][i] * r[b][j] + mb * r[b][i] * r[a][j];
-        dst[0] += mb * gab;
-        dst[4] += mb * gab;
-        dst[8] += mb * gab;
+          for (int j = 0; j < 3; ++j) k[3 * i + j] = la * r[a][i] * r[b][j] + mb * r[b][i] * r[a][j];
+        k[0] += mg;
+        k[4] += mg;
+        k[8] += mg;
+        T* dst = &blocks_[9 * std::size_t(ab)];
+        for (int i = 0; i < 9; ++i) dst[i] += k[i];
         if (b == a) continue;
         T* tr = &blocks_[9 * std::size_t(m_.tet_block[e][4 * b + a])];
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) tr[3 * j + i] += la * r[a][i] * r[b][j] + mb * r[b][i] * r[a][j];
-        tr[0] += mb * gab;
-        tr[4] += mb * gab;
-        tr[8] += mb * gab;
+          for (int j = 0; j < 3; ++j) tr[3 * j + i] += k[3 * i + j];
       }
     }
   }
@@ -249,23 +248,38 @@ class CpuBackend final : public Backend {
     }
   }
 
+  // Velocity of a contact point: the barycentric mix of its triangle's nodes.
+  Eigen::Vector3d point_velocity(const contact::SurfaceContact& c) const {
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) v += c.w[k] * Eigen::Vector3d(v_[3 * c.node[k]], v_[3 * c.node[k] + 1], v_[3 * c.node[k] + 2]);
+    return v;
+  }
+
+  // Contact terms, lumped on the diagonal blocks: node k of a contact triangle gets
+  // w_k of the force and w_k (h^2 ks + h ke) n n^T. (The consistent Jacobian couples
+  // the three nodes by w_j w_k; lumping keeps the same response to a translation of the
+  // triangle and is stiffer, never softer, for the others: still stable, and the
+  // force itself is exact.)
   void add_contacts(std::span<const FingerInput> fingers, T h) {
     const double ks = p_.contact.stiffness, ke = p_.contact.damping;
     for (const auto& c : contacts_) {
-      const int i = m_.dof[c.node];
-      if (i < 0) continue;
-      const Eigen::Vector3d vn(v_[3 * c.node], v_[3 * c.node + 1], v_[3 * c.node + 2]);
-      const double rate = -c.n.dot(vn - fingers[c.finger].velocity);
+      const double rate = -c.n.dot(point_velocity(c) - fingers[c.finger].velocity);
       const double mag = contact::penalty(ks, ke, c.depth, rate);
       if (mag <= 0) continue;
-      // Linearised: f(x + h v') ~ f - h ks n n^T v', damping ke n n^T on v'.
       const Eigen::Matrix3d nn = c.n * c.n.transpose();
-      const Eigen::Vector3d rhs = h * (mag * c.n - double(h) * ks * nn * vn);
-      const Eigen::Matrix3d A = (double(h) * double(h) * ks + double(h) * ke) * nn;
-      T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
-      for (int r = 0; r < 3; ++r) {
-        b_[3 * i + r] += T(rhs[r]);
-        for (int s = 0; s < 3; ++s) d[3 * r + s] += T(A(r, s));
+      for (int k = 0; k < 3; ++k) {
+        const int node = c.node[k];
+        const int i = m_.dof[node];
+        if (i < 0 || c.w[k] <= 0) continue;
+        const Eigen::Vector3d vn(v_[3 * node], v_[3 * node + 1], v_[3 * node + 2]);
+        // Linearised: f(x + h v') ~ f - h ks n n^T v', damping ke n n^T on v'.
+        const Eigen::Vector3d rhs = double(h) * c.w[k] * (mag * c.n - double(h) * ks * nn * vn);
+        const Eigen::Matrix3d A = c.w[k] * (double(h) * double(h) * ks + double(h) * ke) * nn;
+        T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
+        for (int r = 0; r < 3; ++r) {
+          b_[3 * i + r] += T(rhs[r]);
+          for (int s = 0; s < 3; ++s) d[3 * r + s] += T(A(r, s));
+        }
       }
     }
   }
@@ -276,16 +290,15 @@ class CpuBackend final : public Backend {
     const double h = p_.solver.dt;
     const double a = 1.0 - std::exp(-2.0 * M_PI * p_.contact.force_filter_hz * h);
     surface_bounds();
-    contact::detect<T>(fingers, m_.surface_nodes, x_.data(), bounds_, contacts_);
+    contact::detect<T>(fingers, m_.surface, x_.data(), bounds_, contacts_);
     for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
     for (const auto& c : contacts_) {
-      const Eigen::Vector3d vn(v_[3 * c.node], v_[3 * c.node + 1], v_[3 * c.node + 2]);
-      const double rate = -c.n.dot(vn - fingers[c.finger].velocity);
+      const double rate = -c.n.dot(point_velocity(c) - fingers[c.finger].velocity);
       const double mag = contact::penalty(ks, ke, c.depth, rate);
       FingerOutput& o = out[c.finger];
       o.force_raw -= mag * c.n;
       o.stiffness -= ks * c.n * c.n.transpose();
-      o.contact_point += Eigen::Vector3d(x_[3 * c.node], x_[3 * c.node + 1], x_[3 * c.node + 2]);
+      o.contact_point += c.p;
       ++o.contacts;
     }
     for (std::size_t f = 0; f < out.size() && f < fingers.size(); ++f) {
@@ -307,7 +320,7 @@ class CpuBackend final : public Backend {
   std::vector<T> b_, dv_, kv_;               // (nfree x 3)
   std::vector<T> precond_;                   // (nfree x 9) inverse diagonal blocks
   cg::Workspace<T> cg_;
-  std::vector<contact::VertexContact> contacts_;
+  std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;
   bool rested_ = true;

@@ -25,13 +25,13 @@ Scenario paper_sweep(bool tumour) {
   // around the tumour) is identical, so the two sweeps differ only in stiffness.
   Inclusion inc;
   inc.shape = "sphere";
-  inc.center = Eigen::Vector3d(0.125, 0.0, 0.03);
+  inc.center = Eigen::Vector3d(0.125, 0.0, 0.035);
   inc.radii = Eigen::Vector3d::Constant(0.015);
   inc.young_modulus = tumour ? 107000.0 : s.young_modulus;
   inc.poisson_ratio = 0.45;
   s.inclusions.push_back(inc);
   s.params.solver.dt = 0.001;
-  s.params.contact.stiffness = 2000.0;
+  s.params.contact.stiffness = 20000.0;
   s.params.contact.damping = 5.0;
   s.params.contact.force_filter_hz = 100.0;
 
@@ -39,7 +39,7 @@ Scenario paper_sweep(bool tumour) {
   const double x0 = 0.080, x1 = 0.170;  // sweep range, m
   const double pass_time = 6.0;         // s per pass
   const double push_period = 0.4;       // s (x advances 6 mm per push)
-  const double depth = 0.015;           // m below the skin at the deepest point
+  const double depth = 0.018;           // m below the skin at the deepest point (deep palpation)
   const double clearance = 0.003;       // m above the skin between pushes
   const double radius = 0.008;          // index fingertip
   const int passes = 4;                 // L->R, R->L, twice

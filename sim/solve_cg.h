@@ -36,23 +36,28 @@ struct Result {
   bool converged = false;
 };
 
-/// y = A x
+/// y = A x; returns x . y when `dot_out` is set (fused: one pass over the matrix).
 template <class T>
-void multiply(const BlockSystem<T>& A, const T* x, T* y, bool parallel) {
-#pragma omp parallel for schedule(static) if (parallel)
+void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bool parallel, T* dot_out = nullptr) {
+  T xy = 0;
+#pragma omp parallel for schedule(static) reduction(+ : xy) if (parallel)
   for (int i = 0; i < A.n; ++i) {
     T y0 = 0, y1 = 0, y2 = 0;
-    for (int k = A.row_ptr[i]; k < A.row_ptr[i + 1]; ++k) {
-      const T* b = A.blocks + 9 * std::size_t(k);
-      const T* xx = x + 3 * A.col[k];
-      y0 += b[0] * xx[0] + b[1] * xx[1] + b[2] * xx[2];
-      y1 += b[3] * xx[0] + b[4] * xx[1] + b[5] * xx[2];
-      y2 += b[6] * xx[0] + b[7] * xx[1] + b[8] * xx[2];
+    const int end = A.row_ptr[i + 1];
+    for (int k = A.row_ptr[i]; k < end; ++k) {
+      const T* __restrict b = A.blocks + 9 * std::size_t(k);
+      const T* __restrict xx = x + 3 * A.col[k];
+      const T x0 = xx[0], x1 = xx[1], x2 = xx[2];
+      y0 += b[0] * x0 + b[1] * x1 + b[2] * x2;
+      y1 += b[3] * x0 + b[4] * x1 + b[5] * x2;
+      y2 += b[6] * x0 + b[7] * x1 + b[8] * x2;
     }
     y[3 * i] = y0;
     y[3 * i + 1] = y1;
     y[3 * i + 2] = y2;
+    xy += x[3 * i] * y0 + x[3 * i + 1] * y1 + x[3 * i + 2] * y2;
   }
+  if (dot_out) *dot_out = xy;
 }
 
 template <class T>
@@ -63,7 +68,7 @@ T dot(const T* a, const T* b, int n, bool parallel) {
   return s;
 }
 
-/// Inverts the diagonal blocks into A.precond. `diag` is each row's diagonal block index.
+/// Inverts the diagonal blocks into A.precond.
 template <class T>
 void build_block_jacobi(const BlockSystem<T>& A) {
   for (int i = 0; i < A.n; ++i) {
@@ -76,21 +81,19 @@ void build_block_jacobi(const BlockSystem<T>& A) {
   }
 }
 
-/// Solves A x = b to ||b - A x|| <= tol ||b|| or max_iter iterations.
+/// Solves A x = b to ||b - A x|| <= tol ||b|| or max_iter iterations. Two passes over
+/// memory per iteration: the product (fused with p . q) and one fused update
+/// (x, r, z = P r, r . z, r . r).
 template <class T>
 Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Workspace<T>& w, bool parallel) {
   const int n = 3 * A.n;
   w.resize(n);
   build_block_jacobi(A);
-  auto precondition = [&A](const T* r, T* z) {
-    for (int i = 0; i < A.n; ++i) {
-      const T* P = A.precond + 9 * std::size_t(i);
-      const T* ri = r + 3 * i;
-      z[3 * i] = P[0] * ri[0] + P[1] * ri[1] + P[2] * ri[2];
-      z[3 * i + 1] = P[3] * ri[0] + P[4] * ri[1] + P[5] * ri[2];
-      z[3 * i + 2] = P[6] * ri[0] + P[7] * ri[1] + P[8] * ri[2];
-    }
-  };
+  T* __restrict r = w.r.data();
+  T* __restrict z = w.z.data();
+  T* __restrict p = w.p.data();
+  T* __restrict q = w.q.data();
+  const T* __restrict P = A.precond;
   Result res;
   const T bnorm = std::sqrt(dot(b, b, n, parallel));
   if (!(bnorm > 0)) {
@@ -98,36 +101,59 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
     res.converged = true;
     return res;
   }
-  multiply(A, x, w.q.data(), parallel);
-  for (int i = 0; i < n; ++i) w.r[i] = b[i] - w.q[i];
-  T rnorm = std::sqrt(dot(w.r.data(), w.r.data(), n, parallel));
+  multiply(A, x, q, parallel);
+  T rr = 0;
+  for (int i = 0; i < n; ++i) {
+    r[i] = b[i] - q[i];
+    rr += r[i] * r[i];
+  }
+  T rnorm = std::sqrt(rr);
   if (!std::isfinite(double(rnorm)) || rnorm > T(1e3) * bnorm) {
     // A warm start that is worse than nothing (or broken): restart from zero.
     for (int i = 0; i < n; ++i) {
       x[i] = 0;
-      w.r[i] = b[i];
+      r[i] = b[i];
     }
     rnorm = bnorm;
   }
-  precondition(w.r.data(), w.z.data());
-  for (int i = 0; i < n; ++i) w.p[i] = w.z[i];
-  T rz = dot(w.r.data(), w.z.data(), n, parallel);
+  T rz = 0;
+  for (int i = 0; i < A.n; ++i) {
+    const T* Pi = P + 9 * std::size_t(i);
+    const T* ri = r + 3 * i;
+    for (int c = 0; c < 3; ++c) {
+      z[3 * i + c] = Pi[3 * c] * ri[0] + Pi[3 * c + 1] * ri[1] + Pi[3 * c + 2] * ri[2];
+      p[3 * i + c] = z[3 * i + c];
+      rz += ri[c] * z[3 * i + c];
+    }
+  }
   int it = 0;
   while (it < max_iter && rnorm > tol * bnorm) {
-    multiply(A, w.p.data(), w.q.data(), parallel);
-    const T pq = dot(w.p.data(), w.q.data(), n, parallel);
+    T pq = 0;
+    multiply(A, p, q, parallel, &pq);
     if (!(pq > 0)) break;  // not positive definite along p (or NaN): stop, report
     const T alpha = rz / pq;
-    for (int i = 0; i < n; ++i) {
-      x[i] += alpha * w.p[i];
-      w.r[i] -= alpha * w.q[i];
+    T rz_new = 0, rr_new = 0;
+#pragma omp parallel for schedule(static) reduction(+ : rz_new, rr_new) if (parallel)
+    for (int i = 0; i < A.n; ++i) {
+      const T* Pi = P + 9 * std::size_t(i);
+      T ri[3];
+      for (int c = 0; c < 3; ++c) {
+        x[3 * i + c] += alpha * p[3 * i + c];
+        ri[c] = r[3 * i + c] - alpha * q[3 * i + c];
+        r[3 * i + c] = ri[c];
+      }
+      for (int c = 0; c < 3; ++c) {
+        const T zc = Pi[3 * c] * ri[0] + Pi[3 * c + 1] * ri[1] + Pi[3 * c + 2] * ri[2];
+        z[3 * i + c] = zc;
+        rz_new += ri[c] * zc;
+        rr_new += ri[c] * ri[c];
+      }
     }
-    precondition(w.r.data(), w.z.data());
-    const T rz_new = dot(w.r.data(), w.z.data(), n, parallel);
-    rnorm = std::sqrt(dot(w.r.data(), w.r.data(), n, parallel));
+    rnorm = std::sqrt(rr_new);
     const T beta = rz_new / rz;
     rz = rz_new;
-    for (int i = 0; i < n; ++i) w.p[i] = w.z[i] + beta * w.p[i];
+#pragma omp parallel for schedule(static) if (parallel)
+    for (int i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
     ++it;
   }
   res.iterations = it;
