@@ -19,6 +19,7 @@ using CommandAction = std::function<int()>;
 CommandAction add_scenario_command(CLI::App& app);
 CommandAction add_run_command(CLI::App& app);
 CommandAction add_bench_command(CLI::App& app);
+CommandAction add_session_command(CLI::App& app);
 CommandAction add_check_backends_command(CLI::App& app);
 
 }  // namespace palpation::app

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   reg(add_scenario_command);
   reg(add_run_command);
   reg(add_bench_command);
+  reg(add_session_command);
   reg(add_check_backends_command);
   try {
     app.parse(argc, argv);

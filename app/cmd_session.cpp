@@ -1,0 +1,124 @@
+// palpation session SCENARIO.json --device emulator|scripted|replay --out DIR: the whole
+// real-time pipeline, headless (device, 1 kHz haptic thread, simulation thread) for the
+// scenario's duration. Writes DIR/fingers.csv (what the device received, as `run`
+// writes it) and DIR/loop.json (rates, jitter, overruns, forces, safety events).
+#include <climits>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "cli.h"
+#include "device_config.h"
+#include "headless_run.h"
+#include "output_dir.h"
+#include "scenario.h"
+#include "session.h"
+
+namespace palpation::app {
+
+namespace {
+
+sim::Scenario load_scenario_arg(const std::string& arg) {
+  for (const auto& n : sim::builtin_scenario_names())
+    if (arg == n || arg == "builtin:" + n) return sim::builtin_scenario(n);
+  return sim::load_scenario(arg);
+}
+
+std::string emulator_next_to_self() {
+  char buf[PATH_MAX];
+  const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return "handhiro-emulator";
+  buf[n] = 0;
+  return (std::filesystem::path(buf).parent_path() / "handhiro-emulator").string();
+}
+
+}  // namespace
+
+CommandAction add_session_command(CLI::App& app) {
+  auto* sub = app.add_subcommand(
+      "session", "Run the real-time pipeline headless (device, 1 kHz haptic thread, simulation thread); writes "
+                 "DIR/fingers.csv and DIR/loop.json");
+  struct Opts {
+    std::string scenario, out, device = "emulator", config, backend, resolution, recording, sim_dt = "realtime", emulator_exe;
+    double duration = 0, sim_max_dt = 0.01, vib_from = -1, vib_to = -1;
+    int priority = 80;
+    bool rigid = false, no_passivity = false, no_rt = false, process = false, quiet = false;
+  };
+  auto o = std::make_shared<Opts>();
+  sub->add_option("scenario", o->scenario, "Scenario JSON file (or a built-in name)")->required();
+  sub->add_option("--device", o->device, "emulator (HandHIRO protocol over loopback UDP), scripted (in-process, "
+                                         "follows the paths exactly) or replay (plays --recording)")
+      ->check(CLI::IsMember({"emulator", "scripted", "replay"}));
+  sub->add_option("--out", o->out, "Output folder")->required();
+  sub->add_option("--device-config", o->config, "Device configuration (default: built-in, = resources/handhiro.json)");
+  sub->add_option("--duration", o->duration, "Seconds to run (default: the scenario's duration)");
+  sub->add_option("--backend", o->backend, "Override solver.backend (auto, cpu, cuda)")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
+  sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, fine, xfine)");
+  sub->add_option("--recording", o->recording, "Drive the hand by a recorded fingers.csv instead of the scenario's paths");
+  sub->add_flag("--rigid-hand", o->rigid, "Emulator: fingertips follow the path exactly (default: a compliant finger)");
+  sub->add_flag("--no-passivity", o->no_passivity, "Switch off the energy (passivity) controller");
+  sub->add_option("--sim-dt", o->sim_dt, "realtime: the simulation's dt follows the wall clock; fixed: the scenario's dt")
+      ->check(CLI::IsMember({"realtime", "fixed"}));
+  sub->add_option("--sim-max-dt", o->sim_max_dt, "Largest real-time simulation dt, s")->check(CLI::Range(1e-4, 0.1));
+  sub->add_option("--priority", o->priority, "SCHED_FIFO priority of the haptic thread")->check(CLI::Range(1, 99));
+  sub->add_flag("--no-rt", o->no_rt, "Do not ask for real-time priority");
+  sub->add_flag("--emulator-process", o->process, "Run handhiro-emulator as a child process (default: a thread)");
+  sub->add_option("--emulator-exe", o->emulator_exe, "Path of handhiro-emulator (default: next to this program)");
+  sub->add_option("--vibration-from", o->vib_from, "Start of the vibration window, s (default: half the duration)");
+  sub->add_option("--vibration-to", o->vib_to, "End of the vibration window, s (default: the end)");
+  sub->add_flag("--quiet", o->quiet, "No progress on stderr");
+  return [o]() {
+    sim::Scenario s = load_scenario_arg(o->scenario);
+    if (!o->backend.empty()) s.backend = o->backend;
+    if (!o->resolution.empty()) {
+      auto e = sim::resolution_edge(s.patient.phantom, o->resolution);
+      if (!e) throw sim::ScenarioError("--resolution: unknown level \"" + o->resolution + "\"");
+      s.patient.resolution = o->resolution;
+      s.patient.edge = *e;
+    }
+    if (o->duration < 0) throw sim::ScenarioError("--duration: must be > 0");
+    SessionOptions opt;
+    opt.device = o->device;
+    if (!o->config.empty()) {
+      opt.config = load_device_config(o->config);
+      opt.device_config_path = o->config;
+    }
+    if (o->no_passivity) opt.config.loop.safety.passivity = false;
+    opt.duration = o->duration;
+    opt.priority = o->no_rt ? 0 : o->priority;
+    opt.rigid_hand = o->rigid;
+    opt.recording = o->recording;
+    opt.scenario_arg = o->scenario;
+    opt.sim_realtime = o->sim_dt == "realtime";
+    opt.sim_max_dt = o->sim_max_dt;
+    opt.vibration_from = o->vib_from;
+    opt.vibration_to = o->vib_to;
+    if (o->process) opt.emulator_exe = o->emulator_exe.empty() ? emulator_next_to_self() : o->emulator_exe;
+    if (o->process && o->device != "emulator") throw sim::ScenarioError("--emulator-process: only with --device emulator");
+    opt.progress = !o->quiet;
+    if (!o->quiet) opt.log = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
+    OutputDir out(o->out);
+    SessionResult r = run_session(s, opt);
+    write_fingers_csv(out.path("fingers.csv"), r.samples);
+    {
+      std::ofstream js(out.path("loop.json"));
+      js << r.loop.dump(2) << "\n";
+      if (!js) throw std::runtime_error(out.path("loop.json") + ": write failed");
+    }
+    out.commit();
+    if (!o->quiet) {
+      const auto& h = r.loop["haptic"];
+      std::fprintf(stderr,
+                   "session: haptic %.1f Hz, jitter p50 %.1f / p99 %.1f / max %.1f us, %llu overruns (%s); "
+                   "simulation %.0f steps/s; largest force %.2f N -> %s\n",
+                   h["rate_hz"].get<double>(), h["jitter_us"]["p50"].get<double>(), h["jitter_us"]["p99"].get<double>(),
+                   h["jitter_us"]["max"].get<double>(), (unsigned long long)h["overruns"].get<std::uint64_t>(),
+                   h["scheduling"].get<std::string>().c_str(), r.loop["simulation"]["step_rate_hz"].get<double>(),
+                   r.loop["forces"]["largest_sent_n"].get<double>(), o->out.c_str());
+    }
+    return r.ok ? kExitOk : kExitFailure;
+  };
+}
+
+}  // namespace palpation::app
