@@ -133,7 +133,8 @@ constexpr int kMaxFingers = 8;
 // Per finger: force_raw (3), stiffness (6: xx xy xz yy yz zz), contact point sum (3),
 // contact count (1), pad (1).
 constexpr int kFingerVals = 14;
-constexpr int kBlock = 256;  // threads per block everywhere
+constexpr int kBlock = 256;  // threads per block everywhere but the persistent kernel
+constexpr int kPcgMaxBlock = 512;  // the persistent kernel: one fat block per SM by default
 constexpr int kGroup = 8;    // lanes per block row in the SpMV
 
 struct FingerDev {
@@ -153,11 +154,11 @@ struct StepConsts {
 };
 
 /// Scratch that lives across kernels of one step. Invariant at step entry: facc,
-/// detect_done and start_contacts are zero; the start-of-step detection zeroes the maxima.
-constexpr int kMaxGrid = 1024;  // most blocks a persistent kernel is launched with
+/// detect_done and start_contacts are zero; the start-of-step detection zeroes the
+/// reduction ring and the maxima.
 struct DevScratch {
   double facc[kMaxFingers][kFingerVals];
-  double part[2][3][kMaxGrid];  // per-block partial sums of the persistent kernel, two slots
+  double red[4][4];  // reduction ring of the persistent kernel
   unsigned long long vmax_bits, dvmax_bits;
   unsigned int detect_done;
   int start_contacts;
@@ -182,6 +183,28 @@ struct DevResult {
 __device__ __forceinline__ double warp_sum(double v) {
   for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
   return v;
+}
+
+/// Sums K values over the block and atomically adds them to dst[0..K). All threads call.
+template <int K>
+__device__ void block_sum_atomic(double (&v)[K], double* dst) {
+  __shared__ double sh[K][32];
+  const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5, nw = (blockDim.x + 31) >> 5;
+#pragma unroll
+  for (int k = 0; k < K; ++k) v[k] = warp_sum(v[k]);
+  if (lane == 0)
+#pragma unroll
+    for (int k = 0; k < K; ++k) sh[k][warp] = v[k];
+  __syncthreads();
+  if (warp == 0) {
+#pragma unroll
+    for (int k = 0; k < K; ++k) {
+      double t = lane < nw ? sh[k][lane] : 0.0;
+      t = warp_sum(t);
+      if (lane == 0) atomicAdd(dst + k, t);
+    }
+  }
+  __syncthreads();
 }
 
 /// Max of non-negative values over the block, atomically into the bit pattern at dst
@@ -310,6 +333,8 @@ __device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const 
 
 /// Zeroes what one step accumulates (before the PCG kernel runs).
 __device__ __forceinline__ void zero_step_scratch(DevScratch* s) {
+  for (int r = 0; r < 4; ++r)
+    for (int j = 0; j < 4; ++j) s->red[r][j] = 0.0;
   s->vmax_bits = 0ull;
   s->dvmax_bits = 0ull;
   s->rested = 0;
@@ -672,6 +697,7 @@ __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
           srec[w][j][comp] = a.rec[std::size_t(kRec) * (sinc[w][j] >> 2) + comp];
         }
         __syncwarp();
+#pragma unroll 2
         for (int j = 0; j < cnt; ++j) {
           const int ia = sinc[w][j] & 3;
           const int4 t = stet[w][j];
@@ -875,51 +901,33 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<
   }
 }
 
-/// Grid-wide sums without atomics: before barrier m each block writes its partial sums to
-/// slot m % 2; after it every block adds all partials in the same order (deterministic,
-/// identical in every block) and shares the totals through shared memory. A same-address
-/// atomic from every block serialises in one L2 slice; these are plain stores and reads.
-struct Partials {
+/// Reduction ring: the values reduced before barrier m live in slot m % 4.
+struct Ring {
   int m = 0;
-  template <int K>
-  __device__ void put(DevScratch* s, double (&v)[K]) {
-    __shared__ double sh[K][32];
-    const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5, nw = (blockDim.x + 31) >> 5;
-#pragma unroll
-    for (int k = 0; k < K; ++k) v[k] = warp_sum(v[k]);
-    if (lane == 0)
-#pragma unroll
-      for (int k = 0; k < K; ++k) sh[k][warp] = v[k];
-    __syncthreads();
-    if (warp == 0) {
-#pragma unroll
-      for (int k = 0; k < K; ++k) {
-        double t = lane < nw ? sh[k][lane] : 0.0;
-        t = warp_sum(t);
-        if (lane == 0) s->part[m & 1][k][blockIdx.x] = t;
-      }
-    }
-  }
-  /// After the barrier.
+  __device__ double* slot(DevScratch* s) const { return s->red[m & 3]; }
+  /// After the barrier: read slot m % 4, zero slot (m + 2) % 4, advance. One thread per
+  /// block reads the slot and shares it: every thread of the grid reading one L2 line is a
+  /// hot spot (docs/gpu-notes.md).
   template <int K>
   __device__ void take(DevScratch* s, double (&out)[K]) {
     __shared__ double sh[K];
-    if (threadIdx.x < 32) {
-      const int lane = threadIdx.x;
+    if (threadIdx.x == 0) {
 #pragma unroll
-      for (int k = 0; k < K; ++k) {
-        double t = 0;
-        for (int b = lane; b < int(gridDim.x); b += 32) t += __ldcg(&s->part[m & 1][k][b]);
-        t = warp_sum(t);
-        if (lane == 0) sh[k] = t;
-      }
+      for (int k = 0; k < K; ++k) sh[k] = __ldcg(&s->red[m & 3][k]);
+      if (blockIdx.x == 0)
+        for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
     }
     __syncthreads();
 #pragma unroll
     for (int k = 0; k < K; ++k) out[k] = sh[k];
     ++m;
   }
-  __device__ void skip() { ++m; }
+  /// A barrier that carries no reduction still advances the ring (and zeroes ahead).
+  __device__ void skip(DevScratch* s) {
+    if (blockIdx.x == 0 && threadIdx.x == 0)
+      for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
+    ++m;
+  }
 };
 
 
@@ -981,10 +989,10 @@ __device__ void rest_rule(const PcgArgs<T>& a) {
 /// so its own barrier disappears. B > 0: the first row of each lane group is held in
 /// registers (k_pcg is then launched with at most two blocks per multiprocessor).
 template <class T, int B>
-__global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
+__global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
   coop::grid_group grid = coop::this_grid();
   const int tid = blockIdx.x * blockDim.x + threadIdx.x, nthreads = gridDim.x * blockDim.x;
-  Partials red;
+  Ring ring;
   RowCache<T, B> rc;
   load_row_cache(a, rc);
 
@@ -1000,11 +1008,11 @@ __global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, Det
           acc[0] += double(bi) * double(bi);
           acc[1] += double(ri) * double(ri);
         });
-    red.put<2>(a.scr, acc);
+    block_sum_atomic<2>(acc, ring.slot(a.scr));
   }
   grid.sync();
   double br[2];
-  red.take<2>(a.scr, br);
+  ring.take<2>(a.scr, br);
   const T bnorm = sqrt(T(br[0]));
   T rnorm = sqrt(T(br[1]));
   int it = 0;
@@ -1021,11 +1029,11 @@ __global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, Det
         precondition_row(a.P, a.r, a.z, i);
         for (int c = 0; c < 3; ++c) acc[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
       }
-      red.put<1>(a.scr, acc);
+      block_sum_atomic<1>(acc, ring.slot(a.scr));
     }
     grid.sync();
     double rz1[1];
-    red.take<1>(a.scr, rz1);
+    ring.take<1>(a.scr, rz1);
     T rz = T(rz1[0]);
     if (restart) rnorm = bnorm;
     T beta = 0;
@@ -1037,7 +1045,7 @@ __global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, Det
       if (!a.fused) {
         for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];
         grid.sync();
-        red.skip();
+        ring.skip(a.scr);
       }
       double acc[1] = {0};
       if (a.fused) {
@@ -1062,10 +1070,10 @@ __global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, Det
               acc[0] += double(pn[3 * i + c]) * double(y);
             });
       }
-      red.put<1>(a.scr, acc);
+      block_sum_atomic<1>(acc, ring.slot(a.scr));
       grid.sync();
       double pq1[1];
-      red.take<1>(a.scr, pq1);
+      ring.take<1>(a.scr, pq1);
       const T pq = T(pq1[0]);
       if (!(pq > T(0))) break;
       const T alpha = rz / pq;
@@ -1083,11 +1091,11 @@ __global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, Det
             acc2[1] += rr * rr;
           }
         }
-        red.put<2>(a.scr, acc2);
+        block_sum_atomic<2>(acc2, ring.slot(a.scr));
       }
       grid.sync();
       double rr2[2];
-      red.take<2>(a.scr, rr2);
+      ring.take<2>(a.scr, rr2);
       const T rz_new = T(rr2[0]);
       rnorm = sqrt(T(rr2[1]));
       beta = rz_new / rz;
@@ -1101,7 +1109,7 @@ __global__ void __launch_bounds__(kBlock, B > 0 ? 2 : 4) k_pcg(PcgArgs<T> a, Det
   } else {
     for (int j = tid; j < 3 * a.n; j += nthreads) a.x[j] = T(0);
     grid.sync();
-    red.skip();
+    ring.skip(a.scr);
   }
   if (tid == 0) {
     a.res->cg_iterations = it;
@@ -1151,7 +1159,7 @@ __global__ void __launch_bounds__(kBlock) k_stream_passes(const T* __restrict__ 
 }
 
 /// An empty phase: what a kernel boundary costs when each CG phase is its own kernel.
-__global__ void __launch_bounds__(kBlock) k_empty(int* sink) {
+__global__ void __launch_bounds__(kPcgMaxBlock) k_empty(int* sink) {
   if (blockIdx.x == 0 && threadIdx.x == 0 && sink[0] < 0) sink[0] = 0;
 }
 
@@ -1160,7 +1168,7 @@ __global__ void k_flag(int* p) {
   if (threadIdx.x == 0) *p = 1;
 }
 
-__global__ void __launch_bounds__(kBlock) k_sync_only(int syncs, int* sink) {
+__global__ void __launch_bounds__(kPcgMaxBlock) k_sync_only(int syncs, int* sink) {
   coop::grid_group grid = coop::this_grid();
   for (int s = 0; s < syncs; ++s) grid.sync();
   if (blockIdx.x == 0 && threadIdx.x == 0) *sink = syncs;
@@ -1227,23 +1235,28 @@ const DeviceInfo& device_info() {
 
 constexpr int kCacheBlocks = 3;  // blocks per lane held in registers: rows of up to 24 blocks
 
-/// Launch configuration of the persistent kernel for n block rows.
+/// Launch configuration of the persistent kernel for n block rows. Default: blocks of 512
+/// threads, at most one per multiprocessor where the rows live in registers (fewer blocks
+/// make the grid barriers and the reductions cheaper: measured, docs/gpu-notes.md).
 struct PcgLaunch {
   const void* fn = nullptr;
   int grid = 1;
+  int block = kPcgMaxBlock;
   bool cached = false;  // every row's matrix held in registers
 };
 
 template <class T>
 PcgLaunch pcg_launch(int n) {
   const DeviceInfo& d = device_info();
-  constexpr int rows_per_block = kBlock / kGroup;
+  PcgLaunch L;
+  const int want_block = env_int("PALPATION_CUDA_PCG_BLOCK", kPcgMaxBlock);
+  L.block = want_block == 256 ? 256 : kPcgMaxBlock;
+  const int rows_per_block = L.block / kGroup;
   const int forced = env_int("PALPATION_CUDA_GRID", 0);
   const int cap_per_sm = env_int("PALPATION_CUDA_BLOCKS_PER_SM", 0);
-  PcgLaunch L;
   // Register-resident rows when one pass of lane groups covers every row.
   int per_sm_c = 0;
-  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks>, kBlock, 0));
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks>, L.block, 0));
   if (cap_per_sm > 0) per_sm_c = std::min(per_sm_c, cap_per_sm);
   const int need = (n + rows_per_block - 1) / rows_per_block;
   if (env_int("PALPATION_CUDA_CACHE", 1) != 0 && per_sm_c > 0 && need <= per_sm_c * d.sms) {
@@ -1254,10 +1267,10 @@ PcgLaunch pcg_launch(int n) {
     return L;
   }
   int per_sm = 0;
-  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0>, kBlock, 0));
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0>, L.block, 0));
   per_sm = std::max(per_sm, 1);
   if (cap_per_sm > 0) per_sm = std::min(per_sm, cap_per_sm);
-  const int max_blocks = std::min(per_sm * d.sms, kMaxGrid);
+  const int max_blocks = per_sm * d.sms;
   // Enough blocks that each lane group gets about one block row per SpMV pass; more only
   // makes the barriers dearer.
   L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0>);
@@ -1649,7 +1662,7 @@ class CudaBackend final : public Backend {
     FingersArg f = F;
     StepConsts kk = k;
     void* args[] = {&a, &d, &f, &kk};
-    CU(cudaLaunchCooperativeKernel(launch_.fn, dim3(launch_.grid), dim3(kBlock), args, 0, stream_));
+    CU(cudaLaunchCooperativeKernel(launch_.fn, dim3(launch_.grid), dim3(launch_.block), args, 0, stream_));
   }
 
   void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
@@ -1873,11 +1886,11 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   cudaEvent_t e0, e1;
   CU(cudaEventCreate(&e0));
   CU(cudaEventCreate(&e1));
-  auto time_coop = [&](const void* fn, void** args, int g) {
+  auto time_coop = [&](const void* fn, void** args, int g, int block) {
     std::vector<float> t;
     for (int rep = 0; rep < 7; ++rep) {
       CU(cudaEventRecord(e0, s));
-      CU(cudaLaunchCooperativeKernel(fn, dim3(g), dim3(kBlock), args, 0, s));
+      CU(cudaLaunchCooperativeKernel(fn, dim3(g), dim3(block), args, 0, s));
       CU(cudaEventRecord(e1, s));
       CU(cudaEventSynchronize(e1));
       float ms = 0;
@@ -1893,7 +1906,7 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   int syncs = 2000;
   int* sinkp = sink.get();
   void* sargs[] = {&syncs, &sinkp};
-  const double t_sync = time_coop(reinterpret_cast<const void*>(&k_sync_only), sargs, grid) * 1000.0 / syncs;
+  const double t_sync = time_coop(reinterpret_cast<const void*>(&k_sync_only), sargs, grid, launch.block) * 1000.0 / syncs;
   // The alternatives to a grid barrier, measured once per process for docs/gpu-notes.md:
   // a kernel boundary in a stream and in a replayed CUDA graph, same grid.
   static std::once_flag said;
@@ -1901,7 +1914,7 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
     constexpr int kLaunches = 200;
     auto time_stream = [&] {
       CU(cudaEventRecord(e0, s));
-      for (int l = 0; l < kLaunches; ++l) k_empty<<<grid, kBlock, 0, s>>>(sinkp);
+      for (int l = 0; l < kLaunches; ++l) k_empty<<<grid, launch.block, 0, s>>>(sinkp);
       CU(cudaPeekAtLastError());
       CU(cudaEventRecord(e1, s));
       CU(cudaEventSynchronize(e1));
@@ -1914,7 +1927,7 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
     cudaGraph_t g;
     cudaGraphExec_t ge;
     CU(cudaStreamBeginCapture(s, cudaStreamCaptureModeThreadLocal));
-    for (int l = 0; l < kLaunches; ++l) k_empty<<<grid, kBlock, 0, s>>>(sinkp);
+    for (int l = 0; l < kLaunches; ++l) k_empty<<<grid, launch.block, 0, s>>>(sinkp);
     CU(cudaStreamEndCapture(s, &g));
     CU(cudaGraphInstantiate(&ge, g, 0));
     CU(cudaGraphLaunch(ge, s));
@@ -1936,7 +1949,7 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
     std::fprintf(stderr,
                  "cuda floor: %s, grid %d x %d%s: grid barrier %.2f us; kernel boundary %.2f us (stream), %.2f us "
                  "(graph replay); host round trip %.1f us (median)\n",
-                 d.name.c_str(), grid, kBlock, launch.cached ? " (rows in registers)" : "", t_sync, t_stream, t_graph,
+                 d.name.c_str(), grid, launch.block, launch.cached ? " (rows in registers)" : "", t_sync, t_stream, t_graph,
                  host_round_trip_us(s, sinkp));
   });
   // Bandwidth at the iteration's working-set size: passes that read and write it.
@@ -1953,10 +1966,10 @@ bool measure_floor(const Model& m, FloorEstimate& out) {
   int sgrid = 0;
   CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&sgrid, k_stream_passes<T>, kBlock, 0));
   sgrid = std::max(1, sgrid) * d.sms;
-  const double t_pass = time_coop(reinterpret_cast<const void*>(&k_stream_passes<T>), bargs, sgrid) * 1000.0 / passes;
+  const double t_pass = time_coop(reinterpret_cast<const void*>(&k_stream_passes<T>), bargs, sgrid, kBlock) * 1000.0 / passes;
   // Sync cost of the stream kernel's own (full) grid, to subtract.
   void* sargs2[] = {&syncs, &sinkp};
-  const double t_sync_full = time_coop(reinterpret_cast<const void*>(&k_sync_only), sargs2, sgrid) * 1000.0 / syncs;
+  const double t_sync_full = time_coop(reinterpret_cast<const void*>(&k_sync_only), sargs2, sgrid, kBlock) * 1000.0 / syncs;
   const double moved = 2.0 * n * S;
   const double t_move = std::max(t_pass - t_sync_full, 0.05);
   out.bandwidth_gbs = moved / (t_move * 1e-6) / 1e9;

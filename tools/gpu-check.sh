@@ -97,16 +97,15 @@ EOF
   mk x4f xfine 1e-4 1000 float
   one "paper d 1e-6 (default)" p6
   one "paper d 1e-6 again" p6
-  one "paper d 1e-6 3 barriers" p6 PALPATION_CUDA_CG=3sync
+  one "paper d 1e-6 256-thread blocks" p6 PALPATION_CUDA_PCG_BLOCK=256
   one "paper d 1e-6 rows not in registers" p6 PALPATION_CUDA_CACHE=0
-  one "paper d 1e-6 no regs, 3 barriers" p6 PALPATION_CUDA_CACHE=0 PALPATION_CUDA_CG=3sync
-  one "paper d 1e-6 grid 132" p6 PALPATION_CUDA_GRID=132
+  one "paper d 1e-6 3 barriers" p6 PALPATION_CUDA_CG=3sync
   one "paper d 1e-3" p3
   one "paper d 1e-2" p2
   one "paper f 1e-3" p3f
   one "paper f 1e-2" p2f
   one "xfine d 1e-3" x3
-  one "xfine d 1e-3 3 barriers" x3 PALPATION_CUDA_CG=3sync
+  one "xfine d 1e-3 256-thread blocks" x3 PALPATION_CUDA_PCG_BLOCK=256
   one "xfine d 1e-4" x4
   one "xfine f 1e-4" x4f
 fi
