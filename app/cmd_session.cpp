@@ -40,7 +40,7 @@ CommandAction add_session_command(CLI::App& app) {
       "session", "Run the real-time pipeline headless (device, 1 kHz haptic thread, simulation thread); writes "
                  "DIR/fingers.csv and DIR/loop.json");
   struct Opts {
-    std::string scenario, out, device = "emulator", config, backend, resolution, recording, sim_dt = "realtime", emulator_exe;
+    std::string scenario, out, device = "emulator", config, coupling, backend, resolution, recording, sim_dt = "realtime", emulator_exe;
     double duration = 0, sim_max_dt = 0.01, vib_from = -1, vib_to = -1;
     int priority = 80;
     bool rigid = false, no_passivity = false, no_rt = false, process = false, quiet = false;
@@ -58,6 +58,9 @@ CommandAction add_session_command(CLI::App& app) {
   sub->add_option("--recording", o->recording, "Drive the hand by a recorded fingers.csv instead of the scenario's paths");
   sub->add_flag("--rigid-hand", o->rigid, "Emulator: fingertips follow the path exactly (default: a compliant finger)");
   sub->add_flag("--no-passivity", o->no_passivity, "Switch off the energy (passivity) controller");
+  sub->add_option("--coupling", o->coupling, "virtual (default: a spring of the device's stiffness to a simulated "
+                                             "proxy) or direct (the local model at the device position)")
+      ->check(CLI::IsMember({"virtual", "direct"}));
   sub->add_option("--sim-dt", o->sim_dt, "realtime: the simulation's dt follows the wall clock; fixed: the scenario's dt")
       ->check(CLI::IsMember({"realtime", "fixed"}));
   sub->add_option("--sim-max-dt", o->sim_max_dt, "Largest real-time simulation dt, s")->check(CLI::Range(1e-4, 0.1));
@@ -85,6 +88,7 @@ CommandAction add_session_command(CLI::App& app) {
       opt.device_config_path = o->config;
     }
     if (o->no_passivity) opt.config.loop.safety.passivity = false;
+    if (!o->coupling.empty()) opt.config.loop.virtual_coupling = o->coupling == "virtual";
     opt.duration = o->duration;
     opt.priority = o->no_rt ? 0 : o->priority;
     opt.rigid_hand = o->rigid;

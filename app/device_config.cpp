@@ -143,6 +143,8 @@ json device_config_to_json(const DeviceConfig& c) {
                {"timeout", c.link.timeout}};
   const auto& s = c.loop.safety;
   j["haptic_loop"] = {{"period", c.loop.period},
+                      {"coupling", c.loop.virtual_coupling ? "virtual" : "direct"},
+                      {"coupling_stiffness", c.loop.coupling_stiffness},
                       {"blend_max_ticks", c.loop.blend_max_ticks},
                       {"max_rate", s.max_rate},
                       {"stale_after", s.stale_after},
@@ -278,11 +280,19 @@ DeviceConfig parse_device_config(const std::string& text, const std::string& sou
   });
   r.opt(j, "haptic_loop", "", [&](const json& o, const std::string& f) {
     auto& s = c.loop.safety;
-    r.only_keys(o, f, {"period", "blend_max_ticks", "max_rate", "stale_after", "ramp_out", "ramp_in", "passivity",
+    r.only_keys(o, f, {"period", "coupling", "coupling_stiffness", "blend_max_ticks", "max_rate", "stale_after", "ramp_out", "ramp_in", "passivity",
                        "passivity_highpass_hz", "passivity_reserve", "passivity_threshold", "passivity_leak"});
     r.opt(o, "period", f, [&](const json& v, const std::string& g) {
       c.loop.period = r.positive(v, g);
       if (c.loop.period > 0.01) r.fail(g, "must be at most 0.01 s (100 Hz)");
+    });
+    r.opt(o, "coupling", f, [&](const json& v, const std::string& g) {
+      if (!v.is_string() || (v.get<std::string>() != "virtual" && v.get<std::string>() != "direct"))
+        r.fail(g, "must be \"virtual\" or \"direct\"");
+      c.loop.virtual_coupling = v.get<std::string>() == "virtual";
+    });
+    r.opt(o, "coupling_stiffness", f, [&](const json& v, const std::string& g) {
+      c.loop.coupling_stiffness = r.non_negative(v, g);
     });
     r.opt(o, "blend_max_ticks", f, [&](const json& v, const std::string& g) {
       if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > 1000) r.fail(g, "must be an integer in [1, 1000]");

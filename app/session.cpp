@@ -42,9 +42,13 @@ namespace {
 // The simulation thread: newest poses -> step -> publish the local contact models.
 class SimulationThread {
  public:
+  /// coupling_stiffness > 0: virtual coupling (the simulated fingertip is the proxy, see
+  /// device/contact_model.h couple()); 0: the simulated fingertip is the device's.
   SimulationThread(sim::Simulation& simulation, dv::TripleBuffer<dv::PoseFrame>& poses,
-                   dv::TripleBuffer<dv::ContactFrame>& contacts, const DeviceConfig& cfg, bool realtime, double max_dt)
-      : sim_(simulation), poses_(poses), contacts_(contacts), cfg_(cfg), realtime_(realtime), max_dt_(max_dt) {}
+                   dv::TripleBuffer<dv::ContactFrame>& contacts, const DeviceConfig& cfg, bool realtime, double max_dt,
+                   double coupling_stiffness)
+      : sim_(simulation), poses_(poses), contacts_(contacts), cfg_(cfg), realtime_(realtime), max_dt_(max_dt),
+        kc_(coupling_stiffness) {}
   ~SimulationThread() { stop(); }
 
   void start() {
@@ -117,12 +121,22 @@ class SimulationThread {
           continue;
         }
       }
+      const double since = prev_start == 0 ? 0.0 : double(now - prev_start) * 1e-9;
       prev_start = now;
       for (int k = 0; k < nf; ++k) {
-        const dv::FingerState& fs = pf.fingers[cfg_.finger_map[k]];
-        const bool ok = dv::finite(fs.position) && dv::finite(fs.velocity);
-        in[k].position = to_eigen(reg.to_world(ok ? fs.position : dv::Vec3{}));
-        in[k].velocity = to_eigen(reg.vector_to_world(ok ? fs.velocity : dv::Vec3{}));
+        // The simulated fingertip: with the virtual coupling, the proxy balanced against
+        // this thread's newest contact model at the newest device position (computed here,
+        // not taken from the haptic loop, whose proxy may still be one model behind); with
+        // direct coupling, the device's fingertip. Its velocity: the proxy's since the
+        // previous step.
+        const int d = cfg_.finger_map[k];
+        const dv::FingerState& fs = pf.fingers[d];
+        const dv::Vec3 xd = kc_ > 0 ? dv::couple(last_[d], fs.position, kc_).proxy : fs.position;
+        const bool ok = dv::finite(xd) && dv::finite(fs.velocity);
+        const Eigen::Vector3d x = to_eigen(reg.to_world(ok ? xd : dv::Vec3{}));
+        in[k].velocity = (since > 0 && in[k].active && ok) ? Eigen::Vector3d((x - in[k].position) / since)
+                                                         : to_eigen(reg.vector_to_world(ok ? fs.velocity : dv::Vec3{}));
+        in[k].position = x;
         // A detached fingertip or a lost link touches nothing.
         in[k].active = ok && fs.present && fs.attached && pf.connected;
         x0[k] = in[k].position;
@@ -153,6 +167,7 @@ class SimulationThread {
         for (int k = 0; k < nf; ++k)
           if (in[k].active) cf.fingers[cfg_.finger_map[k]] = contact_model(out[k], x0[k], reg);
       }
+      last_ = cf.fingers;
       cf.sequence = ++seq;
       cf.sim_time = sim_time;
       cf.published_ns = dv::monotonic_ns();
@@ -167,6 +182,8 @@ class SimulationThread {
   const DeviceConfig& cfg_;
   bool realtime_;
   double max_dt_;
+  double kc_;
+  std::array<dv::FingerContactModel, dv::kMaxFingers> last_{};  // newest published, device frame
   std::thread thread_;
   std::atomic<bool> stop_{false};
 };
@@ -350,7 +367,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   dv::TripleBuffer<dv::ContactFrame> contacts;
   dv::SpscRing<dv::TickRecord> telemetry(1 << 15);  // 32 s of ticks: the recorder drains every 10 ms
   auto loop = std::make_unique<dv::HapticLoop>(*dev, poses, contacts, &telemetry, cfg.loop);
-  SimulationThread sim_thread(simulation, poses, contacts, cfg, opt.sim_realtime, opt.sim_max_dt);
+  SimulationThread sim_thread(simulation, poses, contacts, cfg, opt.sim_realtime, opt.sim_max_dt,
+                              loop->params().virtual_coupling ? loop->params().coupling_stiffness : 0.0);
   PeriodicThread emulator_thread;
   HapticThread haptic(*loop);
 
@@ -433,6 +451,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                  {"scheduling_note", rt.note},
                  {"device_states", st.device_updates},
                  {"contact_models_taken", st.model_updates},
+                 {"coupling", loop->params().virtual_coupling ? "virtual" : "direct"},
+                 {"coupling_stiffness_n_per_m", loop->params().coupling_stiffness},
                  {"telemetry_dropped", st.telemetry_dropped}};
   {
     const double wall = sim_thread.last_step_ns > sim_thread.first_step_ns

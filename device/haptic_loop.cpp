@@ -13,8 +13,14 @@ HapticLoop::HapticLoop(HapticDevice& device, TripleBuffer<PoseFrame>& poses, Tri
   p_.safety.max_force = std::min(p_.safety.max_force, caps.max_force);
   p_.safety.max_damping = std::min(p_.safety.max_damping, caps.max_damping);
   p_.max_stiffness = std::min(p_.max_stiffness, caps.max_stiffness);
+  if (!(p_.coupling_stiffness > 0) || p_.coupling_stiffness > p_.max_stiffness) p_.coupling_stiffness = p_.max_stiffness;
   safety_.set_params(p_.safety);
   safety_.reset();
+}
+
+Coupled HapticLoop::render(const FingerContactModel& m, const Vec3& x) const {
+  if (p_.virtual_coupling) return couple(m, x, p_.coupling_stiffness);
+  return {evaluate(m, x, p_.max_stiffness), x};
 }
 
 void HapticLoop::tick(std::int64_t now_ns, std::int64_t deadline_ns) {
@@ -31,21 +37,15 @@ void HapticLoop::tick(std::int64_t now_ns, std::int64_t deadline_ns) {
   stats_.last_ns = now_ns;
   ++stats_.ticks;
 
-  // 1. Read the fingertips, 2. publish them.
+  // 1. Read the fingertips.
   if (device_.read(now_ns, state_)) ++stats_.device_updates;
-  PoseFrame& pf = poses_.write_slot();
-  pf.fingers = state_.fingers;
-  pf.time_ns = now_ns;
-  pf.tick = stats_.ticks;
-  pf.connected = state_.connected;
-  poses_.publish();
 
-  // 3. The newest contact model; 4. evaluate at the current positions.
+  // 2. The newest contact model; 3. evaluate it at the current positions.
   const ContactFrame& before = contacts_.read();
   std::array<Vec3, kMaxFingers> prev_force{};
   for (int f = 0; f < kMaxFingers; ++f) {
     const double w = blend_left_ > 0 ? double(blend_left_) / double(blend_len_) : 0.0;
-    prev_force[f] = evaluate(before.fingers[f], state_.fingers[f].position, p_.max_stiffness) + offset_[f] * w;
+    prev_force[f] = render(before.fingers[f], state_.fingers[f].position).force + offset_[f] * w;
   }
   if (contacts_.update()) {
     ++stats_.model_updates;
@@ -56,7 +56,7 @@ void HapticLoop::tick(std::int64_t now_ns, std::int64_t deadline_ns) {
     const ContactFrame& now_frame = contacts_.read();
     for (int f = 0; f < kMaxFingers; ++f) {
       // Fade from what was rendered to the new model (a non-finite old force fades nothing).
-      const Vec3 fresh = evaluate(now_frame.fingers[f], state_.fingers[f].position, p_.max_stiffness);
+      const Vec3 fresh = render(now_frame.fingers[f], state_.fingers[f].position).force;
       const Vec3 d = prev_force[f] - fresh;
       offset_[f] = finite(d) ? d : Vec3{};
     }
@@ -65,7 +65,9 @@ void HapticLoop::tick(std::int64_t now_ns, std::int64_t deadline_ns) {
   const ContactFrame& frame = contacts_.read();
   const double w = blend_left_ > 0 ? double(blend_left_) / double(blend_len_) : 0.0;
   for (int f = 0; f < kMaxFingers; ++f) {
-    Vec3 fnew = evaluate(frame.fingers[f], state_.fingers[f].position, p_.max_stiffness) + offset_[f] * w;
+    const Coupled c = render(frame.fingers[f], state_.fingers[f].position);
+    proxy_[f] = c.proxy;
+    Vec3 fnew = c.force + offset_[f] * w;
     // The fade must not turn the force adhesive either: drop a component into the surface.
     const Vec3& n = frame.fingers[f].normal;
     const double fn = dot(fnew, n);
@@ -76,6 +78,15 @@ void HapticLoop::tick(std::int64_t now_ns, std::int64_t deadline_ns) {
   }
   if (blend_left_ > 0) --blend_left_;
   if (blend_left_ == 0) offset_ = {};
+
+  // 4. Publish the fingertips and the proxies for the simulation.
+  PoseFrame& pf = poses_.write_slot();
+  pf.fingers = state_.fingers;
+  pf.proxy = proxy_;
+  pf.time_ns = now_ns;
+  pf.tick = stats_.ticks;
+  pf.connected = state_.connected;
+  poses_.publish();
 
   // 5. Safety filter, 6. send.
   const double sim_age = frame.sequence == 0 ? std::numeric_limits<double>::infinity()

@@ -1,7 +1,8 @@
 // The 1 kHz haptic loop's logic (design.md section 3): one tick is
-//   read the fingertips -> publish them (for the simulation) -> take the newest contact
-//   model -> evaluate it at the current positions -> blend a new model in -> safety
-//   filter -> send -> record.
+//   read the fingertips -> take the newest contact model -> evaluate it at the current
+//   positions through the virtual coupling (contact_model.h: couple()) -> blend a new
+//   model in -> publish the fingertips and proxies (for the simulation) -> safety filter
+//   -> send -> record.
 // It never waits for the simulation, never allocates, locks, logs or touches Qt. The
 // thread that calls tick() at 1 kHz lives in app/ (app/haptic_thread.h); tests call it
 // directly with a fake clock.
@@ -29,6 +30,7 @@ namespace palpation::device {
 /// Fingertip poses as the haptic loop publishes them for the simulation thread.
 struct PoseFrame {
   std::array<FingerState, kMaxFingers> fingers{};
+  std::array<Vec3, kMaxFingers> proxy{};  // where the simulated fingertips go (= position when direct)
   std::int64_t time_ns = 0;     // host monotonic clock of the tick
   std::uint64_t tick = 0;
   bool connected = false;
@@ -47,6 +49,8 @@ struct HapticLoopParams {
   double period = 0.001;        // s, nominal tick period
   int blend_max_ticks = 20;     // longest fade of a model update
   double max_stiffness = 3000;  // N/m clamp of the local model (device capability)
+  bool virtual_coupling = true; // false: render F0 + K (x - x0) at the device position ("direct")
+  double coupling_stiffness = 0;  // N/m, k_c of the virtual coupling; 0: max_stiffness
   SafetyParams safety;
 };
 
@@ -75,18 +79,21 @@ class HapticLoop {
   /// Pre-safety force of the last tick (for tests).
   const std::array<Vec3, kMaxFingers>& desired() const { return desired_; }
   const ForceCommand& command() const { return command_; }
+  /// Proxy (simulated fingertip) positions of the last tick.
+  const std::array<Vec3, kMaxFingers>& proxy() const { return proxy_; }
 
  private:
   HapticDevice& device_;
   TripleBuffer<PoseFrame>& poses_;
   TripleBuffer<ContactFrame>& contacts_;
   SpscRing<TickRecord>* telemetry_;
+  Coupled render(const FingerContactModel& m, const Vec3& x) const;
   HapticLoopParams p_;
   SafetyFilter safety_;
   LoopStats stats_;
   DeviceState state_;
   ForceCommand command_;
-  std::array<Vec3, kMaxFingers> desired_{}, offset_{};
+  std::array<Vec3, kMaxFingers> desired_{}, offset_{}, proxy_{};
   int blend_left_ = 0, blend_len_ = 1;
   double update_interval_ticks_ = 1.0;
   std::uint64_t last_update_tick_ = 0;

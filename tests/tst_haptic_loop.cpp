@@ -66,6 +66,7 @@ HapticLoopParams plain_params() {
   p.safety.max_force = 100;
   p.safety.stale_after = 1e6;  // models never go stale unless a test says so
   p.max_stiffness = 1e9;
+  p.virtual_coupling = false;  // F0 + K (x - x0) at the device position; coupling tested apart
   return p;
 }
 
@@ -133,6 +134,47 @@ class TestHapticLoop : public QObject {
     r.publish(m);
     r.tick(3);
     QVERIFY(std::fabs(r.loop.desired()[kIndex].z - (1.0 + 2000 * 0.001)) < 1e-9);
+  }
+
+  // The virtual coupling: the user feels the series combination of the coupling spring and
+  // the contact, never stiffer than k_c; the proxy balances coupling and tissue; the loop
+  // publishes the proxy for the simulation.
+  void virtualCoupling() {
+    HapticLoopParams p = plain_params();
+    p.virtual_coupling = true;
+    p.max_stiffness = 2000;
+    const double kc = 2000, S = 50000;
+    const Vec3 a{0.5, 0, 0.05};
+    const Vec3 x0 = a + Vec3{0, 0, 0.001};  // the simulation's proxy, 1 mm above the device
+    Rig r(line_script(a, a - Vec3{0, 0, 0.002}, 1.0), p, big_caps());
+    r.tick();
+    r.publish(contact({0, 0, 2.0}, S, x0));
+    r.tick(2);
+    double prev_f = 0, prev_z = 0;
+    for (int i = 0; i < 200; ++i) {
+      r.tick();
+      const Vec3 xd = r.loop.state().fingers[kIndex].position;
+      const Vec3 f = r.loop.desired()[kIndex];
+      const Vec3 xp = r.loop.proxy()[kIndex];
+      // Balance: k_c (x_p - x_d) = F0 - S (x_p - x0) along z, and F = k_c (x_p - x_d).
+      QVERIFY(std::fabs(kc * (xp.z - xd.z) - (2.0 - S * (xp.z - x0.z))) < 1e-9);
+      QVERIFY(std::fabs(f.z - kc * (xp.z - xd.z)) < 1e-9);
+      // Series stiffness k_c S / (k_c + S) as the device goes down.
+      if (i > 0) QVERIFY(std::fabs((f.z - prev_f) / (xd.z - prev_z) + kc * S / (kc + S)) < 1e-3);
+      prev_f = f.z;
+      prev_z = xd.z;
+    }
+    QVERIFY(r.poses.update());
+    QVERIFY(norm(r.poses.read().proxy[kIndex] - r.loop.proxy()[kIndex]) == 0);
+    // Direct rendering of the same model would hand the device the full 50 kN/m.
+    QVERIFY(std::fabs(norm(couple(contact({0, 0, 2.0}, S, x0), a, kc).force) - 2.0 / (1 + S / kc) - kc * S / (kc + S) * 0.001) < 1e-9);
+    // Unilateral: a device far above the surface feels nothing, the proxy follows it.
+    const Coupled free = couple(contact({0, 0, 2.0}, S, x0), x0 + Vec3{0, 0, 0.01}, kc);
+    QCOMPARE(norm(free.force), 0.0);
+    QVERIFY(norm(free.proxy - (x0 + Vec3{0, 0, 0.01})) == 0);
+    // No contact: no force, proxy = device.
+    FingerContactModel none;
+    QVERIFY(norm(couple(none, a, kc).force) == 0 && norm(couple(none, a, kc).proxy - a) == 0);
   }
 
   // Force continuity: a new simulation result is faded in over the update interval, so
