@@ -249,45 +249,136 @@ __device__ __forceinline__ double bits_to_double(unsigned long long b) {
 
 template <class T>
 struct DetectArgs {
-  int nsurf;
-  const int* surf;       // (nsurf) node
-  const int* surf_dof;   // (nsurf) free index or -1
+  int ntri;
+  const int* tri;        // (ntri x 3) surface triangles (outward), node indices
+  const int* node_surf;  // (nnode) surface-node index of each node or -1
+  const int* dof;        // (nnode) free index or -1
+  int nsurf;             // surface nodes (rows of cA, cb)
   const T* x;            // (nnode x 3)
   const T* v;            // (nnode x 3)
-  double* cA;            // (nsurf x 6) contact matrix (h^2 ks + h ke) n n^T, summed over fingers
-  double* cb;            // (nsurf x 3) contact rhs
+  double* cA;            // (nsurf x 6) contact matrix sum_k w_k (h^2 ks + h ke) n n^T; zero at step entry
+  double* cb;            // (nsurf x 3) contact rhs; zero at step entry
   DevScratch* scr;
   DevResult* res;        // mapped host memory
 };
 
-/// Tests surface nodes s = first, first + stride, ... against the fingers.
-/// system: write the per-node contact terms of the linear system and count contacts
-/// (start of step). sacc != nullptr: accumulate the per-finger sums into it (shared).
+/// Closest point to p on triangle (a, b, c) and its barycentric weights: Ericson, Real-Time
+/// Collision Detection 5.1.5, as contact::closest_on_triangle.
+__device__ void closest_on_triangle(const double p[3], const double a[3], const double b[3], const double c[3],
+                                    double q[3], double w[3]) {
+  double ab[3], ac[3], ap[3], bp[3], cp[3];
+  for (int k = 0; k < 3; ++k) {
+    ab[k] = b[k] - a[k];
+    ac[k] = c[k] - a[k];
+    ap[k] = p[k] - a[k];
+    bp[k] = p[k] - b[k];
+    cp[k] = p[k] - c[k];
+  }
+  auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  auto set = [&](double w0, double w1, double w2) {
+    w[0] = w0;
+    w[1] = w1;
+    w[2] = w2;
+  };
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) {
+    set(1, 0, 0);
+    for (int k = 0; k < 3; ++k) q[k] = a[k];
+    return;
+  }
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) {
+    set(0, 1, 0);
+    for (int k = 0; k < 3; ++k) q[k] = b[k];
+    return;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    set(1 - v, v, 0);
+    for (int k = 0; k < 3; ++k) q[k] = a[k] + v * ab[k];
+    return;
+  }
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) {
+    set(0, 0, 1);
+    for (int k = 0; k < 3; ++k) q[k] = c[k];
+    return;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double t = d2 / (d2 - d6);
+    set(1 - t, 0, t);
+    for (int k = 0; k < 3; ++k) q[k] = a[k] + t * ac[k];
+    return;
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    set(0, 1 - t, t);
+    for (int k = 0; k < 3; ++k) q[k] = b[k] + t * (c[k] - b[k]);
+    return;
+  }
+  const double den = 1.0 / (va + vb + vc);
+  const double v = vb * den, u = vc * den;
+  set(1 - v - u, v, u);
+  for (int k = 0; k < 3; ++k) q[k] = a[k] + ab[k] * v + ac[k] * u;
+}
+
+/// Tests surface triangles t = first, first + stride, ... against the fingers
+/// (contact::detect): each penetrated triangle is one contact at the closest point, its
+/// force F = k_s d + k_e d_dot along n shared by the triangle's nodes with the
+/// barycentric weights (backend_cpu.cpp add_contacts: lumped on the diagonal blocks).
+/// system: add the per-node contact terms of the linear system (atomics: contacts are
+/// few) and count contacts (start of step). sacc != nullptr: per-finger sums (shared).
 template <class T>
 __device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const StepConsts& k, bool system,
                              double* sacc, int* scount, int first, int stride) {
   const double ks = k.ks, ke = k.ke, h = k.h;
-  for (int s = first; s < a.nsurf; s += stride) {
-    const int node = a.surf[s];
-    const double p0 = double(a.x[3 * node]), p1 = double(a.x[3 * node + 1]), p2 = double(a.x[3 * node + 2]);
-    const double v0 = double(a.v[3 * node]), v1 = double(a.v[3 * node + 1]), v2 = double(a.v[3 * node + 2]);
-    double A[6] = {0, 0, 0, 0, 0, 0}, b[3] = {0, 0, 0};
+  for (int t = first; t < a.ntri; t += stride) {
+    const int nd[3] = {a.tri[3 * t], a.tri[3 * t + 1], a.tri[3 * t + 2]};
+    double P[3][3];
+    for (int m = 0; m < 3; ++m)
+      for (int c = 0; c < 3; ++c) P[m][c] = double(a.x[3 * nd[m] + c]);
+    double lo[3], hi[3];
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = fmin(fmin(P[0][c], P[1][c]), P[2][c]);
+      hi[c] = fmax(fmax(P[0][c], P[1][c]), P[2][c]);
+    }
     int count = 0;
     for (int f = 0; f < F.n; ++f) {
       const FingerDev& fi = F.f[f];
       if (!fi.active || !(fi.r > 0)) continue;
-      const double d0 = p0 - fi.c[0], d1 = p1 - fi.c[1], d2 = p2 - fi.c[2];
+      const double r = fi.r;
+      bool out = false;
+      for (int c = 0; c < 3; ++c) out = out || fi.c[c] + r < lo[c] || fi.c[c] - r > hi[c];
+      if (out) continue;
+      double q[3], w[3];
+      closest_on_triangle(fi.c, P[0], P[1], P[2], q, w);
+      const double d0 = q[0] - fi.c[0], d1 = q[1] - fi.c[1], d2 = q[2] - fi.c[2];
       const double dist2 = d0 * d0 + d1 * d1 + d2 * d2;
-      if (dist2 >= fi.r * fi.r) continue;
+      if (dist2 >= r * r) continue;
       const double dist = sqrt(dist2);
-      double n0 = 0, n1 = 0, n2 = 1;
+      double n0, n1, n2;
       if (dist > 1e-12) {
         n0 = d0 / dist;
         n1 = d1 / dist;
         n2 = d2 / dist;
+      } else {  // the centre on the surface itself: along the inward normal
+        const double e1[3] = {P[1][0] - P[0][0], P[1][1] - P[0][1], P[1][2] - P[0][2]};
+        const double e2[3] = {P[2][0] - P[0][0], P[2][1] - P[0][1], P[2][2] - P[0][2]};
+        const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+                     cz = e1[0] * e2[1] - e1[1] * e2[0];
+        const double l = sqrt(cx * cx + cy * cy + cz * cz);
+        n0 = -cx / l;
+        n1 = -cy / l;
+        n2 = -cz / l;
       }
-      const double depth = fi.r - dist;
-      const double rate = -(n0 * (v0 - fi.v[0]) + n1 * (v1 - fi.v[1]) + n2 * (v2 - fi.v[2]));
+      const double depth = r - dist;
+      double vp[3] = {0, 0, 0};
+      for (int m = 0; m < 3; ++m)
+        for (int c = 0; c < 3; ++c) vp[c] += w[m] * double(a.v[3 * nd[m] + c]);
+      const double rate = -(n0 * (vp[0] - fi.v[0]) + n1 * (vp[1] - fi.v[1]) + n2 * (vp[2] - fi.v[2]));
       const double fpen = ks * depth + ke * rate;
       const double mag = fpen > 0 ? fpen : 0.0;
       ++count;
@@ -302,32 +393,46 @@ __device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const 
         atomicAdd(acc + 6, -ks * n1 * n1);
         atomicAdd(acc + 7, -ks * n1 * n2);
         atomicAdd(acc + 8, -ks * n2 * n2);
-        atomicAdd(acc + 9, p0);
-        atomicAdd(acc + 10, p1);
-        atomicAdd(acc + 11, p2);
+        atomicAdd(acc + 9, q[0]);
+        atomicAdd(acc + 10, q[1]);
+        atomicAdd(acc + 11, q[2]);
         atomicAdd(acc + 12, 1.0);
       }
-      if (system && a.surf_dof[s] >= 0 && mag > 0) {
-        // Linearised penalty: rhs h (mag n - h ks n n^T v), matrix (h^2 ks + h ke) n n^T.
-        const double nv = n0 * v0 + n1 * v1 + n2 * v2;
-        const double hks = h * ks;
-        b[0] += h * (mag * n0 - hks * n0 * nv);
-        b[1] += h * (mag * n1 - hks * n1 * nv);
-        b[2] += h * (mag * n2 - hks * n2 * nv);
-        const double c = h * h * ks + h * ke;
-        A[0] += c * n0 * n0;
-        A[1] += c * n0 * n1;
-        A[2] += c * n0 * n2;
-        A[3] += c * n1 * n1;
-        A[4] += c * n1 * n2;
-        A[5] += c * n2 * n2;
+      if (system && mag > 0) {
+        const double cst = h * h * ks + h * ke, hks = h * ks;
+        for (int m = 0; m < 3; ++m) {
+          const int node = nd[m];
+          if (a.dof[node] < 0 || w[m] <= 0) continue;
+          const int s = a.node_surf[node];
+          const double v0 = double(a.v[3 * node]), v1 = double(a.v[3 * node + 1]), v2 = double(a.v[3 * node + 2]);
+          // Linearised: f(x + h v') ~ f - h ks n n^T v', damping ke n n^T on v'; weight w_m.
+          const double nv = n0 * v0 + n1 * v1 + n2 * v2;
+          const double hw = h * w[m];
+          atomicAdd(a.cb + 3 * s, hw * (mag * n0 - hks * n0 * nv));
+          atomicAdd(a.cb + 3 * s + 1, hw * (mag * n1 - hks * n1 * nv));
+          atomicAdd(a.cb + 3 * s + 2, hw * (mag * n2 - hks * n2 * nv));
+          const double cw = w[m] * cst;
+          atomicAdd(a.cA + 6 * s, cw * n0 * n0);
+          atomicAdd(a.cA + 6 * s + 1, cw * n0 * n1);
+          atomicAdd(a.cA + 6 * s + 2, cw * n0 * n2);
+          atomicAdd(a.cA + 6 * s + 3, cw * n1 * n1);
+          atomicAdd(a.cA + 6 * s + 4, cw * n1 * n2);
+          atomicAdd(a.cA + 6 * s + 5, cw * n2 * n2);
+        }
       }
     }
-    if (system) {
-      for (int j = 0; j < 6; ++j) a.cA[6 * s + j] = A[j];
-      for (int j = 0; j < 3; ++j) a.cb[3 * s + j] = b[j];
-      if (count) atomicAdd(scount, count);
-    }
+    if (system && count) atomicAdd(scount, count);
+  }
+}
+
+/// Zeroes the contact terms for the next step (after the assembly has read them).
+template <class T>
+__device__ void zero_contact_terms(const DetectArgs<T>& a, int first, int stride) {
+  for (int j = first; j < 9 * a.nsurf; j += stride) {
+    if (j < 6 * a.nsurf)
+      a.cA[j] = 0.0;
+    else
+      a.cb[j - 6 * a.nsurf] = 0.0;
   }
 }
 
@@ -374,6 +479,7 @@ __global__ void __launch_bounds__(kBlock) k_detect(DetectArgs<T> a, FingersArg F
   if (start && blockIdx.x == 0 && threadIdx.x == 0) zero_step_scratch(a.scr);
   __syncthreads();
   detect_nodes(a, F, k, start != 0, sacc, &scount, blockIdx.x * blockDim.x + threadIdx.x, gridDim.x * blockDim.x);
+  if (!start) zero_contact_terms(a, blockIdx.x * blockDim.x + threadIdx.x, gridDim.x * blockDim.x);
   __syncthreads();
   for (int t = threadIdx.x; t < F.n * kFingerVals; t += blockDim.x)
     if (sacc[t] != 0.0) atomicAdd(&a.scr->facc[0][0] + t, sacc[t]);
@@ -1124,6 +1230,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) sacc[t] = 0.0;
   __syncthreads();
   detect_nodes(d, F, k, false, sacc, nullptr, tid, nthreads);
+  zero_contact_terms(d, tid, nthreads);
   __syncthreads();
   for (int t = threadIdx.x; t < F.n * kFingerVals; t += blockDim.x)
     if (sacc[t] != 0.0) atomicAdd(&a.scr->facc[0][0] + t, sacc[t]);
@@ -1284,7 +1391,7 @@ template <class T>
 struct HostLayout {
   std::vector<int4> tets;
   std::vector<T> grad, vol;
-  std::vector<int> col_node, inc_ptr, inc, free_surf, surf_dof;
+  std::vector<int> col_node, inc_ptr, inc, free_surf;
   std::vector<T> mass;
   std::vector<int> srow_ptr, scol;  // scalar CSR pattern (baseline)
 
@@ -1319,10 +1426,8 @@ struct HostLayout {
     }
     const int ns = static_cast<int>(m.surface_nodes.size());
     free_surf.assign(nf, -1);
-    surf_dof.resize(ns);
     for (int s = 0; s < ns; ++s) {
       const int i = m.dof[m.surface_nodes[s]];
-      surf_dof[s] = i;
       if (i >= 0) free_surf[i] = s;
     }
     mass.resize(m.num_nodes());
@@ -1398,6 +1503,7 @@ class CudaBackend final : public Backend {
     nf_ = m_.num_free();
     nb_ = m_.num_blocks();
     ns_ = static_cast<int>(m_.surface_nodes.size());
+    nt_ = static_cast<int>(m_.surface.size());
     if (static_cast<long long>(ne_) >= (1ll << 27)) throw std::runtime_error("cuda backend: too many elements");
     HostLayout<T> L(m_, solver_ == Solver::Csr);
     tets_.upload(L.tets, stream_);
@@ -1407,12 +1513,19 @@ class CudaBackend final : public Backend {
     inc_ptr_.upload(L.inc_ptr, stream_);
     inc_.upload(L.inc, stream_);
     free_surf_.upload(L.free_surf, stream_);
-    surf_dof_.upload(L.surf_dof, stream_);
+    {
+      std::vector<int> tri(3 * std::size_t(nt_)), node_surf(nn_, -1);
+      for (int t = 0; t < nt_; ++t)
+        for (int k = 0; k < 3; ++k) tri[3 * std::size_t(t) + k] = m_.surface[t][k];
+      for (int s = 0; s < ns_; ++s) node_surf[m_.surface_nodes[s]] = s;
+      tri_.upload(tri, stream_);
+      node_surf_.upload(node_surf, stream_);
+      dof_.upload(m_.dof, stream_);
+    }
     mass_.upload(L.mass, stream_);
     row_ptr_.upload(m_.row_ptr, stream_);
     col_.upload(m_.col, stream_);
     free_nodes_.upload(m_.free_nodes, stream_);
-    surf_.upload(m_.surface_nodes, stream_);
     x_.alloc(3 * std::size_t(nn_));
     v_.alloc(3 * std::size_t(nn_));
     quat_.alloc(4 * std::size_t(ne_));
@@ -1431,7 +1544,7 @@ class CudaBackend final : public Backend {
     rest_.resize(3 * std::size_t(nn_));
     for (int j = 0; j < nn_; ++j)
       for (int c = 0; c < 3; ++c) rest_[3 * j + c] = T(m_.rest[j][c]);
-    detect_grid_ = std::max(1, std::min((ns_ + kBlock - 1) / kBlock, 4 * d.sms));
+    detect_grid_ = std::max(1, std::min((nt_ + kBlock - 1) / kBlock, 4 * d.sms));
     if (solver_ == Solver::Persistent) {
       launch_ = pcg_launch<T>(nf_);
       fused_ = env_str("PALPATION_CUDA_CG", "fused") != "3sync";
@@ -1486,6 +1599,8 @@ class CudaBackend final : public Backend {
     for (int e = 0; e < ne_; ++e) q[4 * std::size_t(e)] = T(1);
     CU(cudaMemcpyAsync(quat_.get(), q.data(), sizeof(T) * q.size(), cudaMemcpyHostToDevice, stream_));
     scratch_.zero(stream_);
+    cA_.zero(stream_);
+    cb_.zero(stream_);
     CU(cudaStreamSynchronize(stream_));
     std::memset(static_cast<void*>(host_res_), 0, sizeof(DevResult));
     filtered_.clear();
@@ -1580,8 +1695,8 @@ class CudaBackend final : public Backend {
   void fetch_result() { CU(cudaStreamSynchronize(stream_)); }
 
   DetectArgs<T> detect_args() {
-    return DetectArgs<T>{ns_, surf_.get(), surf_dof_.get(), x_.get(), v_.get(), cA_.get(), cb_.get(), scratch_.get(),
-                         dev_res_};
+    return DetectArgs<T>{nt_,      tri_.get(), node_surf_.get(), dof_.get(), ns_,     x_.get(),
+                         v_.get(), cA_.get(), cb_.get(),        scratch_.get(), dev_res_};
   }
 
   void launch_detect(const FingersArg& F, const StepConsts& k, bool start) {
@@ -1593,7 +1708,7 @@ class CudaBackend final : public Backend {
   void launch_element(const FingersArg& F, const StepConsts& k, bool detect) {
     ElementArgs<T> a{ne_, tets_.get(), grad_.get(), vol_.get(), lambda_.get(), mu_.get(), quat_.get(), x_.get(), v_.get(),
                      rec_.get(), T(k.h), T(k.beta), (ne_ + kElemBlock - 1) / kElemBlock};
-    const int dblocks = detect ? std::max(1, (ns_ + kElemBlock - 1) / kElemBlock) : 0;
+    const int dblocks = detect ? std::max(1, (nt_ + kElemBlock - 1) / kElemBlock) : 0;
     k_element<T><<<a.elem_blocks + dblocks, kElemBlock, 0, stream_>>>(a, detect_args(), F, k);
     CU_LAUNCHED(k_element);
   }
@@ -1813,14 +1928,14 @@ class CudaBackend final : public Backend {
   const Model& m_;
   SimParams p_;
   Solver solver_;
-  int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0;
+  int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0, nt_ = 0;
   PcgLaunch launch_;
   int detect_grid_ = 1;
   bool fused_ = true;
   cudaStream_t stream_ = nullptr;
   DeviceArray<int4> tets_;
   DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_;
-  DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, surf_dof_, row_ptr_, col_, free_nodes_, surf_;
+  DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
   DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, r_, z_, p0_, p1_, q_;
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
