@@ -20,14 +20,14 @@ struct SolverParams {
 /// Rayleigh damping C = alpha M + beta K.
 struct DampingParams {
   double mass = 1.0;               // alpha, 1/s
-  double stiffness = 0.002;        // beta, s
+  double stiffness = 0.01;         // beta, s
 };
 
 /// Penalty contact between a fingertip sphere and the surface vertices (paper eq. 1):
 ///   F = -k_s d - k_e v   per vertex in contact,
 /// d the penetration depth, v its rate. Enters the implicit system as k_s n n^T.
 struct ContactParams {
-  double stiffness = 20000.0;      // k_s, N/m per contact point
+  double stiffness = 2000.0;       // k_s, N/m per contact point
   double damping = 5.0;            // k_e, N s/m per contact point
   double force_filter_hz = 100.0;  // first-order low-pass cutoff of the finger force
 };

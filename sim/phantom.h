@@ -13,10 +13,11 @@ namespace palpation::sim {
 
 /// The breast phantom: a half-ellipsoid dome on the chest wall (z = 0, fixed), axis
 /// vertical through (center_x, 0). Volume 2/3 pi a^2 c ~ 870 mL, in the typical range
-/// (facts.md: 560-975 mL). Its axis is 0.115 m from the body midline (x = 0), so the
-/// paper's tumour at x = 0.125 m lies 1 cm off the axis, about 1.5 cm below the skin.
+/// (facts.md: 560-975 mL). Its axis is 0.125 m from the body midline (x = 0), so the
+/// paper's tumour at x = 0.125 m lies on the axis (central, subareolar), 1.5 cm below
+/// the skin: a sweep across it sees the same tissue thickness on both sides.
 struct BreastShape {
-  double center_x = 0.115;    // m
+  double center_x = 0.125;    // m
   double base_radius = 0.08;  // m
   double height = 0.065;      // m
   /// Height of the skin above the chest wall at (x, y); 0 outside the base.

@@ -11,7 +11,7 @@ namespace {
 // The paper's Fig. 6: the index finger pushes and releases along z periodically while
 // the hand sweeps along x over the tumour, left to right and back, twice.
 // Pushes follow the skin (z of the dome at the current x) so every push reaches the same
-// depth below the surface; the sweep spans 9 cm centred near the tumour.
+// depth below the surface; the sweep spans 6 cm centred on the tumour.
 Scenario paper_sweep(bool tumour) {
   Scenario s;
   s.source = tumour ? "paper-sweep" : "paper-sweep-no-tumour";
@@ -31,14 +31,14 @@ Scenario paper_sweep(bool tumour) {
   inc.poisson_ratio = 0.45;
   s.inclusions.push_back(inc);
   s.params.solver.dt = 0.001;
-  s.params.contact.stiffness = 20000.0;
+  s.params.contact.stiffness = 2000.0;
   s.params.contact.damping = 5.0;
   s.params.contact.force_filter_hz = 100.0;
 
   const BreastShape breast;
-  const double x0 = 0.080, x1 = 0.170;  // sweep range, m
+  const double x0 = 0.095, x1 = 0.155;  // sweep range, m (3 cm either side of the tumour)
   const double pass_time = 6.0;         // s per pass
-  const double push_period = 0.4;       // s (x advances 6 mm per push)
+  const double push_period = 0.4;       // s (x advances 4 mm per push)
   const double depth = 0.018;           // m below the skin at the deepest point (deep palpation)
   const double clearance = 0.003;       // m above the skin between pushes
   const double radius = 0.008;          // index fingertip
