@@ -9,10 +9,11 @@
 //             (worst of four snapshots: N/4, N/2, 3N/4, N);
 //   disp.     the same over the displacements (x - X) of the four snapshots (stricter).
 // Double on the GPU must agree within --limit (1e-6); float on the GPU (CG tolerance
-// --float-cg-tolerance) against the CPU in double within --float-limit (1e-2: float
-// arithmetic itself, on the CPU too, is 4.7e-3 off on the Hertz scene, where the first
-// touch of a flat face decides contacts by a rounding of the positions; 1e-2 is also the
-// force error the benchmark targets. docs/gpu-notes.md, "Agreement"). Exit 0 when everything agrees, 1 on any disagreement,
+// --float-cg-tolerance) against the CPU in double within --float-limit (2e-2: float
+// arithmetic itself, on the CPU too, is 1.33e-2 off on the Hertz scene with triangle
+// contact (4.7e-3 with vertex contact), where the first touch of a flat face decides the
+// contacts by a rounding of the positions; the paper sweep is 3e-6 off. docs/gpu-notes.md,
+// section 4). Exit 0 when everything agrees, 1 on any disagreement,
 // 77 when there is no usable GPU (nothing compared).
 //
 // Qt-free on purpose: the GPU machine has no Qt. The CPU traces are cached in the model
@@ -50,7 +51,7 @@ struct CheckOptions {
   int max_iterations = 5000;
   double limit = 1e-6;
   double float_cg_tolerance = 1e-6;
-  double float_limit = 1e-2;
+  double float_limit = 2e-2;
   bool with_float = true;
   bool no_cache = false;
   bool cpu_only = false;  // only compute (and cache) the CPU references

@@ -112,8 +112,8 @@ class TestBackendAgreement : public QObject {
     QVERIFY2(ex <= 1e-6, qPrintable(QString("position error %1").arg(ex)));
   }
 
-  // Float on the GPU against double on the CPU: 1e-2 (float arithmetic itself, on either
-  // device, is a few 1e-3 off where a first touch decides contacts: docs/gpu-notes.md).
+  // Float on the GPU against double on the CPU: 2e-2 (float arithmetic itself, on the CPU
+  // too, is 1.3e-2 off where a first touch decides contacts: docs/gpu-notes.md, section 4).
   void floatAgreesWithinTolerance() {
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): float agreement not checked").c_str());
@@ -126,8 +126,8 @@ class TestBackendAgreement : public QObject {
     const Trace cpu = run(s, m, "cpu", 700);
     const Trace gpu = run(sf, m, "cuda", 700);
     const double ef = rel(gpu.force, cpu.force), ex = rel(gpu.x, cpu.x);
-    QVERIFY2(ef <= 1e-2, qPrintable(QString("force error %1").arg(ef)));
-    QVERIFY2(ex <= 1e-2, qPrintable(QString("position error %1").arg(ex)));
+    QVERIFY2(ef <= 2e-2, qPrintable(QString("force error %1").arg(ef)));
+    QVERIFY2(ex <= 2e-2, qPrintable(QString("position error %1").arg(ex)));
   }
 };
 
