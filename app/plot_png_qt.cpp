@@ -65,7 +65,7 @@ bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* 
   // Text needs Qt's font database, which needs a QGuiApplication: the command line makes
   // an offscreen one on first use (no display needed).
   // Deliberately never destroyed: Qt's own statics may be gone by then at exit.
-  static QGuiApplication* app = nullptr;
+  [[maybe_unused]] static QGuiApplication* app = nullptr;
   if (!QCoreApplication::instance()) {
     if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
     static int argc = 1;
