@@ -7,6 +7,8 @@
 #include <functional>
 #include <string>
 
+#include "scenario.h"
+
 namespace palpation::app {
 
 inline constexpr int kExitOk = 0;
@@ -15,6 +17,12 @@ inline constexpr int kExitBadInput = 2;
 
 /// A subcommand registers its options on `sub` and returns the action to run.
 using CommandAction = std::function<int()>;
+
+/// A scenario argument (a JSON file, a built-in name or "builtin:NAME") with the
+/// command-line overrides of --backend and --resolution applied (empty: none).
+/// Throws sim::ScenarioError naming the argument.
+sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend = {},
+                                const std::string& resolution = {});
 
 CommandAction add_scenario_command(CLI::App& app);
 CommandAction add_run_command(CLI::App& app);

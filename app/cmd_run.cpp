@@ -12,13 +12,6 @@
 
 namespace palpation::app {
 
-namespace {
-sim::Scenario load_any(const std::string& arg) {
-  for (const auto& n : sim::builtin_scenario_names())
-    if (arg == n || arg == "builtin:" + n) return sim::builtin_scenario(n);
-  return sim::load_scenario(arg);
-}
-}  // namespace
 
 CommandAction add_run_command(CLI::App& app) {
   auto* sub = app.add_subcommand("run", "Run a scenario headless; writes DIR/fingers.csv and DIR/summary.json");
@@ -34,14 +27,7 @@ CommandAction add_run_command(CLI::App& app) {
   sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, fine, xfine)");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {
-    sim::Scenario s = load_any(o->scenario);
-    if (!o->backend.empty()) s.backend = o->backend;
-    if (!o->resolution.empty()) {
-      auto e = sim::resolution_edge(s.patient.phantom, o->resolution);
-      if (!e) throw sim::ScenarioError("--resolution: unknown level \"" + o->resolution + "\"");
-      s.patient.resolution = o->resolution;
-      s.patient.edge = *e;
-    }
+    sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution);
     OutputDir out(o->out);  // created before the run: an unwritable folder fails early
     RunOptions opt;
     opt.progress = !o->quiet;

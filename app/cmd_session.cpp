@@ -19,12 +19,6 @@ namespace palpation::app {
 
 namespace {
 
-sim::Scenario load_scenario_arg(const std::string& arg) {
-  for (const auto& n : sim::builtin_scenario_names())
-    if (arg == n || arg == "builtin:" + n) return sim::builtin_scenario(n);
-  return sim::load_scenario(arg);
-}
-
 std::string emulator_next_to_self() {
   char buf[PATH_MAX];
   const ssize_t n = ::readlink("/proc/self/exe", buf, sizeof buf - 1);
@@ -72,14 +66,7 @@ CommandAction add_session_command(CLI::App& app) {
   sub->add_option("--vibration-to", o->vib_to, "End of the vibration window, s (default: the end)");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {
-    sim::Scenario s = load_scenario_arg(o->scenario);
-    if (!o->backend.empty()) s.backend = o->backend;
-    if (!o->resolution.empty()) {
-      auto e = sim::resolution_edge(s.patient.phantom, o->resolution);
-      if (!e) throw sim::ScenarioError("--resolution: unknown level \"" + o->resolution + "\"");
-      s.patient.resolution = o->resolution;
-      s.patient.edge = *e;
-    }
+    sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution);
     if (o->duration < 0) throw sim::ScenarioError("--duration: must be > 0");
     SessionOptions opt;
     opt.device = o->device;
