@@ -1,0 +1,253 @@
+// The workstation's real-time composition (design.md section 3), Qt-free so that the GUI
+// (ui/), the recorder (issue 6) and tests drive the same object:
+//
+//   WorkstationDevice (scripted hand, looped | mouse targets)
+//        ^ forces        | poses
+//   haptic thread (1 kHz, app/haptic_thread.h, device::HapticLoop)
+//        | poses (triple buffer)        ^ contact models (triple buffer)
+//   simulation thread: queued commands -> newest poses -> Backend::step -> publish
+//        | RenderSnapshot (triple buffer, ~30 Hz)   | StepSample (SPSC ring, every step)
+//   GUI thread: Workstation::poll() drains the rings, hands TickSample / StepSample /
+//   Event to its listeners (plots, status bar, a recorder), reads the newest snapshot.
+//
+// Telemetry interface for consumers (plots, the issue-6 recorder):
+//   - add_tick_listener(fn): every haptic tick that poll() drains, per present device
+//     finger, in the world frame (t in s since start(), position m, force on the finger N).
+//     Delivered on the thread that calls poll() (the GUI thread), in time order; nothing
+//     is dropped unless the 32k-tick ring overflows between polls (counted: dropped()).
+//   - add_step_listener(fn): every simulation step (time, step ms, CG iterations, contacts).
+//   - add_event_listener(fn) / events(): instructor and system events (patient loaded,
+//     material change, tumour added/painted, mode change, divergence reset), time-stamped.
+// Changes (materials, parameters, patient) are queued with post() and applied on the
+// simulation thread between steps; a patient swap first fades the forces to zero.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "device_config.h"
+#include "hand_script.h"
+#include "haptic_device.h"
+#include "haptic_loop.h"
+#include "params.h"
+#include "scenario.h"
+#include "spsc_ring.h"
+#include "triple_buffer.h"
+
+namespace palpation::sim {
+class Simulation;
+struct Model;
+}
+
+namespace palpation::app {
+
+namespace dv = palpation::device;
+
+/// A device for the workstation without a robot: the device fingers either follow a
+/// looped HandScript (the simulated HandHIRO palpating on its own) or targets set by the
+/// GUI (mouse palpation). Non-blocking, lock-free (the GUI writes targets through a triple
+/// buffer), records the last forces for display.
+class WorkstationDevice : public dv::HapticDevice {
+ public:
+  enum class Mode { Script, Mouse };
+  WorkstationDevice(dv::HandScript script, dv::DeviceCapabilities caps);
+  dv::DeviceCapabilities capabilities() const override { return caps_; }
+  std::string name() const override { return "simulated HandHIRO"; }
+  bool read(std::int64_t now_ns, dv::DeviceState& state) override;
+  void write(std::int64_t now_ns, const dv::ForceCommand& command) override;
+
+  void set_mode(Mode m) { mode_.store(int(m), std::memory_order_release); }
+  Mode mode() const { return Mode(mode_.load(std::memory_order_acquire)); }
+  /// GUI thread (single producer): where the mouse-driven fingertips should be (device frame).
+  struct Targets {
+    std::array<dv::Vec3, dv::kMaxFingers> position{};
+    std::array<bool, dv::kMaxFingers> present{};
+  };
+  void set_targets(const Targets& t) { targets_.publish(t); }
+
+ private:
+  dv::HandScript script_;
+  double duration_ = 0;
+  dv::DeviceCapabilities caps_;
+  std::atomic<int> mode_{0};
+  dv::TripleBuffer<Targets> targets_;
+  std::array<dv::Vec3, dv::kMaxFingers> last_pos_{};
+  std::int64_t t0_ = -1, prev_ns_ = 0;
+  std::uint32_t seq_ = 0;
+};
+
+/// What the GUI draws: the deformed nodes and the fingertips, world frame.
+struct RenderSnapshot {
+  std::uint64_t model_generation = 0;  // changes when a new patient was loaded
+  std::uint64_t sequence = 0;          // simulation steps so far
+  double sim_time = 0;                 // s
+  std::vector<float> positions;        // (nnode x 3) m
+  std::array<Eigen::Vector3d, dv::kMaxFingers> finger_position{};
+  std::array<Eigen::Vector3d, dv::kMaxFingers> finger_force{};  // on the finger, N
+  std::array<bool, dv::kMaxFingers> finger_active{};
+  double finger_radius = 0.008;
+};
+
+struct TickSample {
+  double t = 0;            // s since start()
+  int finger = 0;          // device finger (dv::FingerId)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world, m
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();     // sent to the device, world, N
+  bool attached = false;
+};
+
+struct StepSample {
+  double t = 0;             // s since start() (wall clock)
+  double sim_time = 0;      // s
+  float step_ms = 0;
+  int cg_iterations = 0;
+  int contacts = 0;
+};
+
+struct Event {
+  double t = 0;             // s since start()
+  std::string kind;         // "patient", "material", "tumour", "paint", "mode", "reset", "params"
+  std::string text;         // English, one line
+};
+
+/// Geometry of the loaded patient that the GUI needs (picking, painting): a copy, never
+/// changed after loading.
+struct PatientGeometry {
+  std::uint64_t generation = 0;
+  std::vector<Eigen::Vector3d> rest;            // (nnode) m
+  std::vector<std::array<int, 4>> tets;         // (ntet)
+  std::vector<std::array<int, 3>> surface;      // (nsurf) outward
+  std::vector<Eigen::Vector3d> centroid;        // (ntet) rest centroid, m
+  std::vector<double> young;                    // (ntet) Pa at load time
+  double tissue_young = 19000;                  // Pa, bulk tissue
+  double tissue_poisson = 0.45;
+  std::string backend, device_name;
+};
+
+/// Live figures (GUI thread, updated by poll()).
+struct LiveStats {
+  double step_rate_hz = 0, haptic_rate_hz = 0, step_ms = 0, jitter_us = 0;
+  int cg_iterations = 0;
+  bool connected = false;
+  std::array<bool, dv::kMaxFingers> attached{};
+  std::array<double, dv::kMaxFingers> force_n{};
+  std::uint64_t dropped = 0;
+  std::string state = "stopped";  // "loading", "running", "swapping", "error: ..."
+};
+
+struct WorkstationOptions {
+  sim::Scenario scenario;              // patient, tissue, inclusions, solver; fingers unused
+  DeviceConfig config = default_device_config();
+  int haptic_priority = 80;            // SCHED_FIFO where allowed
+  double snapshot_hz = 60;             // render snapshots per second (at most)
+  double sim_max_dt = 0.01;            // s, cap of the real-time dt
+};
+
+/// The default patient: the paper's breast and tumour at the coarse resolution (about
+/// 1,000 nodes: real time on a 2-core CPU).
+sim::Scenario default_workstation_scenario();
+/// A hand palpating on its own: the index finger does the paper's sweep (looped), the
+/// other four follow above the skin like a hand (device frame).
+dv::HandScript default_hand_script(const DeviceConfig& cfg);
+
+class Workstation {
+ public:
+  explicit Workstation(WorkstationOptions opt);
+  ~Workstation();
+  Workstation(const Workstation&) = delete;
+  Workstation& operator=(const Workstation&) = delete;
+
+  /// Starts the threads; the patient is built on the simulation thread (loading state).
+  void start();
+  void stop();
+  bool running() const { return sim_thread_.joinable(); }
+
+  /// GUI thread: drains telemetry into listeners and stats; true when a new snapshot
+  /// is available (snapshot() then returns it).
+  bool poll();
+  const RenderSnapshot& snapshot() const { return snapshots_.read(); }
+  const LiveStats& stats() const { return stats_; }
+  /// Geometry of the current patient (nullptr while the first one loads).
+  std::shared_ptr<const PatientGeometry> geometry() const;
+  const WorkstationOptions& options() const { return opt_; }
+  const DeviceConfig& device_config() const { return opt_.config; }
+
+  // Commands: applied on the simulation thread between steps. ---------------------
+  using Command = std::function<void(sim::Simulation&)>;
+  void post(Command c);
+  /// Sets the Young's modulus of elements (Pa); Poisson ratio unchanged.
+  void set_element_young(std::vector<std::pair<int, double>> changes, const std::string& event_text = {});
+  void set_params(const sim::SimParams& p);
+  /// Replaces the patient (forces fade to zero first, then the model is rebuilt).
+  void load_patient(const sim::Scenario& s);
+  /// Per-element moduli as the running simulation has them (copied after each applied
+  /// material command); with the number of commands applied so far.
+  std::vector<double> applied_young(std::uint64_t* applied = nullptr) const;
+  std::uint64_t commands_posted() const { return posted_.load(); }
+  std::uint64_t commands_applied() const { return applied_.load(); }
+
+  // Device ---------------------------------------------------------------------------
+  WorkstationDevice& device() { return *device_; }
+  /// Mouse palpation: the index fingertip goes to `world` (m); others stay away.
+  void set_mouse_finger(const Eigen::Vector3d& world, bool present);
+
+  // Telemetry -------------------------------------------------------------------------
+  void add_tick_listener(std::function<void(const TickSample&)> f) { tick_listeners_.push_back(std::move(f)); }
+  void add_step_listener(std::function<void(const StepSample&)> f) { step_listeners_.push_back(std::move(f)); }
+  void add_event_listener(std::function<void(const Event&)> f) { event_listeners_.push_back(std::move(f)); }
+  /// Logs an event (any thread).
+  void log_event(const std::string& kind, const std::string& text);
+  std::vector<Event> events() const;
+  double now_s() const;
+
+ private:
+  void sim_main();
+  void build(const sim::Scenario& s);
+
+  WorkstationOptions opt_;
+  std::unique_ptr<WorkstationDevice> device_;
+  dv::TripleBuffer<dv::PoseFrame> poses_;
+  dv::TripleBuffer<dv::ContactFrame> contacts_;
+  dv::SpscRing<dv::TickRecord> ticks_{1 << 15};
+  dv::SpscRing<StepSample> steps_{1 << 13};
+  dv::TripleBuffer<RenderSnapshot> snapshots_;
+  std::unique_ptr<dv::HapticLoop> loop_;
+  struct Threads;
+  std::unique_ptr<Threads> threads_;
+  std::thread sim_thread_;
+  std::atomic<bool> stop_{false};
+  std::unique_ptr<sim::Simulation> sim_;
+
+  mutable std::mutex mu_;  // guards the fields below (never taken by the haptic thread)
+  std::vector<Command> queue_;
+  std::vector<Event> events_, new_events_;
+  std::shared_ptr<const PatientGeometry> geometry_;
+  std::vector<double> applied_young_;
+  std::atomic<std::uint64_t> posted_{0}, applied_{0};
+  std::atomic<std::uint64_t> generation_{0};
+  std::int64_t t0_ns_ = 0;
+  std::string load_error_;
+  bool swap_pending_ = false;        // simulation thread only
+  std::atomic<int> sim_state_{0};  // 0 stopped, 1 loading, 2 running, 3 swapping, 4 error
+
+  // GUI-thread side
+  LiveStats stats_;
+  std::vector<std::function<void(const TickSample&)>> tick_listeners_;
+  std::vector<std::function<void(const StepSample&)>> step_listeners_;
+  std::vector<std::function<void(const Event&)>> event_listeners_;
+  std::int64_t rate_window_ns_ = 0;
+  std::uint64_t window_ticks_ = 0, window_steps_ = 0;
+  std::int64_t prev_tick_ns_ = 0;
+  double window_jitter_ = 0;
+};
+
+}  // namespace palpation::app

@@ -1,0 +1,227 @@
+// The workstation window (ui/main_window.h) with its real threads and the simulated
+// HandHIRO: panels present; adding and painting a tumour changes the stiffness of the
+// right elements in the running simulation and undo restores them; the force plots
+// receive data; trainee mode hides tumours and locks the instructor panels; the 3-D view
+// shows the breast in mono and anaglyph; switching language changes visible strings.
+// Runs under Xvfb (the view needs an OpenGL context). No timing assertions.
+#include <QtTest>
+
+#include <QDockWidget>
+#include <QMenuBar>
+#include <QStandardPaths>
+#include <QUndoStack>
+
+#include "force_plots.h"
+#include "main_window.h"
+#include "tumour_editor.h"
+#include "vtk_view.h"
+
+using namespace palpation;
+
+namespace {
+
+struct ImageStats {
+  double mean_r = 0, mean_g = 0, mean_b = 0;
+  double skin_fraction = 0;  // pixels with the skin's warm colour (r > g > b, r high)
+  double red_cyan = 0;       // pixels where r and g/b differ strongly (anaglyph fringes)
+};
+
+ImageStats stats(const QImage& img0) {
+  const QImage img = img0.convertToFormat(QImage::Format_RGB32);
+  ImageStats s;
+  const int n = img.width() * img.height();
+  for (int y = 0; y < img.height(); ++y) {
+    const QRgb* row = reinterpret_cast<const QRgb*>(img.constScanLine(y));
+    for (int x = 0; x < img.width(); ++x) {
+      const int r = qRed(row[x]), g = qGreen(row[x]), b = qBlue(row[x]);
+      s.mean_r += r;
+      s.mean_g += g;
+      s.mean_b += b;
+      if (r > 120 && r > g + 15 && g > b) s.skin_fraction += 1;
+      if (std::abs(r - (g + b) / 2) > 60) s.red_cyan += 1;
+    }
+  }
+  s.mean_r /= n;
+  s.mean_g /= n;
+  s.mean_b /= n;
+  s.skin_fraction /= n;
+  s.red_cyan /= n;
+  return s;
+}
+
+}  // namespace
+
+class TstUiMainWindow : public QObject {
+  Q_OBJECT
+
+ private:
+  std::unique_ptr<ui::MainWindow> w_;
+
+  void pump() { QTest::qWait(20); }
+  // Waits until the simulation has applied every command posted so far.
+  bool synced() {
+    const auto want = w_->workstation().commands_posted();
+    QDeadlineTimer deadline(10000);
+    while (w_->workstation().commands_applied() < want && !deadline.hasExpired()) QTest::qWait(10);
+    return w_->workstation().commands_applied() >= want;
+  }
+
+ private slots:
+  void initTestCase() {
+    QStandardPaths::setTestModeEnabled(true);
+    QSurfaceFormat fmt;
+    fmt.setRenderableType(QSurfaceFormat::OpenGL);
+    fmt.setVersion(3, 2);
+    fmt.setProfile(QSurfaceFormat::CoreProfile);
+    fmt.setDepthBufferSize(24);
+    fmt.setStencilBufferSize(8);
+    QSurfaceFormat::setDefaultFormat(fmt);
+    app::WorkstationOptions opt;
+    opt.scenario = app::default_workstation_scenario();
+    opt.haptic_priority = 0;
+    w_ = std::make_unique<ui::MainWindow>(std::make_unique<app::Workstation>(opt));
+    w_->resize(1200, 800);
+    w_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
+    QTRY_VERIFY_WITH_TIMEOUT(w_->patient_ready(), 120000);
+  }
+
+  void window_has_panels() {
+    QCOMPARE(w_->instructor_docks().size(), 4);
+    QVERIFY(w_->forces_dock() != nullptr);
+    QStringList titles;
+    for (auto* d : w_->findChildren<QDockWidget*>()) titles << d->windowTitle();
+    for (const char* t : {"Patient", "Tumours", "Forces", "Simulation", "Device"}) QVERIFY2(titles.contains(QLatin1String(t)), t);
+    QVERIFY(w_->menuBar()->actions().size() >= 5);
+  }
+
+  void add_tumour_and_undo() {
+    auto& ws = w_->workstation();
+    ui::TumourEditor* ed = w_->editor();
+    const auto g = ws.geometry();
+    QVERIFY(g);
+    const std::vector<double> before = ed->young();
+    // A 1 cm sphere of 300 kPa at x = 0.10 m, 2 cm up: outside the patient's tumour.
+    const Eigen::Vector3d c(0.10, 0.02, 0.02);
+    const int n = ed->add_shape(QStringLiteral("sphere"), c, Eigen::Vector3d::Constant(0.01), 300000.0);
+    QVERIFY(n > 0);
+    QVERIFY(synced());
+    const auto young = ws.applied_young();
+    int inside = 0;
+    for (std::size_t e = 0; e < young.size(); ++e) {
+      const bool in = (g->centroid[e] - c).norm() <= 0.01;
+      if (in) {
+        QCOMPARE(young[e], 300000.0);
+        ++inside;
+      } else {
+        QCOMPARE(young[e], before[e]);
+      }
+    }
+    QCOMPARE(inside, n);
+    ed->undo_stack()->undo();
+    QVERIFY(synced());
+    QVERIFY(ws.applied_young() == before);
+    ed->undo_stack()->redo();
+    QVERIFY(synced());
+    QVERIFY(ws.applied_young() != before);
+    ed->undo_stack()->undo();
+    QVERIFY(synced());
+  }
+
+  void paint_stroke_is_one_undo_step() {
+    auto& ws = w_->workstation();
+    ui::TumourEditor* ed = w_->editor();
+    const auto g = ws.geometry();
+    const std::vector<double> before = ed->young();
+    const int steps0 = ed->undo_stack()->index();
+    ed->set_brush(0.01, 0.01, 200000.0);
+    ed->begin_stroke(false);
+    // Dabs along the skin at the top of the dome (normal +z), moving in x.
+    int painted = 0;
+    for (int i = 0; i < 5; ++i) painted += ed->dab(Eigen::Vector3d(0.11 + 0.005 * i, -0.02, 0.06), Eigen::Vector3d::UnitZ());
+    ed->end_stroke();
+    QVERIFY(painted > 0);
+    QCOMPARE(ed->undo_stack()->index(), steps0 + 1);
+    QCOMPARE(ed->undo_stack()->count(), steps0 + 1);
+    QVERIFY(synced());
+    auto young = ws.applied_young();
+    int changed = 0;
+    for (std::size_t e = 0; e < young.size(); ++e) {
+      if (young[e] == before[e]) continue;
+      ++changed;
+      QCOMPARE(young[e], 200000.0);
+      // Every changed element lies within the brush ball of one of the dabs.
+      double best = 1e9;
+      for (int i = 0; i < 5; ++i)
+        best = std::min(best, (g->centroid[e] - Eigen::Vector3d(0.11 + 0.005 * i, -0.02, 0.05)).norm());
+      QVERIFY(best <= 0.01 + 1e-12);
+    }
+    QCOMPARE(changed, painted);
+    QVERIFY(w_->view()->tumour_cell_count() > 0);
+    ed->undo_stack()->undo();
+    QVERIFY(synced());
+    QVERIFY(ws.applied_young() == before);
+  }
+
+  void plots_receive_data() {
+    ui::ForcePlots* p = w_->plots();
+    QTRY_VERIFY_WITH_TIMEOUT(p->point_count(1) > 50, 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(p->shown_points() > 50, 30000);
+    const QString csv = QDir::temp().filePath(QStringLiteral("tst_ui_forces.csv"));
+    QVERIFY(p->export_csv(csv));
+    QFile f(csv);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QVERIFY(f.readLine().startsWith("t,finger"));
+    p->set_paused(true);
+    const int n = p->point_count(1);
+    QTest::qWait(300);
+    QCOMPARE(p->point_count(1), n);
+    p->set_paused(false);
+  }
+
+  void view_shows_breast_mono_and_anaglyph() {
+    ui::VtkView* v = w_->view();
+    v->set_stereo(ui::VtkView::Stereo::Mono);
+    QTest::qWait(200);
+    const ImageStats mono = stats(v->grabFramebuffer());
+    qInfo("mono: mean rgb %.0f %.0f %.0f, skin %.3f", mono.mean_r, mono.mean_g, mono.mean_b, mono.skin_fraction);
+    QVERIFY2(mono.skin_fraction > 0.05, "the breast covers part of the view");
+    QVERIFY(v->set_stereo(ui::VtkView::Stereo::Anaglyph));
+    QTest::qWait(200);
+    const ImageStats ana = stats(v->grabFramebuffer());
+    qInfo("anaglyph: mean rgb %.0f %.0f %.0f, red/cyan %.3f", ana.mean_r, ana.mean_g, ana.mean_b, ana.red_cyan);
+    QVERIFY2(ana.red_cyan > 0.02, "anaglyph colours present");
+    QVERIFY(std::abs(ana.mean_r - mono.mean_r) + std::abs(ana.mean_g - mono.mean_g) > 1.0);
+    QVERIFY(ana.mean_r > 10);  // not an empty black image
+    QString why;
+    if (!v->set_stereo(ui::VtkView::Stereo::QuadBuffer, &why)) QVERIFY(!why.isEmpty());
+    QVERIFY(v->set_stereo(ui::VtkView::Stereo::Mono));
+  }
+
+  void trainee_mode() {
+    w_->set_trainee(true);
+    QVERIFY(!w_->view()->tumours_visible());
+    for (auto* d : w_->instructor_docks()) QVERIFY(!d->widget()->isEnabled());
+    QVERIFY(w_->workstation().device().mode() == app::WorkstationDevice::Mode::Mouse);
+    QCOMPARE(w_->view()->tool(), ui::VtkView::Tool::Palpate);
+    w_->set_trainee(false);
+    QVERIFY(w_->view()->tumours_visible());
+    for (auto* d : w_->instructor_docks()) QVERIFY(d->widget()->isEnabled());
+  }
+
+  void language_switch() {
+    QCOMPARE(w_->windowTitle(), QStringLiteral("Palpation Trainer"));
+    QVERIFY(w_->set_language(QStringLiteral("ja")));
+    QCOMPARE(w_->windowTitle(), QStringLiteral("触診トレーナー"));
+    QStringList titles;
+    for (auto* d : w_->findChildren<QDockWidget*>()) titles << d->windowTitle();
+    QVERIFY(titles.contains(QStringLiteral("腫瘍")));
+    QVERIFY(w_->set_language(QStringLiteral("en")));
+    QCOMPARE(w_->windowTitle(), QStringLiteral("Palpation Trainer"));
+  }
+
+  void cleanupTestCase() { w_.reset(); }
+};
+
+QTEST_MAIN(TstUiMainWindow)
+#include "tst_ui_main_window.moc"

@@ -1,0 +1,100 @@
+// palpation-trainer: the workstation GUI.
+//   palpation-trainer                       opens the window (simulated HandHIRO palpating)
+//   palpation-trainer --screenshot F.png    default scene, a few seconds of scripted
+//                                           palpation, saves the main window, exits
+#include <cstdio>
+#include <cstdlib>
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QSurfaceFormat>
+#include <QTimer>
+
+#include "main_window.h"
+#include "vtk_view.h"
+#include "workstation.h"
+
+int main(int argc, char** argv) {
+  // VTK needs a 3.2 core context with depth and stencil (interlaced stereo uses the
+  // stencil); set before the QApplication exists (stack-notes.md).
+  QSurfaceFormat fmt;
+  fmt.setRenderableType(QSurfaceFormat::OpenGL);
+  fmt.setVersion(3, 2);
+  fmt.setProfile(QSurfaceFormat::CoreProfile);
+  fmt.setDepthBufferSize(24);
+  fmt.setStencilBufferSize(8);
+  fmt.setSwapInterval(0);
+  QSurfaceFormat::setDefaultFormat(fmt);
+  if (!std::getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 0);
+
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("palpation-trainer"));
+  QApplication::setApplicationName(QStringLiteral("palpation-trainer"));
+  QApplication::setApplicationVersion(QStringLiteral(PALPATION_VERSION_STRING));
+
+  QCommandLineParser cli;
+  cli.setApplicationDescription(QStringLiteral("Breast-cancer palpation training workstation"));
+  cli.addHelpOption();
+  cli.addVersionOption();
+  QCommandLineOption shot(QStringLiteral("screenshot"), QStringLiteral("Render the default scene, palpate for a few seconds, save FILE.png, exit."),
+                          QStringLiteral("FILE"));
+  QCommandLineOption secs(QStringLiteral("seconds"), QStringLiteral("Seconds of palpation before the screenshot (default 6)."),
+                          QStringLiteral("S"), QStringLiteral("6"));
+  QCommandLineOption lang(QStringLiteral("language"), QStringLiteral("User interface language: en or ja."), QStringLiteral("CODE"));
+  QCommandLineOption trainee(QStringLiteral("trainee"), QStringLiteral("Start in trainee mode."));
+  QCommandLineOption stereo(QStringLiteral("stereo"), QStringLiteral("mono, anaglyph, side-by-side or interlaced."), QStringLiteral("MODE"));
+  QCommandLineOption resolution(QStringLiteral("resolution"), QStringLiteral("Breast resolution: coarse (default), paper, fine."),
+                                QStringLiteral("NAME"), QStringLiteral("coarse"));
+  cli.addOptions({shot, secs, lang, trainee, stereo, resolution});
+  cli.process(app);
+
+  palpation::app::WorkstationOptions opt;
+  opt.scenario = palpation::app::default_workstation_scenario();
+  const std::string res = cli.value(resolution).toStdString();
+  if (auto e = palpation::sim::resolution_edge("breast", res)) {
+    opt.scenario.patient.resolution = res;
+    opt.scenario.patient.edge = *e;
+  } else {
+    std::fprintf(stderr, "palpation-trainer: --resolution: unknown level \"%s\" (coarse, paper, fine)\n", res.c_str());
+    return 2;
+  }
+  auto ws = std::make_unique<palpation::app::Workstation>(opt);
+  palpation::ui::MainWindow w(std::move(ws));
+  if (cli.isSet(lang)) w.set_language(cli.value(lang));
+  if (cli.isSet(trainee)) w.set_trainee(true);
+  if (cli.isSet(stereo)) {
+    const QString s = cli.value(stereo);
+    using S = palpation::ui::VtkView::Stereo;
+    w.view()->set_stereo(s == QLatin1String("anaglyph") ? S::Anaglyph
+                         : s == QLatin1String("side-by-side") ? S::SideBySide
+                         : s == QLatin1String("interlaced") ? S::Interlaced
+                                                            : S::Mono);
+  }
+  if (cli.isSet(shot)) {
+    // Screenshots are for docs and checks: a fixed window size, the stored layout ignored.
+    w.resize(1400, 900);
+  }
+  w.show();
+  if (cli.isSet(shot)) {
+    const QString file = cli.value(shot);
+    const int ms = int(cli.value(secs).toDouble() * 1000);
+    auto* t = new QTimer(&w);
+    QElapsedTimer since_ready;
+    t->start(100);
+    QObject::connect(t, &QTimer::timeout, &w, [&w, &since_ready, file, ms]() {
+      if (!w.patient_ready()) return;  // meshing/loading first
+      if (!since_ready.isValid()) since_ready.start();
+      if (since_ready.elapsed() < ms) return;
+      const QImage img = w.grab().toImage();
+      const bool ok = img.save(file);
+      const auto& s = w.workstation().stats();
+      std::fprintf(stderr, "palpation-trainer: %s %s (%dx%d); view %.0f fps, simulation %.0f Hz, haptic %.0f Hz\n",
+                   ok ? "saved" : "could not save", qPrintable(file), img.width(), img.height(), w.frame_rate(),
+                   s.step_rate_hz, s.haptic_rate_hz);
+      QApplication::exit(ok ? 0 : 1);
+    });
+  }
+  return app.exec();
+}

@@ -1,0 +1,377 @@
+#include "main_window.h"
+
+#include <QActionGroup>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QListWidget>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QToolButton>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDateTime>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QInputDialog>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QSettings>
+#include <QStatusBar>
+#include <QTimer>
+#include <QToolBar>
+#include <QUndoStack>
+
+#include "force_plots.h"
+#include "panels.h"
+#include "tumour_editor.h"
+#include "vtk_view.h"
+
+namespace palpation::ui {
+
+MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : QMainWindow(parent), ws_(std::move(ws)) {
+  setObjectName(QStringLiteral("MainWindow"));
+  setWindowIcon(QIcon(QStringLiteral(":/icons/palpation.png")));
+  scenario_ = ws_->options().scenario;
+  view_ = new VtkView(this);
+  setCentralWidget(view_);
+  editor_ = new TumourEditor(ws_.get(), this);
+
+  auto dock = [this](QWidget* w, const char* name, Qt::DockWidgetArea area) {
+    auto* d = new QDockWidget(this);
+    d->setObjectName(QString::fromLatin1(name));
+    d->setWidget(w);
+    addDockWidget(area, d);
+    return d;
+  };
+  patient_panel_ = new PatientPanel;
+  patient_panel_->show_scenario(scenario_);
+  tumour_panel_ = new TumourPanel(editor_);
+  sim_panel_ = new SimulationPanel;
+  device_panel_ = new DevicePanel(ws_->device_config().hand.capabilities.max_force);
+  plots_ = new ForcePlots;
+  patient_dock_ = dock(patient_panel_, "PatientDock", Qt::LeftDockWidgetArea);
+  tumour_dock_ = dock(tumour_panel_, "TumourDock", Qt::LeftDockWidgetArea);
+  sim_dock_ = dock(sim_panel_, "SimulationDock", Qt::RightDockWidgetArea);
+  device_dock_ = dock(device_panel_, "DeviceDock", Qt::RightDockWidgetArea);
+  forces_dock_ = dock(plots_, "ForcesDock", Qt::BottomDockWidgetArea);
+  tabifyDockWidget(patient_dock_, tumour_dock_);
+  tumour_dock_->raise();
+  tabifyDockWidget(sim_dock_, device_dock_);
+  sim_dock_->raise();
+  resizeDocks({forces_dock_}, {260}, Qt::Vertical);
+  resizeDocks({tumour_dock_, sim_dock_}, {330, 260}, Qt::Horizontal);
+
+  st_backend_ = new QLabel;
+  st_step_ = new QLabel;
+  st_haptic_ = new QLabel;
+  st_device_ = new QLabel;
+  st_fps_ = new QLabel;
+  for (auto* l : {st_backend_, st_step_, st_haptic_, st_device_, st_fps_}) statusBar()->addPermanentWidget(l);
+
+  build_actions();
+
+  // Panels -> commands.
+  connect(patient_panel_, &PatientPanel::loadRequested, this, [this] {
+    scenario_ = patient_panel_->scenario(scenario_);
+    scenario_.backend = sim_panel_->backend->currentText().toStdString();
+    ws_->load_patient(scenario_);
+    QSettings().setValue(QStringLiteral("patient/resolution"), QString::fromStdString(scenario_.patient.resolution));
+  });
+  connect(sim_panel_->apply, &QPushButton::clicked, this, [this] {
+    sim::SimParams p = scenario_.params;
+    p.solver.cg_tolerance = sim_panel_->tolerance->value();
+    p.solver.cg_max_iterations = sim_panel_->iterations->value();
+    scenario_.params = p;
+    ws_->set_params(p);
+  });
+  connect(device_panel_->mode, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int i) {
+    ws_->device().set_mode(i == 1 ? app::WorkstationDevice::Mode::Mouse : app::WorkstationDevice::Mode::Script);
+    if (i == 1) ws_->set_mouse_finger(Eigen::Vector3d::Zero(), false);
+    view_->set_tool(i == 1 ? VtkView::Tool::Palpate : VtkView::Tool::Camera);
+    ws_->log_event("mode", i == 1 ? "device: mouse palpation" : "device: scripted hand");
+  });
+  connect(tumour_panel_->add, &QPushButton::clicked, this, [this] {
+    Eigen::Vector3d c, r;
+    for (int i = 0; i < 3; ++i) {
+      c[i] = tumour_panel_->centre[i]->value() * 0.01;
+      r[i] = tumour_panel_->radii[i]->value() * 0.01;
+    }
+    const int n = editor_->add_shape(tumour_panel_->shape->currentData().toString(), c, r, tumour_panel_->preset_young());
+    if (n == 0) statusBar()->showMessage(tr("No element lies inside that shape: nothing added."), 5000);
+  });
+  connect(tumour_panel_->remove, &QPushButton::clicked, this, [this] { editor_->remove_tumour(tumour_panel_->list->currentRow()); });
+  connect(tumour_panel_, &TumourPanel::toolRequested, this, [this](int t) {
+    view_->set_tool(t == 1 ? VtkView::Tool::Paint : t == 2 ? VtkView::Tool::Erase : VtkView::Tool::Camera);
+  });
+  connect(view_, &VtkView::brushDab, this, &MainWindow::on_brush);
+  connect(view_, &VtkView::brushStrokeEnded, this, [this] { editor_->end_stroke(); });
+  connect(view_, &VtkView::palpateTarget, this, [this](const Eigen::Vector3d& c, bool present) {
+    if (ws_->device().mode() != app::WorkstationDevice::Mode::Mouse) {
+      ws_->device().set_mode(app::WorkstationDevice::Mode::Mouse);
+    }
+    ws_->set_mouse_finger(c, present);
+  });
+  connect(editor_, &TumourEditor::changed, this, [this] { view_->set_element_young(editor_->young()); });
+  ws_->add_tick_listener([this](const app::TickSample& s) { plots_->add_sample(s); });
+  ws_->add_event_listener([this](const app::Event& e) {
+    statusBar()->showMessage(QString::fromStdString(e.text), 4000);
+  });
+
+  QSettings settings;
+  restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
+  restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+  const int stereo = settings.value(QStringLiteral("view/stereo"), 0).toInt();
+  if (stereo > 0 && stereo < 4) a_stereo_[stereo]->trigger();
+  a_mirror_->setChecked(settings.value(QStringLiteral("view/mirrored"), false).toBool());
+  set_language(settings.value(QStringLiteral("language"), QStringLiteral("en")).toString());
+  retranslate();
+
+  timer_ = new QTimer(this);
+  timer_->setTimerType(Qt::PreciseTimer);
+  connect(timer_, &QTimer::timeout, this, &MainWindow::tick);
+  timer_->start(16);
+  fps_t0_ = QDateTime::currentMSecsSinceEpoch();
+  ws_->start();
+}
+
+MainWindow::~MainWindow() { ws_->stop(); }
+
+QList<QDockWidget*> MainWindow::instructor_docks() const { return {patient_dock_, tumour_dock_, sim_dock_, device_dock_}; }
+
+void MainWindow::build_actions() {
+  file_menu_ = menuBar()->addMenu(QString());
+  a_screenshot_ = file_menu_->addAction(QString(), this, [this] {
+    const QString f = QFileDialog::getSaveFileName(this, tr("Save screenshot"), QStringLiteral("screenshot.png"), tr("PNG images (*.png)"));
+    if (!f.isEmpty()) grab().save(f);
+  });
+  file_menu_->addSeparator();
+  a_quit_ = file_menu_->addAction(QString(), this, &QWidget::close);
+  a_quit_->setShortcut(QKeySequence::Quit);
+
+  edit_menu_ = menuBar()->addMenu(QString());
+  a_undo_ = editor_->undo_stack()->createUndoAction(this);
+  a_undo_->setShortcut(QKeySequence::Undo);
+  a_redo_ = editor_->undo_stack()->createRedoAction(this);
+  a_redo_->setShortcut(QKeySequence::Redo);
+  a_undo_->setIcon(QIcon(QStringLiteral(":/icons/undo.png")));
+  a_redo_->setIcon(QIcon(QStringLiteral(":/icons/redo.png")));
+  edit_menu_->addAction(a_undo_);
+  edit_menu_->addAction(a_redo_);
+
+  view_menu_ = menuBar()->addMenu(QString());
+  camera_menu_ = view_menu_->addMenu(QString());
+  for (int i = 0; i < 4; ++i)
+    a_cam_[i] = camera_menu_->addAction(QString(), this, [this, i] { view_->set_camera(VtkView::CameraPreset(i)); });
+  stereo_menu_ = view_menu_->addMenu(QString());
+  auto* sg = new QActionGroup(this);
+  for (int i = 0; i < 5; ++i) {
+    a_stereo_[i] = stereo_menu_->addAction(QString());
+    a_stereo_[i]->setCheckable(true);
+    sg->addAction(a_stereo_[i]);
+    connect(a_stereo_[i], &QAction::triggered, this, [this, i] {
+      QString why;
+      if (!view_->set_stereo(VtkView::Stereo(i), &why)) {
+        QMessageBox::information(this, tr("Stereo"), why);
+        a_stereo_[int(view_->stereo())]->setChecked(true);
+        return;
+      }
+      QSettings().setValue(QStringLiteral("view/stereo"), i);
+    });
+  }
+  a_stereo_[0]->setChecked(true);
+  a_eye_ = stereo_menu_->addAction(QString(), this, [this] {
+    bool ok = false;
+    const double v = QInputDialog::getDouble(this, tr("Eye separation"), tr("Eye angle (degrees):"), 2.0, 0.1, 10.0, 1, &ok);
+    if (ok) view_->set_eye_angle(v);
+  });
+  a_mirror_ = view_menu_->addAction(QString());
+  a_mirror_->setCheckable(true);
+  connect(a_mirror_, &QAction::toggled, this, [this](bool on) {
+    view_->set_mirrored(on);
+    QSettings().setValue(QStringLiteral("view/mirrored"), on);
+  });
+  a_colour_ = view_menu_->addAction(QString());
+  a_colour_->setCheckable(true);
+  connect(a_colour_, &QAction::toggled, view_, &VtkView::set_colour_map);
+  a_tumours_ = view_menu_->addAction(QString());
+  a_tumours_->setCheckable(true);
+  a_tumours_->setChecked(true);
+  connect(a_tumours_, &QAction::toggled, view_, &VtkView::set_tumours_visible);
+  panels_menu_ = view_menu_->addMenu(QString());
+  for (auto* d : {patient_dock_, tumour_dock_, forces_dock_, sim_dock_, device_dock_}) panels_menu_->addAction(d->toggleViewAction());
+
+  mode_menu_ = menuBar()->addMenu(QString());
+  a_trainee_ = mode_menu_->addAction(QString(), this, [this] { set_trainee(true); });
+  a_instructor_ = mode_menu_->addAction(QString(), this, [this] { set_trainee(false); });
+  a_instructor_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+I")));
+  a_instructor_->setShortcutContext(Qt::ApplicationShortcut);
+  a_trainee_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+T")));
+
+  lang_menu_ = menuBar()->addMenu(QStringLiteral("Language / 言語"));
+  a_en_ = lang_menu_->addAction(QStringLiteral("English"), this, [this] { set_language(QStringLiteral("en")); });
+  a_ja_ = lang_menu_->addAction(QStringLiteral("日本語"), this, [this] { set_language(QStringLiteral("ja")); });
+
+  toolbar_ = addToolBar(QString());
+  toolbar_->setObjectName(QStringLiteral("MainToolBar"));
+  toolbar_->addAction(a_undo_);
+  toolbar_->addAction(a_redo_);
+  toolbar_->addSeparator();
+  auto* tg = new QActionGroup(this);
+  a_camera_tool_ = toolbar_->addAction(QIcon(QStringLiteral(":/icons/camera.png")), QString());
+  a_palpate_tool_ = toolbar_->addAction(QIcon(QStringLiteral(":/icons/finger.png")), QString());
+  for (auto* a : {a_camera_tool_, a_palpate_tool_}) {
+    a->setCheckable(true);
+    tg->addAction(a);
+  }
+  a_camera_tool_->setChecked(true);
+  connect(a_camera_tool_, &QAction::triggered, this, [this] { device_panel_->mode->setCurrentIndex(0); });
+  connect(a_palpate_tool_, &QAction::triggered, this, [this] { device_panel_->mode->setCurrentIndex(1); });
+  toolbar_->addSeparator();
+  toolbar_->addAction(a_trainee_);
+  toolbar_->addAction(a_instructor_);
+}
+
+void MainWindow::retranslate() {
+  setWindowTitle(tr("Palpation Trainer"));
+  file_menu_->setTitle(tr("&File"));
+  a_screenshot_->setText(tr("Save &screenshot..."));
+  a_quit_->setText(tr("&Quit"));
+  edit_menu_->setTitle(tr("&Edit"));
+  a_undo_->setText(tr("Undo"));
+  a_redo_->setText(tr("Redo"));
+  view_menu_->setTitle(tr("&View"));
+  camera_menu_->setTitle(tr("Camera"));
+  const QString cams[4] = {tr("Oblique"), tr("Top"), tr("Side"), tr("Front")};
+  for (int i = 0; i < 4; ++i) a_cam_[i]->setText(cams[i]);
+  stereo_menu_->setTitle(tr("Stereo"));
+  const QString st[5] = {tr("Mono"), tr("Anaglyph (red/cyan)"), tr("Side by side"), tr("Interlaced"), tr("Quad-buffer (shutter glasses)")};
+  for (int i = 0; i < 5; ++i) a_stereo_[i]->setText(st[i]);
+  a_eye_->setText(tr("Eye separation..."));
+  a_mirror_->setText(tr("Mirrored (half-mirror display)"));
+  a_colour_->setText(tr("Displacement colour map"));
+  a_tumours_->setText(tr("Show tumours"));
+  panels_menu_->setTitle(tr("Panels"));
+  mode_menu_->setTitle(tr("&Mode"));
+  a_trainee_->setText(tr("Trainee mode"));
+  a_instructor_->setText(tr("Instructor mode"));
+  toolbar_->setWindowTitle(tr("Tools"));
+  a_camera_tool_->setText(tr("Camera / scripted hand"));
+  a_palpate_tool_->setText(tr("Palpate with the mouse"));
+  patient_dock_->setWindowTitle(tr("Patient"));
+  tumour_dock_->setWindowTitle(tr("Tumours"));
+  forces_dock_->setWindowTitle(tr("Forces"));
+  sim_dock_->setWindowTitle(tr("Simulation"));
+  device_dock_->setWindowTitle(tr("Device"));
+  update_status();
+}
+
+void MainWindow::changeEvent(QEvent* e) {
+  if (e->type() == QEvent::LanguageChange && file_menu_) retranslate();
+  QMainWindow::changeEvent(e);
+}
+
+bool MainWindow::set_language(const QString& code) {
+  qApp->removeTranslator(&translator_);
+  bool ok = true;
+  if (code != QLatin1String("en")) {
+    ok = translator_.load(QStringLiteral(":/i18n/palpation_%1.qm").arg(code));
+    if (ok) qApp->installTranslator(&translator_);
+  }
+  language_ = ok ? code : QStringLiteral("en");
+  QSettings().setValue(QStringLiteral("language"), language_);
+  retranslate();
+  return ok;
+}
+
+void MainWindow::set_trainee(bool on) {
+  trainee_ = on;
+  a_tumours_->setChecked(!on);
+  a_tumours_->setEnabled(!on);
+  view_->set_tumours_visible(!on);
+  for (auto* d : instructor_docks()) {
+    d->widget()->setEnabled(!on);
+    d->setFeatures(on ? QDockWidget::NoDockWidgetFeatures
+                      : QDockWidget::DockWidgetClosable | QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+  }
+  a_undo_->setEnabled(!on && editor_->undo_stack()->canUndo());
+  a_redo_->setEnabled(!on && editor_->undo_stack()->canRedo());
+  a_trainee_->setVisible(!on);
+  a_instructor_->setVisible(on);
+  if (on) {
+    tumour_panel_->paint->setChecked(false);
+    tumour_panel_->erase->setChecked(false);
+    device_panel_->mode->setCurrentIndex(1);  // mouse palpation
+    a_palpate_tool_->setChecked(true);
+  }
+  ws_->log_event("mode", on ? "trainee mode" : "instructor mode");
+}
+
+void MainWindow::on_brush(const Eigen::Vector3d& p, const Eigen::Vector3d& n, bool first) {
+  if (trainee_) return;
+  if (first) {
+    editor_->set_brush(tumour_panel_->brush_radius->value() * 0.01, tumour_panel_->brush_depth->value() * 0.01,
+                       tumour_panel_->preset_young());
+    editor_->begin_stroke(view_->tool() == VtkView::Tool::Erase);
+  }
+  if (p.x() < 1e8) editor_->dab(p, n);
+}
+
+void MainWindow::tick() {
+  const bool fresh = ws_->poll();
+  const auto g = ws_->geometry();
+  if (g && g->generation != generation_) {
+    generation_ = g->generation;
+    view_->set_patient(g);
+    editor_->set_patient(g);
+    patient_panel_->info->setText(tr("%1 nodes, %2 tetrahedra").arg(g->rest.size()).arg(g->tets.size()));
+  }
+  if (fresh) view_->show_snapshot(ws_->snapshot());
+  const qint64 now = QDateTime::currentMSecsSinceEpoch();
+  if (now - last_plot_ >= 100) {
+    last_plot_ = now;
+    if (forces_dock_->isVisible()) plots_->refresh();
+  }
+  if (now - last_status_ >= 250) {
+    last_status_ = now;
+    update_status();
+    const auto& s = ws_->stats();
+    if (ws_->device().mode() == app::WorkstationDevice::Mode::Mouse)
+      view_->set_overlay_text(tr("Index finger: %1 N, press %2 mm (wheel or drag to press)")
+                                  .arg(s.force_n[1], 0, 'f', 2)
+                                  .arg(view_->press_depth() * 1000, 0, 'f', 1));
+    else
+      view_->set_overlay_text(QString());
+  }
+  if (now - fps_t0_ >= 1000) {
+    const quint64 frames = view_->frames();
+    fps_ = double(frames - quint64(frame_count_)) * 1000.0 / double(now - fps_t0_);
+    frame_count_ = int(frames);
+    fps_t0_ = now;
+  }
+}
+
+void MainWindow::update_status() {
+  if (!st_backend_) return;
+  const auto& s = ws_->stats();
+  const auto g = ws_->geometry();
+  const QString be = g ? QString::fromStdString(g->backend) : QStringLiteral("-");
+  st_backend_->setText(tr("Backend: %1").arg(be));
+  st_step_->setText(tr("Simulation: %1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
+  st_haptic_->setText(tr("Haptic: %1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
+  const QString dev = ws_->device().mode() == app::WorkstationDevice::Mode::Mouse ? tr("mouse") : tr("simulated HandHIRO");
+  st_device_->setText(tr("Device: %1, %2").arg(dev, s.connected ? tr("connected") : tr("stopped")));
+  st_fps_->setText(tr("View: %1 fps").arg(fps_, 0, 'f', 0));
+  sim_panel_->show_stats(s, be);
+  device_panel_->show_stats(s);
+}
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+  QSettings settings;
+  settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
+  settings.setValue(QStringLiteral("window/state"), saveState());
+  ws_->stop();
+  QMainWindow::closeEvent(e);
+}
+
+}  // namespace palpation::ui

@@ -1,0 +1,101 @@
+// The workstation's main window: the 3-D view in the centre, instructor panels in docks,
+// menus, toolbar, status bar (backend, step rate, haptic rate, device state). The GUI
+// thread polls the workstation at 60 Hz and never waits on physics.
+#pragma once
+
+#include <memory>
+
+#include <QMainWindow>
+#include <QTranslator>
+
+#include "workstation.h"
+
+class QAction;
+class QActionGroup;
+class QDockWidget;
+class QLabel;
+class QMenu;
+class QTimer;
+class QToolBar;
+
+namespace palpation::ui {
+
+class DevicePanel;
+class ForcePlots;
+class PatientPanel;
+class SimulationPanel;
+class TumourEditor;
+class TumourPanel;
+class VtkView;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  /// Starts `ws` (the window owns it).
+  explicit MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  app::Workstation& workstation() { return *ws_; }
+  VtkView* view() const { return view_; }
+  TumourEditor* editor() const { return editor_; }
+  ForcePlots* plots() const { return plots_; }
+  QList<QDockWidget*> instructor_docks() const;
+  QDockWidget* forces_dock() const { return forces_dock_; }
+  TumourPanel* tumour_panel() const { return tumour_panel_; }
+
+  /// Trainee mode: tumours hidden, instructor panels locked, mouse palpation.
+  void set_trainee(bool on);
+  bool trainee() const { return trainee_; }
+  /// "en" or "ja". False when the translation is missing.
+  bool set_language(const QString& code);
+  QString language() const { return language_; }
+  /// True once the first patient is on screen.
+  bool patient_ready() const { return generation_ != 0; }
+  /// Frames drawn per second over the last second.
+  double frame_rate() const { return fps_; }
+
+ public slots:
+  void tick();
+
+ protected:
+  void closeEvent(QCloseEvent* e) override;
+  void changeEvent(QEvent* e) override;
+
+ private:
+  void build_actions();
+  void retranslate();
+  void update_status();
+  void on_brush(const Eigen::Vector3d& p, const Eigen::Vector3d& n, bool first);
+
+  std::unique_ptr<app::Workstation> ws_;
+  VtkView* view_ = nullptr;
+  TumourEditor* editor_ = nullptr;
+  ForcePlots* plots_ = nullptr;
+  PatientPanel* patient_panel_ = nullptr;
+  TumourPanel* tumour_panel_ = nullptr;
+  SimulationPanel* sim_panel_ = nullptr;
+  DevicePanel* device_panel_ = nullptr;
+  QDockWidget *patient_dock_ = nullptr, *tumour_dock_ = nullptr, *forces_dock_ = nullptr, *sim_dock_ = nullptr,
+              *device_dock_ = nullptr;
+  QLabel *st_backend_ = nullptr, *st_step_ = nullptr, *st_haptic_ = nullptr, *st_device_ = nullptr, *st_fps_ = nullptr;
+  QMenu *file_menu_ = nullptr, *edit_menu_ = nullptr, *view_menu_ = nullptr, *stereo_menu_ = nullptr, *camera_menu_ = nullptr,
+        *mode_menu_ = nullptr, *lang_menu_ = nullptr, *panels_menu_ = nullptr;
+  QToolBar* toolbar_ = nullptr;
+  QAction *a_screenshot_ = nullptr, *a_quit_ = nullptr, *a_undo_ = nullptr, *a_redo_ = nullptr, *a_colour_ = nullptr,
+          *a_tumours_ = nullptr, *a_mirror_ = nullptr, *a_eye_ = nullptr, *a_trainee_ = nullptr, *a_instructor_ = nullptr,
+          *a_camera_tool_ = nullptr, *a_palpate_tool_ = nullptr, *a_en_ = nullptr, *a_ja_ = nullptr;
+  QAction* a_stereo_[5] = {};
+  QAction* a_cam_[4] = {};
+  QTimer* timer_ = nullptr;
+  QTranslator translator_;
+  QString language_ = QStringLiteral("en");
+  std::uint64_t generation_ = 0;
+  bool trainee_ = false;
+  int frame_count_ = 0;
+  qint64 fps_t0_ = 0, last_status_ = 0, last_plot_ = 0;
+  double fps_ = 0;
+  sim::Scenario scenario_;
+};
+
+}  // namespace palpation::ui

@@ -1,0 +1,351 @@
+#include "panels.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QEvent>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QToolButton>
+#include <QUndoStack>
+#include <QVBoxLayout>
+
+#include "backend.h"
+#include "tumour_editor.h"
+
+namespace palpation::ui {
+
+namespace {
+QDoubleSpinBox* spin(double lo, double hi, double v, int decimals, double step, const QString& suffix = {}) {
+  auto* s = new QDoubleSpinBox;
+  s->setRange(lo, hi);
+  s->setDecimals(decimals);
+  s->setSingleStep(step);
+  s->setValue(v);
+  if (!suffix.isEmpty()) s->setSuffix(suffix);
+  return s;
+}
+void set_label(QFormLayout* form, QWidget* field, const QString& text) {
+  if (auto* l = qobject_cast<QLabel*>(form->labelForField(field))) l->setText(text);
+}
+const char* const kFingers[5] = {QT_TRANSLATE_NOOP("DevicePanel", "Thumb"), QT_TRANSLATE_NOOP("DevicePanel", "Index"),
+                                 QT_TRANSLATE_NOOP("DevicePanel", "Middle"), QT_TRANSLATE_NOOP("DevicePanel", "Ring"),
+                                 QT_TRANSLATE_NOOP("DevicePanel", "Little")};
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+PatientPanel::PatientPanel(QWidget* parent) : QWidget(parent) {
+  phantom = new QComboBox;
+  phantom->addItem(QString(), QStringLiteral("breast"));
+  phantom->addItem(QString(), QStringLiteral("box"));
+  resolution = new QComboBox;
+  for (const char* r : {"coarse", "paper", "fine"}) resolution->addItem(QString(), QString::fromLatin1(r));
+  young = spin(0.5, 500, 19, 1, 1, QStringLiteral(" kPa"));
+  poisson = spin(0.0, 0.49, 0.45, 3, 0.01);
+  apply = new QPushButton;
+  info = new QLabel;
+  info->setWordWrap(true);
+  form_ = new QFormLayout(this);
+  form_->addRow(QStringLiteral("-"), phantom);
+  form_->addRow(QStringLiteral("-"), resolution);
+  form_->addRow(QStringLiteral("-"), young);
+  form_->addRow(QStringLiteral("-"), poisson);
+  form_->addRow(apply);
+  form_->addRow(info);
+  connect(apply, &QPushButton::clicked, this, &PatientPanel::loadRequested);
+  retranslate();
+}
+
+void PatientPanel::retranslate() {
+  phantom->setItemText(0, tr("Breast phantom (paper)"));
+  phantom->setItemText(1, tr("Box phantom"));
+  resolution->setItemText(0, tr("Coarse (about 1,000 nodes, real time on a CPU)"));
+  resolution->setItemText(1, tr("Paper (about 9,100 nodes, GPU)"));
+  resolution->setItemText(2, tr("Fine (GPU)"));
+  set_label(form_, phantom, tr("Patient"));
+  set_label(form_, resolution, tr("Resolution"));
+  set_label(form_, young, tr("Tissue Young's modulus"));
+  set_label(form_, poisson, tr("Poisson ratio"));
+  apply->setText(tr("Load patient"));
+  phantom->setToolTip(tr("Built-in phantoms; the patient library comes with a later version."));
+}
+
+void PatientPanel::changeEvent(QEvent* e) {
+  if (e->type() == QEvent::LanguageChange) retranslate();
+  QWidget::changeEvent(e);
+}
+
+void PatientPanel::show_scenario(const sim::Scenario& s) {
+  phantom->setCurrentIndex(std::max(0, phantom->findData(QString::fromStdString(s.patient.phantom))));
+  resolution->setCurrentIndex(std::max(0, resolution->findData(QString::fromStdString(s.patient.resolution))));
+  young->setValue(s.young_modulus / 1000.0);
+  poisson->setValue(s.poisson_ratio);
+}
+
+sim::Scenario PatientPanel::scenario(const sim::Scenario& base) const {
+  sim::Scenario s = base;
+  s.patient.phantom = phantom->currentData().toString().toStdString();
+  s.patient.resolution = resolution->currentData().toString().toStdString();
+  if (auto e = sim::resolution_edge(s.patient.phantom, s.patient.resolution)) s.patient.edge = *e;
+  s.young_modulus = young->value() * 1000.0;
+  s.poisson_ratio = poisson->value();
+  if (s.patient.phantom == "box") {
+    s.patient.size = Eigen::Vector3d(0.1, 0.1, 0.05);
+    s.inclusions.clear();
+  }
+  s.source = "patient panel (" + s.patient.phantom + ", " + s.patient.resolution + ")";
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------
+TumourPanel::TumourPanel(TumourEditor* editor, QWidget* parent) : QWidget(parent), editor_(editor) {
+  list = new QListWidget;
+  list->setMaximumHeight(110);
+  preset = new QComboBox;
+  for (const auto& p : tissue_presets()) preset->addItem(p.name, p.young);
+  source = new QLabel;
+  source->setWordWrap(true);
+  young = spin(1, 1000, 107, 1, 5, QStringLiteral(" kPa"));
+  shape = new QComboBox;
+  shape->addItem(QString(), QStringLiteral("sphere"));
+  shape->addItem(QString(), QStringLiteral("ellipsoid"));
+  const double c0[3] = {12.5, 0, 3.5};
+  for (int i = 0; i < 3; ++i) {
+    centre[i] = spin(-30, 30, c0[i], 1, 0.5, QStringLiteral(" cm"));
+    radii[i] = spin(0.2, 5, 1.0, 1, 0.1, QStringLiteral(" cm"));
+  }
+  add = new QPushButton;
+  remove = new QPushButton;
+  brush_radius = spin(0.2, 3, 0.8, 1, 0.1, QStringLiteral(" cm"));
+  brush_depth = spin(0, 5, 1.2, 1, 0.1, QStringLiteral(" cm"));
+  paint = new QToolButton;
+  erase = new QToolButton;
+  paint->setCheckable(true);
+  erase->setCheckable(true);
+  undo = new QToolButton;
+  redo = new QToolButton;
+  undo->setDefaultAction(editor->undo_stack()->createUndoAction(this));
+  redo->setDefaultAction(editor->undo_stack()->createRedoAction(this));
+
+  auto* lay = new QVBoxLayout(this);
+  lay->addWidget(list);
+  auto* lr = new QHBoxLayout;
+  lr->addWidget(remove);
+  lr->addStretch();
+  lr->addWidget(undo);
+  lr->addWidget(redo);
+  lay->addLayout(lr);
+  top_form_ = new QFormLayout;
+  top_form_->addRow(QStringLiteral("-"), preset);
+  top_form_->addRow(QStringLiteral("-"), young);
+  top_form_->addRow(source);
+  lay->addLayout(top_form_);
+  shape_box_ = new QGroupBox;
+  shape_form_ = new QFormLayout(shape_box_);
+  shape_form_->addRow(QStringLiteral("-"), shape);
+  auto row = [](std::array<QDoubleSpinBox*, 3>& a) {
+    auto* w = new QWidget;
+    auto* h = new QHBoxLayout(w);
+    h->setContentsMargins(0, 0, 0, 0);
+    for (auto* s : a) h->addWidget(s);
+    return w;
+  };
+  auto* cw = row(centre);
+  auto* rw = row(radii);
+  shape_form_->addRow(QStringLiteral("-"), cw);
+  shape_form_->addRow(QStringLiteral("-"), rw);
+  shape_form_->addRow(add);
+  lay->addWidget(shape_box_);
+  brush_box_ = new QGroupBox;
+  brush_form_ = new QFormLayout(brush_box_);
+  brush_form_->addRow(QStringLiteral("-"), brush_radius);
+  brush_form_->addRow(QStringLiteral("-"), brush_depth);
+  auto* bw = new QWidget;
+  auto* bh = new QHBoxLayout(bw);
+  bh->setContentsMargins(0, 0, 0, 0);
+  bh->addWidget(paint);
+  bh->addWidget(erase);
+  brush_form_->addRow(bw);
+  lay->addWidget(brush_box_);
+  lay->addStretch();
+  centre_label_widget_ = cw;
+  radii_label_widget_ = rw;
+
+  connect(preset, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int i) {
+    const auto p = tissue_presets();
+    if (i >= 0 && i < int(p.size())) {
+      young->setValue(p[i].young / 1000.0);
+      source->setText(tr("Source: %1").arg(p[i].source));
+    }
+  });
+  connect(paint, &QToolButton::toggled, this, [this](bool on) {
+    if (on) erase->setChecked(false);
+    emit toolRequested(on ? 1 : (erase->isChecked() ? 2 : 0));
+  });
+  connect(erase, &QToolButton::toggled, this, [this](bool on) {
+    if (on) paint->setChecked(false);
+    emit toolRequested(on ? 2 : (paint->isChecked() ? 1 : 0));
+  });
+  connect(editor, &TumourEditor::changed, this, &TumourPanel::refresh_list);
+  retranslate();
+}
+
+double TumourPanel::preset_young() const { return young->value() * 1000.0; }
+
+void TumourPanel::refresh_list() {
+  list->clear();
+  list->addItems(editor_->tumour_names());
+}
+
+void TumourPanel::retranslate() {
+  const auto p = tissue_presets();
+  for (int i = 0; i < int(p.size()) && i < preset->count(); ++i) preset->setItemText(i, p[i].name);
+  if (preset->currentIndex() >= 0 && preset->currentIndex() < int(p.size()))
+    source->setText(tr("Source: %1").arg(p[preset->currentIndex()].source));
+  set_label(top_form_, preset, tr("Preset"));
+  set_label(top_form_, young, tr("Stiffness"));
+  shape_box_->setTitle(tr("Add by shape"));
+  shape->setItemText(0, tr("Sphere"));
+  shape->setItemText(1, tr("Ellipsoid"));
+  set_label(shape_form_, shape, tr("Shape"));
+  set_label(shape_form_, centre_label_widget_, tr("Centre x, y, z"));
+  set_label(shape_form_, radii_label_widget_, tr("Radius (x, y, z)"));
+  add->setText(tr("Add tumour"));
+  remove->setText(tr("Remove selected"));
+  brush_box_->setTitle(tr("Brush"));
+  set_label(brush_form_, brush_radius, tr("Radius"));
+  set_label(brush_form_, brush_depth, tr("Depth below the skin"));
+  paint->setText(tr("Paint"));
+  erase->setText(tr("Erase"));
+  paint->setToolTip(tr("Drag on the breast to paint tumour tissue (one undo step per stroke)"));
+  erase->setToolTip(tr("Drag on the breast to restore healthy tissue"));
+  undo->defaultAction()->setText(tr("Undo"));
+  redo->defaultAction()->setText(tr("Redo"));
+  refresh_list();
+}
+
+void TumourPanel::changeEvent(QEvent* e) {
+  if (e->type() == QEvent::LanguageChange) retranslate();
+  QWidget::changeEvent(e);
+}
+
+// ---------------------------------------------------------------------------------------
+SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
+  backend = new QComboBox;
+  for (const auto& b : sim::available_backends()) backend->addItem(QString::fromStdString(b));
+  tolerance = new QDoubleSpinBox;
+  tolerance->setDecimals(6);
+  tolerance->setRange(1e-6, 1e-1);
+  tolerance->setSingleStep(1e-4);
+  tolerance->setValue(1e-4);
+  iterations = new QSpinBox;
+  iterations->setRange(5, 2000);
+  iterations->setValue(200);
+  apply = new QPushButton;
+  step_ms = new QLabel;
+  cg = new QLabel;
+  step_rate = new QLabel;
+  haptic_rate = new QLabel;
+  state = new QLabel;
+  form_ = new QFormLayout(this);
+  form_->addRow(QStringLiteral("-"), backend);
+  form_->addRow(QStringLiteral("-"), tolerance);
+  form_->addRow(QStringLiteral("-"), iterations);
+  form_->addRow(apply);
+  form_->addRow(QStringLiteral("-"), state);
+  form_->addRow(QStringLiteral("-"), step_ms);
+  form_->addRow(QStringLiteral("-"), cg);
+  form_->addRow(QStringLiteral("-"), step_rate);
+  form_->addRow(QStringLiteral("-"), haptic_rate);
+  retranslate();
+}
+
+void SimulationPanel::retranslate() {
+  set_label(form_, backend, tr("Backend"));
+  set_label(form_, tolerance, tr("CG tolerance"));
+  set_label(form_, iterations, tr("CG max. iterations"));
+  set_label(form_, state, tr("State"));
+  set_label(form_, step_ms, tr("Step time"));
+  set_label(form_, cg, tr("CG iterations"));
+  set_label(form_, step_rate, tr("Simulation rate"));
+  set_label(form_, haptic_rate, tr("Haptic rate"));
+  apply->setText(tr("Apply solver settings"));
+  backend->setToolTip(tr("A backend change takes effect when the patient is (re)loaded."));
+}
+
+void SimulationPanel::changeEvent(QEvent* e) {
+  if (e->type() == QEvent::LanguageChange) retranslate();
+  QWidget::changeEvent(e);
+}
+
+void SimulationPanel::show_stats(const app::LiveStats& s, const QString& be) {
+  state->setText(QString::fromStdString(s.state) + (be.isEmpty() ? QString() : QStringLiteral(" (") + be + QStringLiteral(")")));
+  step_ms->setText(tr("%1 ms").arg(s.step_ms, 0, 'f', 2));
+  cg->setText(QString::number(s.cg_iterations));
+  step_rate->setText(tr("%1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
+  haptic_rate->setText(tr("%1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
+}
+
+// ---------------------------------------------------------------------------------------
+DevicePanel::DevicePanel(double max_force, QWidget* parent) : QWidget(parent), max_force_(max_force) {
+  mode = new QComboBox;
+  mode->addItem(QString(), QStringLiteral("scripted"));
+  mode->addItem(QString(), QStringLiteral("mouse"));
+  address = new QLineEdit(QStringLiteral("192.168.0.10:7001"));
+  address->setEnabled(false);
+  note = new QLabel;
+  note->setWordWrap(true);
+  jitter = new QLabel;
+  form_ = new QFormLayout(this);
+  form_->addRow(QStringLiteral("-"), mode);
+  form_->addRow(QStringLiteral("-"), address);
+  form_->addRow(note);
+  for (int f = 0; f < 5; ++f) {
+    bars[f] = new QProgressBar;
+    bars[f]->setRange(0, int(max_force * 100));
+    bars[f]->setFormat(QStringLiteral("%v cN"));
+    attached[f] = new QLabel;
+    auto* w = new QWidget;
+    auto* h = new QHBoxLayout(w);
+    h->setContentsMargins(0, 0, 0, 0);
+    h->addWidget(bars[f], 1);
+    h->addWidget(attached[f]);
+    names_[f] = new QLabel;
+    form_->addRow(names_[f], w);
+  }
+  form_->addRow(QStringLiteral("-"), jitter);
+  retranslate();
+}
+
+void DevicePanel::retranslate() {
+  mode->setItemText(0, tr("Simulated HandHIRO (scripted palpation)"));
+  mode->setItemText(1, tr("Mouse palpation (no robot)"));
+  set_label(form_, mode, tr("Device"));
+  set_label(form_, address, tr("HandHIRO address"));
+  set_label(form_, jitter, tr("Loop jitter"));
+  note->setText(tr("The network link to a real or emulated HandHIRO runs from the command line for now: "
+                   "palpation session --device emulator."));
+  for (int f = 0; f < 5; ++f) names_[f]->setText(tr(kFingers[f]));
+}
+
+void DevicePanel::changeEvent(QEvent* e) {
+  if (e->type() == QEvent::LanguageChange) retranslate();
+  QWidget::changeEvent(e);
+}
+
+void DevicePanel::show_stats(const app::LiveStats& s) {
+  for (int f = 0; f < 5; ++f) {
+    bars[f]->setValue(int(std::min(s.force_n[f], max_force_) * 100));
+    attached[f]->setText(s.attached[f] ? tr("attached") : tr("released"));
+  }
+  jitter->setText(tr("%1 us (max over 0.5 s)").arg(s.jitter_us, 0, 'f', 0));
+}
+
+}  // namespace palpation::ui

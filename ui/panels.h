@@ -1,0 +1,113 @@
+// The instructor panels (dock contents). Widgets only: they show state and emit requests;
+// the main window turns requests into workstation commands / undo steps.
+#pragma once
+
+#include <array>
+
+#include <QWidget>
+
+#include "scenario.h"
+#include "workstation.h"
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QFormLayout;
+class QLabel;
+class QLineEdit;
+class QListWidget;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QToolButton;
+class QGroupBox;
+
+namespace palpation::ui {
+
+class TumourEditor;
+
+/// Patient: phantom, resolution, tissue parameters; Apply reloads the patient.
+class PatientPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit PatientPanel(QWidget* parent = nullptr);
+  void show_scenario(const sim::Scenario& s);
+  sim::Scenario scenario(const sim::Scenario& base) const;
+  QComboBox *phantom = nullptr, *resolution = nullptr;
+  QDoubleSpinBox *young = nullptr, *poisson = nullptr;
+  QPushButton* apply = nullptr;
+  QLabel* info = nullptr;
+ signals:
+  void loadRequested();
+ protected:
+  void changeEvent(QEvent* e) override;
+ private:
+  void retranslate();
+  QFormLayout* form_ = nullptr;
+};
+
+/// Tumours: list, add by shape, brush painting/erase, presets with sources, undo/redo.
+class TumourPanel : public QWidget {
+  Q_OBJECT
+ public:
+  TumourPanel(TumourEditor* editor, QWidget* parent = nullptr);
+  void refresh_list();
+  double preset_young() const;
+  QListWidget* list = nullptr;
+  QComboBox *preset = nullptr, *shape = nullptr;
+  QLabel* source = nullptr;
+  std::array<QDoubleSpinBox*, 3> centre{}, radii{};
+  QDoubleSpinBox *young = nullptr, *brush_radius = nullptr, *brush_depth = nullptr;
+  QPushButton *add = nullptr, *remove = nullptr;
+  QToolButton *paint = nullptr, *erase = nullptr, *undo = nullptr, *redo = nullptr;
+ signals:
+  void toolRequested(int tool);  // VtkView::Tool
+ protected:
+  void changeEvent(QEvent* e) override;
+ private:
+  void retranslate();
+  TumourEditor* editor_;
+  QGroupBox *shape_box_ = nullptr, *brush_box_ = nullptr;
+  QFormLayout *shape_form_ = nullptr, *brush_form_ = nullptr, *top_form_ = nullptr;
+  QWidget *centre_label_widget_ = nullptr, *radii_label_widget_ = nullptr;
+};
+
+/// Simulation: backend, solver quality, live step time, CG iterations, rates.
+class SimulationPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit SimulationPanel(QWidget* parent = nullptr);
+  void show_stats(const app::LiveStats& s, const QString& backend);
+  QComboBox* backend = nullptr;
+  QDoubleSpinBox* tolerance = nullptr;
+  QSpinBox* iterations = nullptr;
+  QPushButton* apply = nullptr;
+  QLabel *step_ms = nullptr, *cg = nullptr, *step_rate = nullptr, *haptic_rate = nullptr, *state = nullptr;
+ protected:
+  void changeEvent(QEvent* e) override;
+ private:
+  void retranslate();
+  QFormLayout* form_ = nullptr;
+};
+
+/// Device: simulated / mouse / HandHIRO address; per-finger force bars, attached, jitter.
+class DevicePanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit DevicePanel(double max_force, QWidget* parent = nullptr);
+  void show_stats(const app::LiveStats& s);
+  QComboBox* mode = nullptr;
+  QLineEdit* address = nullptr;
+  std::array<QProgressBar*, 5> bars{};
+  std::array<QLabel*, 5> attached{};
+  QLabel *jitter = nullptr, *note = nullptr;
+ protected:
+  void changeEvent(QEvent* e) override;
+ private:
+  void retranslate();
+  QFormLayout* form_ = nullptr;
+  std::array<QLabel*, 5> names_{};
+  double max_force_;
+};
+
+}  // namespace palpation::ui
