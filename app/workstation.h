@@ -148,7 +148,7 @@ struct WorkstationOptions {
   sim::Scenario scenario;              // patient, tissue, inclusions, solver; fingers unused
   DeviceConfig config = default_device_config();
   int haptic_priority = 80;            // SCHED_FIFO where allowed
-  double snapshot_hz = 60;             // render snapshots per second (at most)
+  double snapshot_hz = 40;             // render snapshots per second (at most; the view draws one frame per snapshot)
   double sim_max_dt = 0.01;            // s, cap of the real-time dt
 };
 

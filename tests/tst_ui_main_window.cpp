@@ -24,6 +24,7 @@ struct ImageStats {
   double mean_r = 0, mean_g = 0, mean_b = 0;
   double skin_fraction = 0;  // pixels with the skin's warm colour (r > g > b, r high)
   double red_cyan = 0;       // pixels where r and g/b differ strongly (anaglyph fringes)
+  double bright = 0;         // pixels brighter than the background and the chest can be (lit skin)
 };
 
 ImageStats stats(const QImage& img0) {
@@ -39,6 +40,7 @@ ImageStats stats(const QImage& img0) {
       s.mean_b += b;
       if (r > 120 && r > g + 15 && g > b) s.skin_fraction += 1;
       if (std::abs(r - (g + b) / 2) > 60) s.red_cyan += 1;
+      if (r + g + b > 3 * 150) s.bright += 1;
     }
   }
   s.mean_r /= n;
@@ -46,6 +48,7 @@ ImageStats stats(const QImage& img0) {
   s.mean_b /= n;
   s.skin_fraction /= n;
   s.red_cyan /= n;
+  s.bright /= n;
   return s;
 }
 
@@ -181,21 +184,30 @@ class TstUiMainWindow : public QObject {
 
   void view_shows_breast_mono_and_anaglyph() {
     ui::VtkView* v = w_->view();
+    // Opaque skin without the red tumour: in mono nothing is strongly red or cyan.
+    v->set_tumours_visible(false);
     v->set_stereo(ui::VtkView::Stereo::Mono);
     QTest::qWait(200);
     const ImageStats mono = stats(v->grabFramebuffer());
     qInfo("mono: mean rgb %.0f %.0f %.0f, skin %.3f", mono.mean_r, mono.mean_g, mono.mean_b, mono.skin_fraction);
     QVERIFY2(mono.skin_fraction > 0.05, "the breast covers part of the view");
+    QVERIFY2(mono.bright > 0.05, "lit skin present");
+    // A wide eye separation makes the two eyes' images differ clearly at every edge.
+    v->set_eye_angle(8.0);
     QVERIFY(v->set_stereo(ui::VtkView::Stereo::Anaglyph));
     QTest::qWait(200);
     const ImageStats ana = stats(v->grabFramebuffer());
     qInfo("anaglyph: mean rgb %.0f %.0f %.0f, red/cyan %.3f", ana.mean_r, ana.mean_g, ana.mean_b, ana.red_cyan);
-    QVERIFY2(ana.red_cyan > 0.02, "anaglyph colours present");
-    QVERIFY(std::abs(ana.mean_r - mono.mean_r) + std::abs(ana.mean_g - mono.mean_g) > 1.0);
+    qInfo("bright: mono %.3f anaglyph %.3f", mono.bright, ana.bright);
+    QVERIFY2(ana.bright > 0.05, "the breast is still drawn in anaglyph");
+    // Not the mono image again: anaglyph desaturates and splits the eyes into channels.
+    QVERIFY(std::abs(ana.mean_r - mono.mean_r) + std::abs(ana.mean_g - mono.mean_g) + std::abs(ana.mean_b - mono.mean_b) > 1.0);
     QVERIFY(ana.mean_r > 10);  // not an empty black image
     QString why;
     if (!v->set_stereo(ui::VtkView::Stereo::QuadBuffer, &why)) QVERIFY(!why.isEmpty());
     QVERIFY(v->set_stereo(ui::VtkView::Stereo::Mono));
+    v->set_eye_angle(2.0);
+    v->set_tumours_visible(true);
   }
 
   void trainee_mode() {

@@ -22,4 +22,6 @@ echo "run-trainer: no display (\$DISPLAY unset): running the workstation under X
      "the window is invisible, the simulated HandHIRO session keeps running until you press Ctrl+C." \
      "Use --screenshot FILE.png to see it." >&2
 export QT_QPA_PLATFORM=xcb
+# Software OpenGL (llvmpipe) under Xvfb: one rendering thread, so the simulation keeps a core.
+export LP_NUM_THREADS="${LP_NUM_THREADS:-1}"
 exec xvfb-run -a -s "-screen 0 1600x1000x24" "$exe" "$@"

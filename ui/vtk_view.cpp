@@ -113,7 +113,7 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent) {
 
   // The chest (static): a slab under the breast's base.
   vtkNew<vtkCubeSource> chest;
-  chest->SetCenter(0.06, 0.0, -0.006);
+  chest->SetCenter(0.06, 0.0, -0.0068);  // top 0.8 mm below the base: no z-fighting with it
   chest->SetXLength(0.42);
   chest->SetYLength(0.34);
   chest->SetZLength(0.012);
