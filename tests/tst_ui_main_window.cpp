@@ -168,8 +168,8 @@ class TstUiMainWindow : public QObject {
 
   void plots_receive_data() {
     ui::ForcePlots* p = w_->plots();
-    QTRY_VERIFY_WITH_TIMEOUT(p->point_count(1) > 50, 30000);
-    QTRY_VERIFY_WITH_TIMEOUT(p->shown_points() > 50, 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(p->point_count(1) > 30, 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(p->shown_points() > 30, 30000);
     const QString csv = QDir::temp().filePath(QStringLiteral("tst_ui_forces.csv"));
     QVERIFY(p->export_csv(csv));
     QFile f(csv);

@@ -5,7 +5,7 @@
 # --screenshot FILE.png still works. Arguments go to palpation-trainer.
 set -eu
 cd "$(dirname "$0")/.."
-exe=./build/ui/palpation-trainer
+exe="${PALPATION_TRAINER:-./build/ui/palpation-trainer}"  # another build: PALPATION_TRAINER=path
 if [ ! -x "$exe" ]; then
   echo "run-trainer: $exe not found: run ./tools/build.sh first" >&2
   exit 2
@@ -22,6 +22,4 @@ echo "run-trainer: no display (\$DISPLAY unset): running the workstation under X
      "the window is invisible, the simulated HandHIRO session keeps running until you press Ctrl+C." \
      "Use --screenshot FILE.png to see it." >&2
 export QT_QPA_PLATFORM=xcb
-# Software OpenGL (llvmpipe) under Xvfb: one rendering thread, so the simulation keeps a core.
-export LP_NUM_THREADS="${LP_NUM_THREADS:-1}"
 exec xvfb-run -a -s "-screen 0 1600x1000x24" "$exe" "$@"

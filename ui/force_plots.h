@@ -1,6 +1,6 @@
 // Live force plots per finger (Qt Charts): force magnitude and fz against time over a
 // sliding window, and fz against finger x (the paper's Fig. 6); pause, PNG and CSV export.
-// Fed with the workstation's tick telemetry (app::TickSample), decimated to 100 Hz.
+// Fed with the workstation's tick telemetry (app::TickSample), decimated to 50 Hz.
 #pragma once
 
 #include <array>
@@ -24,7 +24,7 @@ class ForcePlots : public QWidget {
 
  public:
   explicit ForcePlots(QWidget* parent = nullptr);
-  /// A tick sample (GUI thread). Kept at most every 10 ms per finger.
+  /// A tick sample (GUI thread). Kept at most every 20 ms per finger.
   void add_sample(const app::TickSample& s);
   /// Points held for finger f (for tests and export).
   int point_count(int finger) const { return int(data_[finger].size()); }

@@ -214,6 +214,7 @@ void MainWindow::build_actions() {
 
   toolbar_ = addToolBar(QString());
   toolbar_->setObjectName(QStringLiteral("MainToolBar"));
+  toolbar_->setToolButtonStyle(Qt::ToolButtonTextBesideIcon);
   toolbar_->addAction(a_undo_);
   toolbar_->addAction(a_redo_);
   toolbar_->addSeparator();
