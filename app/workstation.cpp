@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "device_bridge.h"
+#include "handhiro_emulator.h"
+#include "handhiro_link.h"
 #include "haptic_thread.h"
 #include "phantom.h"
 #include "rt_clock.h"
@@ -96,13 +98,53 @@ dv::HandScript default_hand_script(const DeviceConfig& cfg) {
 
 struct Workstation::Threads {
   HapticThread haptic;
+  PeriodicThread emulator;  // the robot side, "emulator" only
   explicit Threads(dv::HapticLoop& l) : haptic(l) {}
 };
 
 Workstation::Workstation(WorkstationOptions opt) : opt_(std::move(opt)) {
-  device_ = std::make_unique<WorkstationDevice>(default_hand_script(opt_.config), opt_.config.hand.capabilities);
-  loop_ = std::make_unique<dv::HapticLoop>(*device_, poses_, contacts_, &ticks_, opt_.config.loop);
+  const auto& caps = opt_.config.hand.capabilities;
+  device_ = std::make_unique<WorkstationDevice>(default_hand_script(opt_.config), caps);
+  std::string err;
+  if (opt_.device == "emulator") {
+    // As in session.cpp: the emulator on a free loopback port, the link to it.
+    dv::EmulatorOptions eo;
+    eo.bind_address = "127.0.0.1";
+    eo.port = 0;
+    auto em = std::make_unique<dv::HandHiroEmulator>(opt_.config.hand, default_hand_script(opt_.config), eo);
+    if (!em->open(&err)) throw std::runtime_error("emulator: " + err);
+    dv::LinkConfig lc = opt_.config.link;
+    lc.robot_address = "127.0.0.1";
+    lc.robot_port = em->port();
+    lc.bind_address = "127.0.0.1";
+    lc.bind_port = 0;
+    auto link = std::make_unique<dv::HandHiroLink>(caps, lc);
+    if (!link->open(&err)) throw std::runtime_error("link: " + err);
+    emulator_ = std::move(em);
+    link_ = std::move(link);
+  } else if (opt_.device == "handhiro") {
+    dv::LinkConfig lc = opt_.config.link;
+    if (!opt_.robot_address.empty()) lc.robot_address = opt_.robot_address;
+    if (opt_.robot_port > 0) lc.robot_port = std::uint16_t(opt_.robot_port);
+    auto link = std::make_unique<dv::HandHiroLink>(caps, lc);
+    if (!link->open(&err)) throw std::runtime_error("link: " + err);
+    link_ = std::move(link);
+  } else if (opt_.device != "simulated") {
+    throw std::runtime_error("device: must be simulated, emulator or handhiro, got \"" + opt_.device + "\"");
+  }
+  dv::HapticDevice& dev = link_ ? *link_ : static_cast<dv::HapticDevice&>(*device_);
+  loop_ = std::make_unique<dv::HapticLoop>(dev, poses_, contacts_, &ticks_, opt_.config.loop);
   threads_ = std::make_unique<Threads>(*loop_);
+}
+
+std::string Workstation::device_description() const {
+  if (opt_.device == "emulator") return "HandHIRO emulator (UDP loopback)";
+  if (opt_.device == "handhiro") {
+    const std::string a = opt_.robot_address.empty() ? opt_.config.link.robot_address : opt_.robot_address;
+    const int p = opt_.robot_port > 0 ? opt_.robot_port : opt_.config.link.robot_port;
+    return "HandHIRO at " + a + ":" + std::to_string(p);
+  }
+  return device_->mode() == WorkstationDevice::Mode::Mouse ? "mouse" : "simulated HandHIRO";
 }
 
 Workstation::~Workstation() { stop(); }
@@ -116,12 +158,18 @@ void Workstation::start() {
   stop_.store(false);
   sim_state_.store(1);
   sim_thread_ = std::thread([this] { sim_main(); });
+  if (emulator_) {
+    dv::HandHiroEmulator* em = emulator_.get();
+    threads_->emulator.start(std::int64_t(1e6), opt_.haptic_priority > 0 ? std::max(1, opt_.haptic_priority - 10) : 0,
+                             [em](std::int64_t now, std::int64_t) { em->tick(now); });
+  }
   threads_->haptic.start(opt_.haptic_priority);
 }
 
 void Workstation::stop() {
   if (!running()) return;
   threads_->haptic.stop();
+  threads_->emulator.stop();
   stop_.store(true, std::memory_order_release);
   sim_thread_.join();
   sim_state_.store(0);
@@ -382,7 +430,10 @@ void Workstation::sim_main() {
 bool Workstation::poll() {
   const auto& reg = opt_.config.hand.registration;
   dv::TickRecord r;
+  bool any_tick = false, any_attached = false;
   while (ticks_.pop(r)) {
+    any_tick = true;
+    any_attached = any_attached || r.attached != 0;
     ++window_ticks_;
     if (prev_tick_ns_ > 0) {
       const double j = std::fabs(double(r.time_ns - prev_tick_ns_) * 1e-3 - opt_.config.loop.period * 1e6);
@@ -424,7 +475,8 @@ bool Workstation::poll() {
     rate_window_ns_ = now;
   }
   stats_.dropped = ticks_.dropped();
-  stats_.connected = running();
+  if (any_tick) stats_.connected = running() && any_attached;
+  if (!running()) stats_.connected = false;
   switch (sim_state_.load()) {
     case 0: stats_.state = "stopped"; break;
     case 1: stats_.state = "loading"; break;

@@ -43,6 +43,10 @@
 #include "spsc_ring.h"
 #include "triple_buffer.h"
 
+namespace palpation::device {
+class HandHiroEmulator;
+}
+
 namespace palpation::sim {
 class Simulation;
 struct Model;
@@ -146,6 +150,12 @@ struct LiveStats {
 
 struct WorkstationOptions {
   sim::Scenario scenario;              // patient, tissue, inclusions, solver; fingers unused
+  /// "simulated": WorkstationDevice (scripted hand or mouse); "emulator": the HandHIRO
+  /// protocol over loopback UDP to an in-process handhiro-emulator driven by the same
+  /// scripted hand; "handhiro": the UDP link to a robot at robot_address:robot_port.
+  std::string device = "simulated";
+  std::string robot_address;           // empty: the device configuration's
+  int robot_port = 0;                  // 0: the device configuration's
   DeviceConfig config = default_device_config();
   int haptic_priority = 80;            // SCHED_FIFO where allowed
   double snapshot_hz = 40;             // render snapshots per second (at most; the view draws one frame per snapshot)
@@ -161,6 +171,7 @@ dv::HandScript default_hand_script(const DeviceConfig& cfg);
 
 class Workstation {
  public:
+  /// Throws std::runtime_error when the device cannot be opened (bad address, port in use).
   explicit Workstation(WorkstationOptions opt);
   ~Workstation();
   Workstation(const Workstation&) = delete;
@@ -196,7 +207,12 @@ class Workstation {
   std::uint64_t commands_applied() const { return applied_.load(); }
 
   // Device ---------------------------------------------------------------------------
+  /// The simulated device (scripted hand / mouse targets). With "emulator" or "handhiro"
+  /// it exists but the loop talks to the link instead.
   WorkstationDevice& device() { return *device_; }
+  /// What the haptic loop talks to, in words.
+  std::string device_description() const;
+  bool simulated_device() const { return link_ == nullptr; }
   /// Mouse palpation: the index fingertip goes to `world` (m); others stay away.
   void set_mouse_finger(const Eigen::Vector3d& world, bool present);
 
@@ -215,6 +231,8 @@ class Workstation {
 
   WorkstationOptions opt_;
   std::unique_ptr<WorkstationDevice> device_;
+  std::unique_ptr<dv::HapticDevice> link_;       // emulator / handhiro: the UDP link
+  std::unique_ptr<dv::HandHiroEmulator> emulator_;  // emulator: the robot side
   dv::TripleBuffer<dv::PoseFrame> poses_;
   dv::TripleBuffer<dv::ContactFrame> contacts_;
   dv::SpscRing<dv::TickRecord> ticks_{1 << 15};

@@ -9,6 +9,7 @@
 #include <QCommandLineParser>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QSettings>
 #include <QSurfaceFormat>
 #include <QTimer>
 
@@ -47,7 +48,13 @@ int main(int argc, char** argv) {
   QCommandLineOption stereo(QStringLiteral("stereo"), QStringLiteral("mono, anaglyph, side-by-side or interlaced."), QStringLiteral("MODE"));
   QCommandLineOption resolution(QStringLiteral("resolution"), QStringLiteral("Breast resolution: coarse (default), paper, fine."),
                                 QStringLiteral("NAME"), QStringLiteral("coarse"));
-  cli.addOptions({shot, secs, lang, trainee, stereo, resolution});
+  QCommandLineOption device(QStringLiteral("device"),
+                            QStringLiteral("simulated (default: scripted hand, mouse palpation), emulator (HandHIRO protocol to an "
+                                           "in-process emulator over loopback UDP) or handhiro (the robot, see --robot)."),
+                            QStringLiteral("KIND"), QStringLiteral("simulated"));
+  QCommandLineOption robot(QStringLiteral("robot"), QStringLiteral("HandHIRO address ADDRESS:PORT (default: resources/handhiro.json's)."),
+                           QStringLiteral("ADDRESS:PORT"));
+  cli.addOptions({shot, secs, lang, trainee, stereo, resolution, device, robot});
   cli.process(app);
 
   palpation::app::WorkstationOptions opt;
@@ -60,7 +67,34 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "palpation-trainer: --resolution: unknown level \"%s\" (coarse, paper, fine)\n", res.c_str());
     return 2;
   }
-  auto ws = std::make_unique<palpation::app::Workstation>(opt);
+  if (!cli.isSet(resolution) && !cli.isSet(shot)) {  // screenshots: always the default scene
+    // The last patient's resolution (QSettings), when it names a known level.
+    const std::string last = QSettings().value(QStringLiteral("patient/resolution")).toString().toStdString();
+    if (auto e = palpation::sim::resolution_edge("breast", last)) {
+      opt.scenario.patient.resolution = last;
+      opt.scenario.patient.edge = *e;
+    }
+  }
+  opt.device = cli.value(device).toStdString();
+  if (cli.isSet(robot)) {
+    const QString r = cli.value(robot);
+    const int colon = int(r.lastIndexOf(QLatin1Char(':')));
+    bool ok = colon > 0;
+    const int port = ok ? r.mid(colon + 1).toInt(&ok) : 0;
+    if (!ok || port <= 0 || port > 65535) {
+      std::fprintf(stderr, "palpation-trainer: --robot: expected ADDRESS:PORT, got \"%s\"\n", qPrintable(r));
+      return 2;
+    }
+    opt.robot_address = r.left(colon).toStdString();
+    opt.robot_port = port;
+  }
+  std::unique_ptr<palpation::app::Workstation> ws;
+  try {
+    ws = std::make_unique<palpation::app::Workstation>(opt);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
+    return 2;
+  }
   palpation::ui::MainWindow w(std::move(ws));
   if (cli.isSet(lang)) w.set_language(cli.value(lang));
   if (cli.isSet(trainee)) w.set_trainee(true);

@@ -49,6 +49,11 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : 
   tumour_panel_ = new TumourPanel(editor_);
   sim_panel_ = new SimulationPanel;
   device_panel_ = new DevicePanel(ws_->device_config().hand.capabilities.max_force);
+  if (!ws_->simulated_device()) {
+    // A link (emulator or robot): fixed at start (--device); the mouse needs the simulated device.
+    device_panel_->mode->setEnabled(false);
+    device_panel_->address->setText(QString::fromStdString(ws_->device_description()));
+  }
   plots_ = new ForcePlots;
   patient_dock_ = dock(patient_panel_, "PatientDock", Qt::LeftDockWidgetArea);
   tumour_dock_ = dock(tumour_panel_, "TumourDock", Qt::LeftDockWidgetArea);
@@ -360,8 +365,10 @@ void MainWindow::update_status() {
   st_backend_->setText(tr("Backend: %1").arg(be));
   st_step_->setText(tr("Simulation: %1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
   st_haptic_->setText(tr("Haptic: %1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
-  const QString dev = ws_->device().mode() == app::WorkstationDevice::Mode::Mouse ? tr("mouse") : tr("simulated HandHIRO");
-  st_device_->setText(tr("Device: %1, %2").arg(dev, s.connected ? tr("connected") : tr("stopped")));
+  const QString dev = !ws_->simulated_device() ? QString::fromStdString(ws_->device_description())
+                      : ws_->device().mode() == app::WorkstationDevice::Mode::Mouse ? tr("mouse")
+                                                                                    : tr("simulated HandHIRO");
+  st_device_->setText(tr("Device: %1, %2").arg(dev, s.connected ? tr("connected") : tr("not connected")));
   st_fps_->setText(tr("View: %1 fps").arg(fps_, 0, 'f', 0));
   sim_panel_->show_stats(s, be);
   device_panel_->show_stats(s);

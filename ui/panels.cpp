@@ -330,8 +330,8 @@ void DevicePanel::retranslate() {
   set_label(form_, mode, tr("Device"));
   set_label(form_, address, tr("HandHIRO address"));
   set_label(form_, jitter, tr("Loop jitter"));
-  note->setText(tr("The network link to a real or emulated HandHIRO runs from the command line for now: "
-                   "palpation session --device emulator."));
+  note->setText(tr("The HandHIRO network link is chosen at start: palpation-trainer --device emulator, "
+                   "or --device handhiro --robot ADDRESS:PORT."));
   for (int f = 0; f < 5; ++f) names_[f]->setText(tr(kFingers[f]));
 }
 
