@@ -29,5 +29,10 @@ CommandAction add_run_command(CLI::App& app);
 CommandAction add_bench_command(CLI::App& app);
 CommandAction add_session_command(CLI::App& app);
 CommandAction add_check_backends_command(CLI::App& app);
+CommandAction add_stress_command(CLI::App& app);
+CommandAction add_replay_command(CLI::App& app);
+#ifdef PALPATION_HAVE_SQL
+CommandAction add_patient_command(CLI::App& app);
+#endif
 
 }  // namespace palpation::app

@@ -21,6 +21,11 @@ int main(int argc, char** argv) {
   reg(add_bench_command);
   reg(add_session_command);
   reg(add_check_backends_command);
+  reg(add_stress_command);
+  reg(add_replay_command);
+#ifdef PALPATION_HAVE_SQL
+  reg(add_patient_command);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

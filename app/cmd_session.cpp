@@ -12,6 +12,7 @@
 #include "device_config.h"
 #include "headless_run.h"
 #include "output_dir.h"
+#include "recording.h"
 #include "scenario.h"
 #include "session.h"
 
@@ -34,6 +35,7 @@ CommandAction add_session_command(CLI::App& app) {
       "session", "Run the real-time pipeline headless (device, 1 kHz haptic thread, simulation thread); writes "
                  "DIR/fingers.csv and DIR/loop.json");
   struct Opts {
+    std::string record;
     std::string scenario, out, device = "emulator", config, coupling, backend, resolution, recording, sim_dt = "realtime", emulator_exe;
     double duration = 0, sim_max_dt = 0.01, vib_from = -1, vib_to = -1;
     int priority = 80;
@@ -65,6 +67,8 @@ CommandAction add_session_command(CLI::App& app) {
   sub->add_option("--vibration-from", o->vib_from, "Start of the vibration window, s (default: half the duration)");
   sub->add_option("--vibration-to", o->vib_to, "End of the vibration window, s (default: the end)");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
+  sub->add_option("--record", o->record, "Session recording (default: DIR/session.palrec; an interrupted one left "
+                                         "there is recovered first and kept as session-recovered-N.palrec)");
   return [o]() {
     sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution);
     if (o->duration < 0) throw sim::ScenarioError("--duration: must be > 0");
@@ -90,6 +94,31 @@ CommandAction add_session_command(CLI::App& app) {
     opt.progress = !o->quiet;
     if (!o->quiet) opt.log = [](const std::string& m) { std::fprintf(stderr, "%s\n", m.c_str()); };
     OutputDir out(o->out);
+    // Every session records, straight into DIR (not staged: it must survive a crash).
+    opt.record_path = o->record.empty() ? (std::filesystem::path(o->out) / "session.palrec").string() : o->record;
+    if (std::filesystem::exists(opt.record_path)) {
+      // A recording left by an earlier session: recover it when it was interrupted, then
+      // move it aside so that nothing already recorded is overwritten.
+      std::string note;
+      try {
+        const RecoverResult rr = recover_recording(opt.record_path);
+        if (!rr.was_complete)
+          note = "recovered an interrupted recording (" + std::to_string(rr.duration) + " s kept, " +
+                 std::to_string(rr.dropped_bytes) + " torn bytes dropped: " + rr.reason + ")";
+      } catch (const RecordingError& e) {
+        note = std::string("an unreadable earlier recording is kept as it is: ") + e.what();
+      }
+      std::string aside;
+      for (int i = 1;; ++i) {
+        aside = opt.record_path.substr(0, opt.record_path.size() - (opt.record_path.size() > 7 &&
+                opt.record_path.substr(opt.record_path.size() - 7) == ".palrec" ? 7 : 0)) +
+                (note.empty() ? "-" : "-recovered-") + std::to_string(i) + ".palrec";
+        if (!std::filesystem::exists(aside)) break;
+      }
+      std::filesystem::rename(opt.record_path, aside);
+      if (!note.empty()) std::fprintf(stderr, "session: %s -> %s\n", note.c_str(), aside.c_str());
+    }
+    opt.record_settings = {{"command", "session"}, {"scenario_arg", o->scenario}, {"device_config_path", o->config}};
     SessionResult r = run_session(s, opt);
     write_fingers_csv(out.path("fingers.csv"), r.samples);
     {

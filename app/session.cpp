@@ -26,6 +26,7 @@
 #include "device_bridge.h"
 #include "handhiro_emulator.h"
 #include "handhiro_link.h"
+#include "recording.h"
 #include "haptic_thread.h"
 #include "scripted_device.h"
 #include "simulation.h"
@@ -378,6 +379,33 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   sim_thread.start();
   haptic.start(opt.priority);
 
+  // The session recording (every session records when a path is given): the patient and
+  // all settings in the header, then the device input and forces sent at 1 kHz. A write
+  // failure (disk full) stops the recording only: the device and the loop carry on.
+  std::unique_ptr<RecordingWriter> recorder;
+  if (!opt.record_path.empty()) {
+    json header;
+    header["scenario"] = json::parse(sim::scenario_to_json(s));
+    header["scenario_source"] = s.source;
+    header["device_config"] = device_config_to_json(cfg);
+    header["session"] = {{"device", opt.device},
+                         {"duration_s", duration},
+                         {"sim_dt", opt.sim_realtime ? "realtime" : "fixed"},
+                         {"sim_max_dt", opt.sim_max_dt},
+                         {"coupling", cfg.loop.virtual_coupling ? "virtual" : "direct"},
+                         {"rigid_hand", opt.rigid_hand},
+                         {"backend", simulation.backend().name()},
+                         {"program", std::string("palpation ") + PALPATION_VERSION + " (" + PALPATION_GIT_COMMIT + ")"}};
+    if (!opt.record_settings.is_null()) header["settings"] = opt.record_settings;
+    try {
+      recorder = std::make_unique<RecordingWriter>(opt.record_path, std::move(header), nf);
+    } catch (const RecordingError& e) {
+      throw std::runtime_error(e.what());
+    }
+    recorder->add_event(0.0, "session", {{"event", "start"}});
+  }
+  bool record_error_said = false;
+
   // The recorder: drain the telemetry until the session's duration has passed.
   SessionResult res;
   res.samples.reserve(std::size_t(duration * 1000.0 + 100) * std::size_t(nf));
@@ -397,21 +425,30 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
         done = true;
         continue;
       }
+      std::array<Eigen::Vector3d, dv::kMaxFingers> rx, rf;
       for (int k = 0; k < nf; ++k) {
         const int d = cfg.finger_map[k];
         const dv::Vec3 f = r.force[d];
+        rx[k] = to_eigen(reg.to_world(r.position[d]));
+        rf[k] = to_eigen(reg.vector_to_world(f));
         if (!dv::finite(f)) ++bad_sent;
         else {
           max_sent = std::max(max_sent, dv::norm(f));
           if (dv::norm(f) > caps.max_force) ++over_sent;
         }
-        res.samples.push_back({t, k, to_eigen(reg.to_world(r.position[d])), to_eigen(reg.vector_to_world(f))});
+        res.samples.push_back({t, k, rx[k], rf[k]});
       }
+      if (recorder) recorder->add_tick(t, rx.data(), rf.data());
+    }
+    if (recorder && recorder->failed() && !record_error_said) {
+      record_error_said = true;
+      if (opt.log) opt.log("session: recording stopped: " + recorder->error() + " (the session goes on)");
     }
   };
   while (!done) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
     drain();
+    if (recorder) recorder->flush();  // syncs at least every second
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     if (el > duration + 60.0) break;  // a loop that never started: do not hang
     if (!opt.emulator_exe.empty() && !child.alive()) throw std::runtime_error("emulator: the child process exited early");
@@ -543,6 +580,15 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   }
   res.ok = bad_sent == 0 && over_sent == 0 && sim_thread.finite && st.ticks > 0;
   j["ok"] = res.ok;
+  if (recorder) {
+    const double t_end = res.samples.empty() ? 0.0 : res.samples.back().t;
+    recorder->add_event(t_end, "session", {{"event", "end"}});
+    recorder->close({{"ok", res.ok}, {"loop", j}});
+    res.recording = {{"path", recorder->path()}, {"bytes", recorder->bytes()}, {"ticks", recorder->ticks()},
+                     {"complete", !recorder->failed()}};
+    if (recorder->failed()) res.recording["error"] = recorder->error();
+    j["recording"] = res.recording;
+  }
   return res;
 }
 

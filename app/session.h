@@ -30,12 +30,15 @@ struct SessionOptions {
   double vibration_from = -1, vibration_to = -1;  // s; window of the vibration figures (default: 2nd half)
   bool progress = false;
   sim::LogFn log;
+  std::string record_path;           // non-empty: record the session there (app/recording.h)
+  nlohmann::json record_settings;    // extra settings for the recording's header (command line, ...)
 };
 
 struct SessionResult {
   std::vector<FingerSample> samples;   // what the device received, per tick and scenario finger (world frame)
   nlohmann::json loop;                 // loop.json
   bool ok = true;                      // finite, never above the limit
+  nlohmann::json recording;            // path, bytes, ticks, error (when recording)
 };
 
 /// Runs a session. Throws sim::ScenarioError (bad input) or std::runtime_error.

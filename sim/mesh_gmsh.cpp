@@ -17,6 +17,7 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -270,9 +271,11 @@ bool decode(const std::string& b, TetMesh& m, std::string& error) {
   return true;
 }
 
-/// Runs read_here in a forked child. Returns false only when no child could be started
-/// (the caller then reads in process); otherwise fills `mesh` or `error`.
-bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std::string& error) {
+/// Runs `work` (a Gmsh job filling a mesh or an error) in a forked child. Returns false
+/// only when no child could be started (the caller then runs it in process); otherwise
+/// fills `mesh` or `error`. `cancelled` (may be empty) is polled: true kills the child.
+bool run_in_child(const std::function<void(TetMesh&, std::string&)>& work, double timeout_s,
+                  const std::function<bool()>& cancelled, const char* what, TetMesh& mesh, std::string& error) {
   int fd[2];
   if (pipe(fd) != 0) return false;
   pid_t pid;
@@ -301,7 +304,7 @@ bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std
     }
     TetMesh m;
     std::string why;
-    read_here(path, m, why);
+    work(m, why);
     const std::string b = encode(m, why);
     std::size_t done = 0;
     while (done < b.size()) {
@@ -315,7 +318,7 @@ bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std
   }
   close(fd[1]);
   std::string buf;
-  bool timed_out = false;
+  bool timed_out = false, stopped = false;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   char chunk[1 << 16];
   for (;;) {
@@ -324,8 +327,12 @@ bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std
       timed_out = true;
       break;
     }
+    if (cancelled && cancelled()) {
+      stopped = true;
+      break;
+    }
     pollfd pf{fd[0], POLLIN, 0};
-    const int r = poll(&pf, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    const int r = poll(&pf, 1, static_cast<int>(std::min<long long>(left.count(), cancelled ? 100 : 1000)));
     if (r < 0 && errno == EINTR) continue;
     if (r < 0) break;
     if (r == 0) continue;
@@ -335,30 +342,87 @@ bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std
     buf.append(chunk, static_cast<std::size_t>(n));
   }
   close(fd[0]);
-  if (timed_out) kill(pid, SIGKILL);
+  if (timed_out || stopped) kill(pid, SIGKILL);
   int status = 0;
   pid_t w;
   do {
     w = waitpid(pid, &status, 0);
   } while (w < 0 && errno == EINTR);
+  if (stopped) {
+    error = std::string("cancelled (the Gmsh ") + what + " was stopped)";
+    return true;
+  }
   if (timed_out) {
     std::ostringstream o;
-    o << "the Gmsh reader did not finish within " << static_cast<int>(timeout_s) << " s (stopped)";
+    o << "the Gmsh " << what << " did not finish within " << static_cast<int>(timeout_s) << " s (stopped)";
     error = o.str();
     return true;
   }
   if (w == pid && WIFSIGNALED(status)) {
-    error = "the Gmsh reader crashed on this file (signal " + std::to_string(WTERMSIG(status)) +
-            "): it is corrupt or not a supported volume mesh";
+    error = std::string("the Gmsh ") + what + " crashed (signal " + std::to_string(WTERMSIG(status)) +
+            "): the input is corrupt or not supported";
     return true;
   }
   if (!decode(buf, mesh, error)) {
     mesh = TetMesh{};
-    error = "the Gmsh reader stopped without a result (corrupt file?)";
+    error = std::string("the Gmsh ") + what + " stopped without a result (corrupt input?)";
   }
   return true;
 }
+
+bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std::string& error) {
+  return run_in_child([&path](TetMesh& m, std::string& why) { read_here(path, m, why); }, timeout_s, {}, "reader", mesh, error);
+}
 #endif
+
+/// Tetrahedralises a closed surface (caller holds the lock or is the child): the surface
+/// as a discrete entity, classified into patches (40 degree feature angle), reparametrised
+/// and remeshed at `edge`, one volume inside.
+void tetrahedralize_here(const std::vector<Eigen::Vector3d>& v, const std::vector<std::array<int, 3>>& tris, double edge,
+                         TetMesh& mesh, std::string& error) {
+  try {
+    GmshSession session(1);
+    gmsh::model::add("scan");
+    const int surf = gmsh::model::addDiscreteEntity(2);
+    std::vector<std::size_t> ntags(v.size());
+    std::vector<double> coords;
+    coords.reserve(3 * v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      ntags[i] = i + 1;
+      coords.insert(coords.end(), {v[i].x(), v[i].y(), v[i].z()});
+    }
+    gmsh::model::mesh::addNodes(2, surf, ntags, coords);
+    std::vector<std::size_t> etags(tris.size()), enodes;
+    enodes.reserve(3 * tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      etags[i] = i + 1;
+      for (int k = 0; k < 3; ++k) enodes.push_back(std::size_t(tris[i][std::size_t(k)]) + 1);
+    }
+    gmsh::model::mesh::addElementsByType(surf, 2, etags, enodes);
+    gmsh::model::mesh::classifySurfaces(40.0 * kPi / 180.0, /*boundary=*/true, /*forReparametrization=*/true,
+                                        /*curveAngle=*/kPi);
+    gmsh::model::mesh::createGeometry();
+    gmsh::vectorpair surfaces;
+    gmsh::model::getEntities(surfaces, 2);
+    std::vector<int> stags;
+    for (const auto& [dim, tag] : surfaces) stags.push_back(tag);
+    const int loop = gmsh::model::geo::addSurfaceLoop(stags);
+    gmsh::model::geo::addVolume({loop});
+    gmsh::model::geo::synchronize();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", edge);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh::option::setNumber("Mesh.Optimize", 1);
+    gmsh::option::setNumber("Mesh.ElementOrder", 1);
+    gmsh::option::setNumber("Mesh.Algorithm3D", 1);
+    gmsh::model::mesh::generate(3);
+    mesh = extract_tets([](int) { return 0; });
+    if (mesh.tets.empty()) error = "Gmsh produced no tetrahedra (is the surface closed?)";
+  } catch (...) {
+    mesh = TetMesh{};
+    error = reason_of(std::current_exception());
+  }
+}
 
 }  // namespace
 
@@ -507,6 +571,25 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
       << (algorithm == 10 ? "HXT" : "Delaunay") << ")";
     log(o.str());
   }
+  return mesh;
+}
+
+TetMesh gmsh_tetrahedralize(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                            double edge, double timeout_s, const std::function<bool()>& cancelled) {
+  if (!(edge > 0) || !std::isfinite(edge)) throw std::runtime_error("edge length must be positive");
+  if (triangles.size() < 4) throw std::runtime_error("the surface has fewer than 4 triangles");
+  TetMesh mesh;
+  std::string error;
+#if defined(__unix__)
+  if (!run_in_child([&](TetMesh& m, std::string& why) { tetrahedralize_here(vertices, triangles, edge, m, why); },
+                    timeout_s, cancelled, "mesher", mesh, error))
+#endif
+  {
+    std::lock_guard<std::mutex> lock(gmsh_mutex());
+    tetrahedralize_here(vertices, triangles, edge, mesh, error);
+  }
+  if (!error.empty()) throw std::runtime_error("Gmsh: " + error);
+  mesh.orient();
   return mesh;
 }
 

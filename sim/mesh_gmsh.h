@@ -3,6 +3,8 @@
 // whose functions throw a clear error.
 #pragma once
 
+#include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,13 @@ bool gmsh_available();
 /// the mesh is refined inside and around them. Throws std::runtime_error.
 TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inclusion>& inclusions,
                     const LogFn& log);
+
+/// Tetrahedralises a closed, consistently oriented triangle surface with target edge
+/// length `edge` (m), in a forked child process: a Gmsh crash or hang costs an error, and
+/// `cancelled` (polled every 0.1 s; may be empty) or `timeout_s` stops it. Throws
+/// std::runtime_error ("Gmsh: ..." / "cancelled ...").
+TetMesh gmsh_tetrahedralize(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<int, 3>>& triangles,
+                            double edge, double timeout_s, const std::function<bool()>& cancelled);
 
 /// Reads a volume mesh file Gmsh understands (.msh v2/v4, .vtk, .mesh, ...): its linear
 /// tetrahedra, physical/elementary volume tags as region. Throws std::runtime_error

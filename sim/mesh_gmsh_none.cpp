@@ -12,6 +12,11 @@ TetMesh gmsh_breast(const BreastShape&, double, const std::vector<Inclusion>&, c
   throw std::runtime_error("this build has no Gmsh");
 }
 
+TetMesh gmsh_tetrahedralize(const std::vector<Eigen::Vector3d>&, const std::vector<std::array<int, 3>>&, double, double,
+                            const std::function<bool()>&) {
+  throw std::runtime_error("this build has no Gmsh to tetrahedralise a scan");
+}
+
 TetMesh gmsh_read_volume(const std::string& path) {
   throw std::runtime_error(path + ": this build has no Gmsh to read it (use a .pmesh file)");
 }

@@ -66,7 +66,9 @@ TetMesh patient_mesh(const Scenario& s, const LogFn& log) {
     return m;
   }
   // Breast phantom: cached Gmsh mesh.
-  const BreastShape shape;
+  BreastShape shape;
+  shape.base_radius = s.patient.base_radius;
+  shape.height = s.patient.height;
   const std::string key = breast_key(shape, s.patient.edge, s.inclusions);
   std::ostringstream name;
   name << "breast-" << std::hex << key_hash(key) << ".pmesh";

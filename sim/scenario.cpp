@@ -160,7 +160,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   if (!j.contains("patient")) rd.fail("patient", "is required");
   {
     const json& p = j["patient"];
-    rd.only_keys(p, "patient", {"phantom", "mesh", "resolution", "size", "grading"});
+    rd.only_keys(p, "patient", {"phantom", "mesh", "resolution", "size", "grading", "base_radius", "height"});
     if (p.contains("mesh") == p.contains("phantom")) rd.fail("patient", "give exactly one of \"phantom\" or \"mesh\"");
     if (p.contains("phantom")) s.patient.phantom = rd.choice(p["phantom"], "patient.phantom", {"breast", "box"});
     if (p.contains("mesh")) {
@@ -176,6 +176,14 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       for (int k = 0; k < 3; ++k)
         if (!(s.patient.size[k] > 0)) rd.fail("patient.size", "every side must be > 0");
     }
+    for (const char* key : {"base_radius", "height"})
+      if (p.contains(key)) {
+        const std::string field = std::string("patient.") + key;
+        if (s.patient.phantom != "breast") rd.fail(field, "only the breast phantom takes a " + std::string(key));
+        const double v = rd.positive(p[key], field);
+        if (v < 0.02 || v > 0.2) rd.fail(field, "must be in [0.02, 0.2] m");
+        (std::string(key) == "height" ? s.patient.height : s.patient.base_radius) = v;
+      }
     if (p.contains("grading")) {
       if (s.patient.phantom != "box") rd.fail("patient.grading", "only the box phantom takes a grading");
       s.patient.grading = rd.number(p["grading"], "patient.grading");
@@ -319,6 +327,10 @@ std::string scenario_to_json(const Scenario& s) {
     if (s.patient.phantom == "box") {
       p["size"] = {s.patient.size.x(), s.patient.size.y(), s.patient.size.z()};
       if (s.patient.grading != 1.0) p["grading"] = s.patient.grading;
+    }
+    if (s.patient.phantom == "breast") {
+      if (s.patient.base_radius != PatientSpec{}.base_radius) p["base_radius"] = s.patient.base_radius;
+      if (s.patient.height != PatientSpec{}.height) p["height"] = s.patient.height;
     }
   }
   if (!s.patient.resolution.empty())

@@ -38,6 +38,8 @@ struct PatientSpec {
   double edge = 0.0;                  // m, target edge length (resolved from the level)
   Eigen::Vector3d size = Eigen::Vector3d(0.1, 0.1, 0.05);  // box only, m
   double grading = 1.0;               // box only: >1 concentrates cells at the top centre
+  double base_radius = 0.08;          // breast only, m: radius of the base on the chest wall
+  double height = 0.065;              // breast only, m: skin above the chest wall on the axis
 };
 
 struct FingerPath {

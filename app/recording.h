@@ -1,0 +1,114 @@
+// Session recordings (docs/recording.md): a versioned, checksummed, crash-safe file.
+//
+//   "PALREC\r\n"  u32 version  u32 header_len  header (JSON: patient scenario + all settings)  u32 crc32(header)
+//   chunks: u32 'CHNK'  u32 type  u32 seq  u32 len  payload[len]  u32 crc32(type, seq, len, payload)
+//     type 1 ticks : u32 count, then count x (f64 t, fingers x (f64 x[3], f64 f[3]))   device input + force sent
+//     type 2 event : JSON {"t", "kind": "instructor" | "parameter" | "mark" | "session", ...}
+//     type 3 end   : JSON footer (clean close, or {"recovered": true, ...} after recovery)
+//
+// Little-endian. The writer appends whole chunks with write(2) at least every 0.25 s of
+// recording time and fdatasync()s at least every second, so a crashed process loses at
+// most the last second. A file without an end chunk was interrupted: the reader returns
+// what is valid; recover_recording() cuts the torn tail and appends an end chunk marked
+// "recovered". Qt-free (the GPU machine replays recordings too).
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+namespace palpation::app {
+
+inline constexpr std::uint32_t kRecordingVersion = 1;
+inline constexpr int kRecordingMaxFingers = 5;
+
+/// A bad recording: what() names the file, the chunk/offset and the reason.
+class RecordingError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class RecordingWriter {
+ public:
+  /// Creates (truncates) `path` and writes the header. `header` must hold "scenario"
+  /// (scenario_to_json as an object); "format", "version", "fingers", "created" are added.
+  /// Throws RecordingError when the file cannot be created or the header not written.
+  RecordingWriter(const std::string& path, nlohmann::json header, int fingers);
+  ~RecordingWriter();
+  RecordingWriter(const RecordingWriter&) = delete;
+  RecordingWriter& operator=(const RecordingWriter&) = delete;
+
+  /// One haptic tick: fingertip positions and forces sent, world frame, `fingers` each.
+  /// Never throws: after a write error (disk full) the writer stops and failed() is set;
+  /// what was written before stays readable.
+  void add_tick(double t, const Eigen::Vector3d* x, const Eigen::Vector3d* f);
+  /// An event (instructor event, parameter change, trainee mark); written at once.
+  void add_event(double t, const std::string& kind, nlohmann::json data = nlohmann::json::object());
+  /// Writes buffered ticks as a chunk; fdatasync when the last sync is over 1 s old (or `sync`).
+  void flush(bool sync = false);
+  /// Flushes and writes the end chunk (`footer` plus counts). Idempotent.
+  void close(nlohmann::json footer = nlohmann::json::object());
+
+  bool failed() const { return !error_.empty(); }
+  const std::string& error() const { return error_; }
+  std::uint64_t bytes() const { return bytes_; }
+  std::uint64_t ticks() const { return ticks_; }
+  const std::string& path() const { return path_; }
+
+  /// Test hook: fail every write after `bytes` bytes in total (0: off), as a full disk would.
+  void set_byte_limit_for_test(std::uint64_t bytes) { limit_ = bytes; }
+
+ private:
+  bool write_all(const void* data, std::size_t n);
+  void write_chunk(std::uint32_t type, const std::string& payload);
+  std::string path_, error_;
+  int fd_ = -1, fingers_ = 0;
+  std::uint32_t seq_ = 0;
+  std::uint64_t bytes_ = 0, ticks_ = 0, limit_ = 0;
+  std::string buf_;             // pending tick records
+  std::uint32_t buffered_ = 0;  // ticks in buf_
+  double buf_t0_ = 0, last_t_ = 0;
+  std::int64_t last_sync_ns_ = 0;
+  bool closed_ = false;
+};
+
+struct Recording {
+  std::string path;
+  std::uint32_t version = 0;
+  nlohmann::json header, footer;     // footer: null when there is no end chunk
+  int fingers = 0;
+  std::vector<double> t;             // per tick
+  std::vector<Eigen::Vector3d> x, f; // per tick x finger (index tick * fingers + finger)
+  std::vector<nlohmann::json> events;
+  int chunks = 0;
+  bool complete = false;             // ends with an end chunk
+  bool recovered = false;            // the end chunk says it was recovered
+  std::string interrupted;           // non-empty: why the tail was dropped (no end chunk)
+  std::uint64_t valid_bytes = 0;     // offset after the last valid chunk
+  std::uint64_t file_bytes = 0;
+  std::size_t ticks() const { return t.size(); }
+  double duration() const { return t.empty() ? 0.0 : t.back(); }
+};
+
+/// Reads and validates a recording. A torn tail (no end chunk; the last chunk cut short or
+/// failing its checksum at the end of the file) is not an error: `interrupted` says what
+/// was dropped. Anything else (bad magic, newer version, header checksum, a bad chunk
+/// followed by more data, bad values) throws RecordingError("FILE: chunk N at offset O: reason").
+Recording read_recording(const std::string& path);
+
+struct RecoverResult {
+  bool was_complete = false;     // nothing to do
+  std::size_t ticks = 0;
+  double duration = 0;           // s kept
+  std::uint64_t dropped_bytes = 0;
+  std::string reason;            // what was cut
+};
+/// Makes an interrupted recording complete: cuts the torn tail, appends an end chunk
+/// {"recovered": true, ...}. Throws RecordingError for a file that is not recoverable.
+RecoverResult recover_recording(const std::string& path);
+
+}  // namespace palpation::app

@@ -1,0 +1,73 @@
+// assimp, behind this one file: reads the triangles of an STL, OBJ or PLY scan.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "scan_import.h"
+
+namespace palpation::app {
+
+bool scan_reader_available() { return true; }
+
+SurfaceMesh read_surface(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw ImportError(path + ": no such file");
+  if (!fs::is_regular_file(path, ec)) throw ImportError(path + ": not a regular file");
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".stl" && ext != ".obj" && ext != ".ply")
+    throw ImportError(path + ": unsupported scan format \"" + ext + "\" (STL, OBJ or PLY)");
+  if (fs::file_size(path, ec) == 0) throw ImportError(path + ": empty file (0 bytes)");
+  {
+    // Text formats must start with their keyword; anything else is garbage bytes.
+    std::ifstream in(path, std::ios::binary);
+    char head[5] = {};
+    in.read(head, 5);
+    const std::string h(head, std::size_t(in.gcount()));
+    if (ext == ".ply" && h.rfind("ply", 0) != 0) throw ImportError(path + ": not a PLY file (no \"ply\" header): garbage bytes?");
+  }
+  Assimp::Importer imp;
+  // Normals dropped so that STL corners merge (each STL facet carries its own normal).
+  imp.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS | aiComponent_COLORS);
+  const aiScene* sc = imp.ReadFile(path, aiProcess_Triangulate | aiProcess_DropNormals | aiProcess_RemoveComponent |
+                                             aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);
+  if (!sc) {
+    std::string why = imp.GetErrorString();
+    for (char& c : why)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+    if (why.size() > 200) why = why.substr(0, 200) + "...";
+    if (why.find("No output meshes") != std::string::npos || why.find("no meshes") != std::string::npos)
+      throw ImportError(path + ": empty: no triangles in the file (" + why + ")");
+    throw ImportError(path + ": not a mesh file assimp reads (" + why + "): empty, truncated or garbage bytes?");
+  }
+  SurfaceMesh s;
+  for (unsigned m = 0; m < sc->mNumMeshes; ++m) {
+    const aiMesh* mesh = sc->mMeshes[m];
+    const int base = int(s.vertices.size());
+    for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
+      const aiVector3D& p = mesh->mVertices[i];
+      const Eigen::Vector3d v(p.x, p.y, p.z);
+      if (!v.allFinite()) throw ImportError(path + ": vertex " + std::to_string(i) + " is not finite (garbage bytes?)");
+      s.vertices.push_back(v);
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines
+      std::array<int, 3> t{};
+      for (int k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) throw ImportError(path + ": face " + std::to_string(f) + " refers to a missing vertex");
+        t[std::size_t(k)] = base + int(face.mIndices[k]);
+      }
+      s.triangles.push_back(t);
+    }
+  }
+  if (s.triangles.empty()) throw ImportError(path + ": empty: no triangles in the file");
+  return s;
+}
+
+}  // namespace palpation::app

@@ -1,0 +1,325 @@
+// Session recordings: round trip, clear errors on corruption, recovery of an interrupted
+// recording (torn tail, a killed process), a full disk (the prefix stays readable), and
+// record -> replay reproducing the forces.
+#include <QtTest>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "headless_run.h"
+#include "recording.h"
+#include "replay.h"
+#include "scenario.h"
+#include "session.h"
+
+using namespace palpation;
+using namespace palpation::app;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string tmpdir(const char* name) {
+  const fs::path d = fs::temp_directory_path() / ("palpation-tst-recording-" + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+// A small, fast scene: a box pressed by one finger for 0.3 s.
+const char* kScene = R"({
+  "patient": {"phantom": "box", "size": [0.06, 0.06, 0.03], "resolution": 0.006},
+  "tissue": {"young_modulus": 19000, "poisson_ratio": 0.45},
+  "solver": {"backend": "cpu", "dt": 0.002},
+  "fingers": [{"radius": 0.008, "path": [[0, 0.0, 0.0, 0.039], [0.2, 0.002, 0.0, 0.034], [0.3, 0.004, 0.0, 0.034]]}],
+  "duration": 0.3
+})";
+
+nlohmann::json header_for(const sim::Scenario& s) {
+  return {{"scenario", nlohmann::json::parse(sim::scenario_to_json(s))}};
+}
+
+// Writes `ticks` synthetic ticks for 2 fingers.
+void write_synthetic(RecordingWriter& w, int ticks, int from = 0) {
+  for (int i = from; i < from + ticks; ++i) {
+    const double t = 0.001 * (i + 1);
+    Eigen::Vector3d x[2] = {{t, 0, 0.05}, {t, 0.01, 0.05}};
+    Eigen::Vector3d f[2] = {{0, 0, t}, {0, 0, 2 * t}};
+    w.add_tick(t, x, f);
+  }
+}
+
+std::string bytes_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+void put_bytes(const std::string& path, const std::string& b) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
+}
+
+QString error_reading(const std::string& path) {
+  try {
+    read_recording(path);
+  } catch (const RecordingError& e) {
+    return QString::fromStdString(e.what());
+  }
+  return {};
+}
+
+}  // namespace
+
+class TestRecording : public QObject {
+  Q_OBJECT
+ private slots:
+  void roundTrip() {
+    const std::string p = tmpdir("rt") + "/a.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    {
+      RecordingWriter w(p, header_for(s), 2);
+      write_synthetic(w, 1234);
+      w.add_event(0.5, "mark", {{"position", {0.1, 0, 0.04}}});
+      w.add_event(0.6, "parameter", {{"name", "contact.stiffness"}, {"value", 3000}});
+      write_synthetic(w, 10, 1234);
+      w.close({{"ok", true}});
+      QVERIFY(!w.failed());
+    }
+    const Recording r = read_recording(p);
+    QVERIFY(r.complete);
+    QVERIFY(!r.recovered);
+    QVERIFY(r.interrupted.empty());
+    QCOMPARE(r.fingers, 2);
+    QCOMPARE(int(r.ticks()), 1244);
+    QCOMPARE(r.events.size(), std::size_t(2));
+    QCOMPARE(QString::fromStdString(r.events[0]["kind"].get<std::string>()), QString("mark"));
+    QCOMPARE(r.t[99], 0.1);
+    QCOMPARE(r.f[2 * 99 + 1].z(), 0.2);
+    QCOMPARE(r.footer["ticks"].get<int>(), 1244);
+    // The header holds the scenario: it parses back to the same patient.
+    const sim::Scenario back = sim::parse_scenario(r.header["scenario"].dump(), "header");
+    QCOMPARE(back.patient.size.x(), 0.06);
+    qInfo("recording size: %.1f kB for %.3f s of 2 fingers -> %.2f MB per minute",
+          double(r.file_bytes) / 1e3, r.duration(), double(r.file_bytes) / r.duration() * 60 / 1e6);
+  }
+
+  void corruptionGivesClearErrors() {
+    const std::string dir = tmpdir("corrupt");
+    const std::string p = dir + "/a.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    {
+      RecordingWriter w(p, header_for(s), 2);
+      write_synthetic(w, 1000);
+      w.close();
+    }
+    const std::string good = bytes_of(p);
+    const Recording r = read_recording(p);
+    QVERIFY(r.complete);
+    // A flipped byte in the middle of the ticks: the chunk, its offset and the reason.
+    std::string b = good;
+    b[b.size() / 2] ^= 0x5A;
+    put_bytes(p, b);
+    QString e = error_reading(p);
+    QVERIFY2(e.contains(QString::fromStdString(p) + ": chunk ") && e.contains("at offset") && e.contains("checksum mismatch"),
+             qPrintable(e));
+    // The header.
+    b = good;
+    b[30] ^= 0x01;
+    put_bytes(p, b);
+    e = error_reading(p);
+    QVERIFY2(e.contains("header at offset 16") && e.contains("checksum"), qPrintable(e));
+    // Garbage, empty, a newer version.
+    put_bytes(p, "garbage bytes, not a recording at all");
+    QVERIFY2(error_reading(p).contains("not a palpation recording"), qPrintable(error_reading(p)));
+    put_bytes(p, "");
+    QVERIFY2(error_reading(p).contains("empty file"), qPrintable(error_reading(p)));
+    b = good;
+    b[8] = char(kRecordingVersion + 1);
+    put_bytes(p, b);
+    QVERIFY2(error_reading(p).contains("newer recordings need a newer program"), qPrintable(error_reading(p)));
+    // Trailing bytes after the end chunk.
+    put_bytes(p, good + "xx");
+    QVERIFY2(error_reading(p).contains("after the end chunk"), qPrintable(error_reading(p)));
+    // recover_recording refuses a corrupted file and leaves it as it is.
+    b = good;
+    b[b.size() / 2] ^= 0x5A;
+    put_bytes(p, b);
+    QVERIFY_EXCEPTION_THROWN(recover_recording(p), RecordingError);
+    QCOMPARE(bytes_of(p), b);
+  }
+
+  void tornTailIsRecovered() {
+    const std::string dir = tmpdir("torn");
+    const std::string p = dir + "/a.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    {
+      RecordingWriter w(p, header_for(s), 2);
+      write_synthetic(w, 1000);  // 4 chunks of 250 ticks
+      w.close();
+    }
+    const std::string good = bytes_of(p);
+    const Recording full = read_recording(p);
+    // Cut anywhere inside the last ticks chunk: the first three chunks survive.
+    for (std::size_t cut : {good.size() - 60, good.size() - 3000, good.size() - 12000}) {
+      put_bytes(p, good.substr(0, cut));
+      const Recording r = read_recording(p);
+      QVERIFY(!r.complete);
+      QVERIFY(!r.interrupted.empty());
+      const RecoverResult rr = recover_recording(p);
+      QVERIFY(!rr.was_complete);
+      const Recording after = read_recording(p);
+      QVERIFY(after.complete);
+      QVERIFY(after.recovered);
+      QCOMPARE(after.ticks(), r.ticks());
+      QVERIFY(after.ticks() >= 750 && after.ticks() <= 1000);
+      for (std::size_t i = 0; i < after.ticks() * 2; ++i) QCOMPARE(after.f[i], full.f[i]);
+      // Recovering again changes nothing.
+      QVERIFY(recover_recording(p).was_complete);
+    }
+  }
+
+  void killedProcessLeavesARecoverableFile() {
+    const std::string p = tmpdir("killed") + "/a.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    const pid_t pid = ::fork();
+    QVERIFY(pid >= 0);
+    if (pid == 0) {
+      RecordingWriter w(p, header_for(s), 2);
+      for (int i = 0;; ++i) {  // 1 kHz for ever, until killed
+        write_synthetic(w, 1, i);
+        if (i % 10 == 0) {
+          w.flush();
+          ::usleep(1000);
+        }
+      }
+    }
+    // Wait until a few chunks are on disk, then kill it hard.
+    for (int i = 0; i < 2000; ++i) {
+      std::error_code ec;
+      if (fs::exists(p) && fs::file_size(p, ec) > 100000) break;
+      ::usleep(5000);
+    }
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    QVERIFY(WIFSIGNALED(status));
+    const Recording r = read_recording(p);
+    QVERIFY(!r.complete);
+    QVERIFY(r.ticks() >= 500);
+    recover_recording(p);
+    const Recording after = read_recording(p);
+    QVERIFY(after.complete && after.recovered);
+    QCOMPARE(after.ticks(), r.ticks());
+  }
+
+  void diskFullKeepsThePrefixReadable() {
+    const std::string dir = tmpdir("full");
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    // 1) The write hook: writes fail after 60 kB, as on a full disk.
+    {
+      const std::string p = dir + "/hook.palrec";
+      {
+        RecordingWriter w(p, header_for(s), 2);
+        w.set_byte_limit_for_test(60000);
+        write_synthetic(w, 3000);  // ~ 300 kB wanted
+        w.add_event(3.0, "mark");
+        w.close();
+        QVERIFY(w.failed());
+        QVERIFY2(QString::fromStdString(w.error()).contains("No space left on device"), w.error().c_str());
+        QCOMPARE(w.bytes(), std::uint64_t(60000));
+      }
+      const Recording r = read_recording(p);
+      QVERIFY(!r.complete);
+      QVERIFY(r.ticks() > 250 && r.ticks() < 3000);
+    }
+    // 2) A real file-size limit (RLIMIT_FSIZE, SIGXFSZ ignored) in a child process: write()
+    // fails with EFBIG; the writer stops, the process goes on (the device stays served).
+    {
+      const std::string p = dir + "/rlimit.palrec";
+      const pid_t pid = ::fork();
+      QVERIFY(pid >= 0);
+      if (pid == 0) {
+        std::signal(SIGXFSZ, SIG_IGN);
+        rlimit rl{50000, 50000};
+        ::setrlimit(RLIMIT_FSIZE, &rl);
+        int code = 3;
+        try {
+          RecordingWriter w(p, header_for(s), 2);
+          write_synthetic(w, 3000);
+          w.close();
+          code = w.failed() && w.error().find("File too large") != std::string::npos ? 0 : 4;
+        } catch (...) {
+          code = 5;
+        }
+        ::_exit(code);  // the "session" carried on to here
+      }
+      int status = 0;
+      ::waitpid(pid, &status, 0);
+      QVERIFY(WIFEXITED(status));
+      QCOMPARE(WEXITSTATUS(status), 0);
+      QVERIFY(fs::file_size(p) <= 50000);
+      const Recording r = read_recording(p);
+      QVERIFY(!r.complete);
+      QVERIFY(r.ticks() >= 250);
+      recover_recording(p);  // there is room again
+      QVERIFY(read_recording(p).recovered);
+    }
+  }
+
+  // Record (the headless run's device input and forces) then replay: the same backend and
+  // settings give the same forces. Both runs are the same deterministic computation on the
+  // same inputs: the finger positions are stored as doubles and sampled at the same tick
+  // times, so the only possible difference is the velocity (the recorded path's finite
+  // difference instead of the scenario's segment slope) rounded at the last bits; 1e-9 N
+  // bounds that with margin against forces of about 0.1 N.
+  void recordThenReplayGivesTheSameForces() {
+    const std::string p = tmpdir("replay") + "/run.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    RunResult run = run_headless(s, {});
+    {
+      RecordingWriter w(p, header_for(s), 1);
+      for (const auto& smp : run.samples) w.add_tick(smp.t, &smp.x, &smp.f);
+      w.close();
+    }
+    const Recording rec = read_recording(p);
+    QCOMPARE(rec.ticks(), run.samples.size());
+    const ReplayResult r = replay_recording(rec, {});
+    QCOMPARE(r.compared, run.samples.size());
+    QVERIFY(r.max_recorded_force > 0.05);
+    qInfo("replay: largest force difference %.3g N (largest force %.3g N)", r.max_force_diff, r.max_recorded_force);
+    QVERIFY2(r.max_force_diff < 1e-9, qPrintable(QString::number(r.max_force_diff)));
+    // A different setting is seen: a stiffer tissue gives other forces.
+    Recording other = rec;
+    other.header["scenario"]["tissue"]["young_modulus"] = 40000;
+    const ReplayResult r2 = replay_recording(other, {});
+    QVERIFY(r2.max_force_diff > 1e-3);
+  }
+
+  // Every session records: a short scripted session writes a complete recording whose
+  // header replays; the re-simulation's difference is reported (finite).
+  void sessionRecordsAndReplays() {
+    const std::string p = tmpdir("session") + "/session.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    SessionOptions opt;
+    opt.device = "scripted";
+    opt.priority = 0;
+    opt.record_path = p;
+    opt.sim_realtime = false;
+    const SessionResult res = run_session(s, opt);
+    QVERIFY(res.ok);
+    QCOMPARE(res.recording["complete"].get<bool>(), true);
+    const Recording rec = read_recording(p);
+    QVERIFY(rec.complete && !rec.recovered);
+    QVERIFY(rec.ticks() >= 250);
+    QCOMPARE(rec.events.size(), std::size_t(2));
+    QCOMPARE(QString::fromStdString(rec.header["session"]["device"].get<std::string>()), QString("scripted"));
+    const ReplayResult r = replay_recording(rec, {});
+    QVERIFY(std::isfinite(r.max_force_diff));
+    qInfo("session replay: largest force difference %.3g N of %.3g N", r.max_force_diff, r.max_recorded_force);
+  }
+};
+
+QTEST_APPLESS_MAIN(TestRecording)
+#include "tst_recording.moc"
