@@ -64,7 +64,7 @@ class SimulationThread {
 
   std::vector<double> step_ms, dt_ms;
   std::vector<int> cg_iterations;
-  std::uint64_t steps = 0, resets = 0, solved = 0;
+  std::uint64_t steps = 0, resets = 0, solved = 0, fallbacks = 0;
   bool finite = true;
   double sim_time = 0;
   std::int64_t first_step_ns = 0, last_step_ns = 0;
@@ -78,14 +78,14 @@ class SimulationThread {
     std::vector<sim::FingerOutput> out(nf);
     std::vector<Eigen::Vector3d> x0(nf);
     for (int k = 0; k < nf; ++k) in[k].radius = s.fingers[k].radius;
-    sim::Backend& be = sim_.backend();
-    sim::SimParams params = be.params();
+    sim::Backend* be = &sim_.backend();
+    sim::SimParams params = be->params();
     // On a small machine the haptic (and emulator) threads need a core of their own:
     // OpenMP teams that must all be scheduled at every barrier then cost far more than
     // they save. solver.threads = 0 (auto) becomes 1 there.
     if (params.solver.threads == 0 && std::thread::hardware_concurrency() <= 3) {
       params.solver.threads = 1;
-      be.set_params(params);
+      be->set_params(params);
     }
     const double dt = s.params.solver.dt;
     step_ms.reserve(1 << 16);
@@ -144,10 +144,22 @@ class SimulationThread {
       }
       if (params.solver.dt != h) {
         params.solver.dt = h;
-        be.set_params(params);
+        be->set_params(params);
       }
       const auto a = std::chrono::steady_clock::now();
-      const sim::StepStats st = be.step(in, out);
+      sim::StepStats st;
+      try {
+        st = be->step(in, out);
+      } catch (const std::exception& e) {
+        // A backend error mid-session (a CUDA error): continue on the CPU from rest. The
+        // haptic loop keeps rendering the last contact model, fades the new one in, and
+        // the safety filter rate-limits whatever differs: no force spike.
+        if (!sim_.fall_back_to_cpu(e.what())) throw;
+        be = &sim_.backend();
+        be->set_params(params);
+        ++fallbacks;
+        st = be->step(in, out);
+      }
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();
       ++steps;
       if (st.solved) ++solved;
@@ -155,15 +167,14 @@ class SimulationThread {
       dt_ms.push_back(h * 1e3);
       cg_iterations.push_back(st.cg_iterations);
       sim_time += h;
-      bool ok = st.finite;
-      for (const auto& o : out) ok = ok && o.force.allFinite() && o.stiffness.allFinite();
+      // Divergence (design.md section 7: NaN/Inf or an energy blow-up): the check puts the
+      // body back to rest and logs it; no forces until it steps again.
+      const bool ok = !sim_.check_divergence(st, out).diverged;
       dv::ContactFrame& cf = contacts_.write_slot();
       cf.fingers = {};
       if (!ok) {
-        // Divergence (design.md section 7): body back to rest, no forces until it steps again.
         finite = false;
         ++resets;
-        be.reset();
       } else {
         for (int k = 0; k < nf; ++k)
           if (in[k].active) cf.fingers[cfg_.finger_map[k]] = contact_model(out[k], x0[k], reg);
@@ -309,6 +320,7 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
 
   // The simulation: meshing and precomputation happen here, not in real time.
   sim::Simulation simulation(s, opt.log);
+  if (opt.prepare_simulation) opt.prepare_simulation(simulation);
   simulation.reset();
 
   // The device.
@@ -514,6 +526,7 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"simulated_time_s", sim_thread.sim_time},
                        {"cg_iterations_max", cg_max},
                        {"divergence_resets", sim_thread.resets},
+                       {"backend_fallbacks", sim_thread.fallbacks},
                        {"finite", sim_thread.finite}};
   }
   j["forces"] = {{"limit_n", caps.max_force},

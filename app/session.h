@@ -4,6 +4,7 @@
 // scenario's duration in wall-clock time.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct SessionOptions {
   double vibration_from = -1, vibration_to = -1;  // s; window of the vibration figures (default: 2nd half)
   bool progress = false;
   sim::LogFn log;
+  /// Called once the simulation is built, before anything starts (fault injection in
+  /// tests: replace the backend by a failing one).
+  std::function<void(sim::Simulation&)> prepare_simulation;
   std::string record_path;           // non-empty: record the session there (app/recording.h)
   nlohmann::json record_settings;    // extra settings for the recording's header (command line, ...)
 };

@@ -24,7 +24,12 @@ class Reader {
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
   [[noreturn]] void fail(const std::string& field, const std::string& why) const {
-    throw ScenarioError(source_ + ": " + (field.empty() ? std::string("(top level)") : field) + ": " + why);
+    std::string msg = source_ + ": " + (field.empty() ? std::string("(top level)") : field) + ": " + why;
+    // Keys and values from the file are quoted in messages: a control character in them
+    // (a newline in a key, found by fuzzing, docs/fuzzing.md) must not break the line.
+    for (char& c : msg)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    throw ScenarioError(msg);
   }
 
   void only_keys(const json& obj, const std::string& field, std::initializer_list<const char*> keys) const {
@@ -143,15 +148,32 @@ std::optional<double> resolution_edge(const std::string& phantom, const std::str
   return std::nullopt;
 }
 
+namespace {
+// The library's message without its "[json.exception...] " prefix, control characters
+// (the raw bytes it quotes may hold newlines) shown as '?': an error stays one line.
+std::string one_line(const std::string& what) {
+  std::string s = what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 1);
+  if (!s.empty() && s[0] == ' ') s.erase(0, 1);
+  if (s.rfind("parse error at ", 0) == 0 && s.find(": ") != std::string::npos) s = s.substr(s.find(": ") + 2);
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  if (s.size() > 200) s = s.substr(0, 200) + "...";
+  return s;
+}
+}  // namespace
+
 Scenario parse_scenario(const std::string& text, const std::string& source) {
   Reader rd(source);
   json j;
   try {
     j = json::parse(text);
   } catch (const json::parse_error& e) {
-    std::string what = e.what();
     throw ScenarioError(source + ": (syntax): malformed JSON at byte " + std::to_string(e.byte) + ": " +
-                        what.substr(what.find(':') + 2));
+                        one_line(e.what()));
+  } catch (const json::exception& e) {
+    // A number too large for a double ("1e999": out_of_range 406), found by fuzzing
+    // (docs/fuzzing.md): bad input like any other, not an internal error.
+    throw ScenarioError(source + ": (syntax): " + one_line(e.what()));
   }
   rd.only_keys(j, "", {"patient", "tissue", "inclusions", "solver", "contact", "fingers", "duration", "gravity"});
   Scenario s;
@@ -242,6 +264,13 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       }
       inc.young_modulus = in.contains("young_modulus") ? rd.positive(in["young_modulus"], f + ".young_modulus") : 107000.0;
       inc.poisson_ratio = in.contains("poisson_ratio") ? rd.poisson(in["poisson_ratio"], f + ".poisson_ratio") : s.poisson_ratio;
+      // Stiffness contrast bound (docs/stability.md, `palpation stress`): beyond it the CG
+      // solve of a step no longer converges within the iteration budget.
+      const double contrast = std::max(inc.young_modulus / s.young_modulus, s.young_modulus / inc.young_modulus);
+      if (!(contrast <= kMaxStiffnessContrast))
+        rd.fail(f + ".young_modulus", "must be within " + Reader::fmt(kMaxStiffnessContrast) + "x of tissue.young_modulus (" +
+                                          Reader::fmt(s.young_modulus) + " Pa), got " + Reader::fmt(contrast) +
+                                          "x (docs/stability.md)");
       s.inclusions.push_back(inc);
     }
   }

@@ -62,6 +62,10 @@ struct Scenario {
   double duration = 1.0;              // s
 };
 
+/// Largest tumour/tissue Young's modulus ratio (either way) a scenario may ask for: the
+/// stability bound measured by `palpation stress` (docs/stability.md).
+inline constexpr double kMaxStiffnessContrast = 30.0;
+
 /// Parses and validates. Throws ScenarioError("FILE: FIELD: reason").
 Scenario parse_scenario(const std::string& json_text, const std::string& source_name);
 /// Reads a file and parses it. Throws ScenarioError on unreadable files too.

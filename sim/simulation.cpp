@@ -1,7 +1,9 @@
 #include "simulation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <cstdio>
 #include <stdexcept>
 
 namespace palpation::sim {
@@ -21,7 +23,39 @@ int apply_inclusions(Model& m, const std::vector<Inclusion>& inclusions) {
   return changed;
 }
 
+double tet_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                   const Eigen::Vector3d& d) {
+  const double l2 = (b - a).squaredNorm() + (c - a).squaredNorm() + (d - a).squaredNorm() + (c - b).squaredNorm() +
+                    (d - b).squaredNorm() + (d - c).squaredNorm();
+  if (!(l2 > 0)) return 0;
+  const double lrms = std::sqrt(l2 / 6);
+  return 6 * std::sqrt(2.0) * std::abs(tet_volume(a, b, c, d)) / (lrms * lrms * lrms);
+}
+
+double min_tet_quality(const TetMesh& m, int* worst) {
+  double q = 1e300;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const auto& t = m.tets[e];
+    const double qe = tet_quality(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]);
+    if (!(qe >= q)) {
+      q = qe;
+      if (worst) *worst = e;
+    }
+  }
+  return q;
+}
+
 Model build_scenario_model(const Scenario& s, TetMesh mesh) {
+  if (!s.patient.mesh.empty()) {
+    int e = -1;
+    const double q = min_tet_quality(mesh, &e);
+    if (!(q >= kMinTetQuality)) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, ": tetrahedron %d is a sliver (quality %.3g < %.3g; docs/stability.md)", e, q,
+                    kMinTetQuality);
+      throw ScenarioError(s.source + ": patient.mesh: " + s.patient.mesh + buf);
+    }
+  }
   Material tissue{s.young_modulus, s.poisson_ratio, s.density};
   double zmin = std::numeric_limits<double>::max();
   for (const auto& p : mesh.nodes) zmin = std::min(zmin, p.z());
@@ -46,6 +80,15 @@ Simulation::Simulation(const Scenario& s, Model model, const LogFn& log) : s_(s)
 }
 
 void Simulation::init(const LogFn& log) {
+  log_ = log;
+  if (model_.num_nodes() > 0) {
+    Eigen::Vector3d lo = model_.rest[0], hi = model_.rest[0];
+    for (const auto& p : model_.rest) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    diagonal_ = (hi - lo).norm();
+  }
   SimParams p = s_.params;
   backend_ = make_backend(parse_backend_kind(s_.backend), model_, p, &reason_);
   if (log && !reason_.empty()) log("backend: " + reason_);
@@ -57,10 +100,86 @@ void Simulation::init(const LogFn& log) {
 StepStats Simulation::step() {
   const double t1 = t_ + s_.params.solver.dt;
   for (std::size_t i = 0; i < s_.fingers.size(); ++i) s_.fingers[i].sample(t1, fingers_[i].position, fingers_[i].velocity);
-  const StepStats st = backend_->step(fingers_, outputs_);
+  StepStats st;
+  try {
+    st = backend_->step(fingers_, outputs_);
+  } catch (const std::exception& e) {
+    if (!fall_back_to_cpu(e.what())) throw;
+    st = backend_->step(fingers_, outputs_);
+  }
   t_ = t1;
   ++steps_;
+  check_divergence(st, outputs_);
+  if (check_.diverged) {
+    st.finite = false;
+    for (auto& o : outputs_) o = FingerOutput{};
+  }
   return st;
+}
+
+DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<const FingerOutput> out) {
+  check_ = DivergenceCheck{};
+  DivergenceCheck& c = check_;
+  if (!limits_.enabled) return c;
+  if (!st.finite) c.reason = "non-finite solver state";
+  for (const auto& o : out)
+    if (c.reason.empty() && !(o.force.allFinite() && o.force_raw.allFinite() && o.stiffness.allFinite()))
+      c.reason = "non-finite finger force";
+  if (c.reason.empty()) {
+    backend_->positions(xyz_);
+    backend_->velocities(vel_);
+    const int n = model_.num_nodes();
+    double v2max = 0, d2max = 0, ke = 0;
+    bool finite = true;
+    for (int i = 0; i < n && i * 3 + 2 < int(xyz_.size()) && i * 3 + 2 < int(vel_.size()); ++i) {
+      const Eigen::Vector3d x(xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]);
+      const Eigen::Vector3d v(vel_[3 * i], vel_[3 * i + 1], vel_[3 * i + 2]);
+      if (!x.allFinite() || !v.allFinite()) {
+        finite = false;
+        break;
+      }
+      v2max = std::max(v2max, v.squaredNorm());
+      d2max = std::max(d2max, (x - model_.rest[i]).squaredNorm());
+      if (i < int(model_.mass.size())) ke += 0.5 * model_.mass[i] * v.squaredNorm();
+    }
+    c.max_speed = std::sqrt(v2max);
+    c.max_displacement = std::sqrt(d2max);
+    c.kinetic_energy = ke;
+    char buf[160];
+    if (!finite) {
+      c.reason = "non-finite node position or velocity";
+    } else if (c.max_speed > limits_.max_speed) {
+      std::snprintf(buf, sizeof buf, "node speed %.3g m/s > %.3g m/s", c.max_speed, limits_.max_speed);
+      c.reason = buf;
+    } else if (diagonal_ > 0 && c.max_displacement > limits_.max_displacement_factor * diagonal_) {
+      std::snprintf(buf, sizeof buf, "node displacement %.3g m > %.3g m", c.max_displacement,
+                    limits_.max_displacement_factor * diagonal_);
+      c.reason = buf;
+    }
+  }
+  if (!c.reason.empty()) {
+    c.diverged = true;
+    ++divergences_;
+    backend_->reset();
+    if (log_) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "divergence at t = %.6g s (step %d): ", t_, steps_);
+      log_(buf + c.reason + "; body reset to rest");
+    }
+  }
+  return c;
+}
+
+bool Simulation::fall_back_to_cpu(const std::string& why) {
+  if (!backend_ || backend_->name() == "cpu") return false;
+  const std::string was = backend_->name();
+  auto cpu = make_backend(BackendKind::Cpu, model_, backend_->params());
+  cpu->reset();
+  backend_ = std::move(cpu);
+  ++fallbacks_;
+  reason_ = "fell back from " + was + " to cpu: " + why;
+  if (log_) log_("backend: " + reason_);
+  return true;
 }
 
 void Simulation::reset() {

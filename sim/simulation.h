@@ -16,13 +16,46 @@ namespace palpation::sim {
 
 /// Builds the model of a scenario from its mesh: bulk tissue, inclusions (elements whose
 /// centroid lies inside), chest wall fixed (nodes at z <= 1e-6 m; for a mesh file the
-/// lowest nodes within 1e-6 of the minimum z).
+/// lowest nodes within 1e-6 of the minimum z). A mesh file (patient.mesh) must have no
+/// sliver: every element's quality >= kMinTetQuality, else ScenarioError naming the file,
+/// the element and its quality (docs/stability.md: CG stops converging below).
 Model build_scenario_model(const Scenario& s, TetMesh mesh);
+
+/// Shape quality of a tetrahedron, 6 sqrt(2) |V| / l_rms^3 (l_rms: root mean square of the
+/// six edge lengths): 1 for the regular tetrahedron, 0.66 for a cube's Kuhn tetrahedron,
+/// about 2 x (height / edge) for a flat sliver, 0 when degenerate.
+double tet_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                   const Eigen::Vector3d& d);
+/// The lowest element quality of a mesh; `worst` receives its element.
+double min_tet_quality(const TetMesh& m, int* worst = nullptr);
+/// Slivers below this make the CG solve of a step stall (stress case sliver-0.1%, quality
+/// 0.0011: residual 6e-3 after 500 iterations; sliver-2%, quality 0.022, converges).
+inline constexpr double kMinTetQuality = 0.01;
 
 /// Applies inclusions to a model's elements (centroid test). Returns elements changed.
 int apply_inclusions(Model& m, const std::vector<Inclusion>& inclusions);
 
 BackendKind parse_backend_kind(const std::string& name);
+
+/// Divergence (design.md section 7): a step is divergent when anything it produced is not
+/// finite, or the body moved further than physics allows: a node faster than `max_speed`
+/// or displaced from rest by more than `max_displacement_factor` times the mesh's
+/// bounding-box diagonal. Palpation moves fingers at most ~2 m/s; a stable step never
+/// comes near these bounds (docs/stability.md).
+struct DivergenceLimits {
+  double max_speed = 50.0;               // m/s
+  double max_displacement_factor = 1.0;  // x bounding-box diagonal
+  bool enabled = true;
+};
+
+/// What the guard saw in one step (Simulation::last_check()).
+struct DivergenceCheck {
+  bool diverged = false;
+  std::string reason;                    // "non-finite ...", "node speed ...", ...
+  double max_speed = 0;                  // m/s, largest node speed
+  double max_displacement = 0;           // m, largest |x - rest|
+  double kinetic_energy = 0;             // J, lumped mass
+};
 
 class Simulation {
  public:
@@ -38,7 +71,24 @@ class Simulation {
   std::string backend_reason() const { return reason_; }
 
   /// Advances one step: samples the finger paths at t + dt, steps, returns stats.
+  /// Divergence (DivergenceLimits) puts the body back at rest, counts and logs the event
+  /// and returns stats with finite = false and zero finger outputs. A backend that throws
+  /// (a CUDA error mid-session) is replaced by the CPU backend (fall_back_to_cpu) and the
+  /// step is retried there; the CPU backend throwing is rethrown.
   StepStats step();
+  /// Replaces the backend by a CPU one with the same parameters, at rest. Returns false
+  /// (and changes nothing) when the backend already is the CPU one.
+  bool fall_back_to_cpu(const std::string& why);
+  /// Fault injection and tests: replaces the backend (reset first by the caller).
+  void replace_backend(std::unique_ptr<Backend> b) { backend_ = std::move(b); }
+  /// Checks the backend's state after a step (used by step() and the session thread).
+  DivergenceCheck check_divergence(const StepStats& st, std::span<const FingerOutput> out);
+  void set_divergence_limits(const DivergenceLimits& l) { limits_ = l; }
+  const DivergenceLimits& divergence_limits() const { return limits_; }
+  const DivergenceCheck& last_check() const { return check_; }
+  int divergences() const { return divergences_; }
+  int fallbacks() const { return fallbacks_; }
+  void set_log(const LogFn& log) { log_ = log; }
   double time() const { return t_; }
   int steps() const { return steps_; }
   const std::vector<FingerInput>& fingers() const { return fingers_; }
@@ -55,6 +105,12 @@ class Simulation {
   std::vector<FingerOutput> outputs_;
   double t_ = 0.0;
   int steps_ = 0;
+  DivergenceLimits limits_;
+  DivergenceCheck check_;
+  int divergences_ = 0, fallbacks_ = 0;
+  double diagonal_ = 0;                  // m, rest bounding-box diagonal
+  std::vector<double> xyz_, vel_;        // scratch
+  LogFn log_;
 };
 
 }  // namespace palpation::sim

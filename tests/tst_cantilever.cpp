@@ -53,8 +53,12 @@ class TestCantilever : public QObject {
   // must shrink with every refinement).
   void convergesToBeamTheory() {
     const double ref = timoshenko();
+    // PALPATION_LIGHT_TESTS=1 (the sanitizer build in CI, .ci/run): up to 16 across;
+    // convergence is still asserted, the 3% bound needs 24.
+    const bool light = qEnvironmentVariableIntValue("PALPATION_LIGHT_TESTS") != 0;
+    const std::vector<int> sizes = light ? std::vector<int>{4, 8, 16} : std::vector<int>{4, 8, 16, 24};
     double previous_error = 1e9;
-    for (int across : {4, 8, 16, 24}) {
+    for (int across : sizes) {
       const Model m = beam(across);
       const auto u = solve_linear_static(m, body_force_loads(m, V3(0, 0, -kB)));
       const double d = tip_deflection(m, u);
@@ -64,7 +68,7 @@ class TestCantilever : public QObject {
       QVERIFY2(err < previous_error, "error must shrink with refinement");
       previous_error = err;
     }
-    QVERIFY2(previous_error < 0.03, qPrintable(QString("finest error %1").arg(previous_error)));
+    if (!light) QVERIFY2(previous_error < 0.03, qPrintable(QString("finest error %1").arg(previous_error)));
   }
 
   // The implicit integrator with gravity settles to the linear static answer on the same

@@ -81,8 +81,12 @@ class TestHertz : public QObject {
   // elements at these sizes: 10% (the bound) at the finest mesh, and the error
   // must shrink with refinement.
   void matchesHertzAndConverges() {
+    // PALPATION_LIGHT_TESTS=1 (the sanitizer build in CI, .ci/run): the three coarser
+    // meshes only; convergence is still asserted, the 10% bound needs the finest.
+    const bool light = qEnvironmentVariableIntValue("PALPATION_LIGHT_TESTS") != 0;
+    const std::vector<int> sizes = light ? std::vector<int>{12, 20, 28} : std::vector<int>{12, 20, 28, 36, 44};
     double prev = 1e9;
-    for (int n : {12, 20, 28, 36, 44}) {
+    for (int n : sizes) {
       const Result r = indent(n);
       QVERIFY(std::isfinite(r.force));
       const double ref = hertz_force(r.depth);
@@ -93,7 +97,7 @@ class TestHertz : public QObject {
       QVERIFY2(err < prev, "error must shrink with refinement");
       prev = err;
     }
-    QVERIFY2(prev < 0.10, qPrintable(QString::number(prev)));
+    if (!light) QVERIFY2(prev < 0.10, qPrintable(QString::number(prev)));
   }
 };
 

@@ -1,0 +1,62 @@
+// Fault injection for tests (issue 7): a backend that wraps a real one and, from a given
+// step on, fails the way a GPU backend can: throws (a CUDA error), returns NaN, or
+// reports a blown-up state (node velocities scaled up).
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "backend.h"
+
+namespace palpation::test {
+
+class FaultBackend : public sim::Backend {
+ public:
+  enum class Fault { None, Throw, NaN, BlowUp };
+  FaultBackend(std::unique_ptr<sim::Backend> inner, Fault fault, int at_step, std::string name = "cuda")
+      : inner_(std::move(inner)), fault_(fault), at_(at_step), name_(std::move(name)) {}
+
+  std::string name() const override { return name_; }
+  std::string device_name() const override { return "fault-injected " + inner_->device_name(); }
+  sim::Precision precision() const override { return inner_->precision(); }
+  void reset() override {
+    blown_ = false;
+    inner_->reset();
+  }
+  sim::StepStats step(std::span<const sim::FingerInput> f, std::span<sim::FingerOutput> out) override {
+    const int k = steps_++;
+    if (k == at_ || (fault_ == Fault::Throw && k > at_)) {
+      if (fault_ == Fault::Throw) throw std::runtime_error("injected CUDA error: an illegal memory access was encountered");
+      sim::StepStats st = inner_->step(f, out);
+      if (fault_ == Fault::NaN) {
+        st.finite = false;
+        for (auto& o : out) o.force.x() = std::numeric_limits<double>::quiet_NaN();
+      }
+      if (fault_ == Fault::BlowUp) blown_ = true;
+      return st;
+    }
+    return inner_->step(f, out);
+  }
+  void positions(std::vector<double>& xyz) const override { inner_->positions(xyz); }
+  void velocities(std::vector<double>& v) const override {
+    inner_->velocities(v);
+    if (blown_)
+      for (std::size_t i = 0; i < v.size(); ++i) v[i] += (i % 3 == 2) ? 1e3 : 0.0;
+  }
+  void update_materials() override { inner_->update_materials(); }
+  void set_params(const sim::SimParams& p) override { inner_->set_params(p); }
+  const sim::SimParams& params() const override { return inner_->params(); }
+  int steps() const { return steps_; }
+
+ private:
+  std::unique_ptr<sim::Backend> inner_;
+  Fault fault_;
+  int at_;
+  std::string name_;
+  int steps_ = 0;
+  bool blown_ = false;
+};
+
+}  // namespace palpation::test

@@ -1,0 +1,56 @@
+// Writes the binary seeds of the fuzz corpora (tests/fuzz/corpus/): encoded HandHIRO
+// state/command packets and small .pmesh files. The JSON seeds are the built-in
+// scenarios (palpation scenario NAME) and hand-written edge cases.
+//   make_seeds CORPUS_DIR
+#include <cstdio>
+#include <string>
+
+#include "handhiro_protocol.h"
+#include "mesh.h"
+#include "model_cache.h"
+#include "scenario.h"
+
+namespace pr = palpation::device::protocol;
+
+static void write(const std::string& path, const void* data, std::size_t n) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) { std::perror(path.c_str()); return; }
+  std::fwrite(data, 1, n, f);
+  std::fclose(f);
+}
+
+int main(int argc, char** argv) {
+  const std::string dir = argc > 1 ? argv[1] : "tests/fuzz/corpus";
+  std::uint8_t buf[pr::kMaxPacketSize];
+  pr::StatePacket s;
+  s.header.session = 7;
+  s.header.sequence = 42;
+  s.header.send_time_ns = 123456789;
+  for (int f = 0; f < 5; ++f) {
+    s.fingers[f].position = {0.01 * f, 0.02, 0.08};
+    s.fingers[f].flags = pr::kFingerAttached | pr::kFingerPresent;
+  }
+  write(dir + "/protocol/state.bin", buf, pr::encode(s, buf, sizeof buf));
+  s.finger_count = 2;
+  s.status = pr::kStatusWatchdog;
+  write(dir + "/protocol/state-2fingers.bin", buf, pr::encode(s, buf, sizeof buf));
+  pr::CommandPacket c;
+  c.header.type = pr::PacketType::Command;
+  c.header.sequence = 9;
+  c.flags = pr::kCommandEnable;
+  c.fingers[0].force = {0.5, 0, 1.5};
+  c.fingers[0].enabled = true;
+  write(dir + "/protocol/command.bin", buf, pr::encode(c, buf, sizeof buf));
+
+  using palpation::sim::make_box_mesh;
+  auto box = make_box_mesh(Eigen::Vector3d(0.1, 0.1, 0.05), 1, 1, 1);
+  palpation::sim::save_mesh_cache(dir + "/model_cache/box-1.pmesh", box, "seed");
+  box = make_box_mesh(Eigen::Vector3d(0.1, 0.1, 0.05), 2, 2, 1);
+  palpation::sim::save_mesh_cache(dir + "/model_cache/box-2.pmesh", box, "seed");
+
+  for (const auto& name : palpation::sim::builtin_scenario_names()) {
+    const std::string j = palpation::sim::scenario_to_json(palpation::sim::builtin_scenario(name));
+    write(dir + "/scenario/" + name + ".json", j.data(), j.size());
+  }
+  return 0;
+}
