@@ -1,6 +1,7 @@
 #include "force_plots.h"
 
 #include <QChart>
+#include <QCoreApplication>
 #include <QChartView>
 #include <QEvent>
 #include <QFile>
@@ -91,7 +92,7 @@ void ForcePlots::retranslate() {
   fz_chart_->setTitle(tr("Fz per finger (N)"));
   fx_chart_->setTitle(tr("Fz (N) against finger x (m)"));
   for (int f = 0; f < 5; ++f) {
-    const QString n = tr(kFingerName[f]);
+    const QString n = QCoreApplication::translate("ForcePlots", kFingerName[f]);
     mag_[f]->setName(n);
     fz_[f]->setName(n);
     fx_[f]->setName(n);

@@ -96,7 +96,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   palpation::ui::MainWindow w(std::move(ws));
+  // Screenshots show the default scene: English, mono, whatever the stored settings say.
   if (cli.isSet(lang)) w.set_language(cli.value(lang));
+  else if (cli.isSet(shot)) w.set_language(QStringLiteral("en"));
+  if (cli.isSet(shot) && !cli.isSet(stereo)) w.view()->set_stereo(palpation::ui::VtkView::Stereo::Mono);
   if (cli.isSet(trainee)) w.set_trainee(true);
   if (cli.isSet(stereo)) {
     const QString s = cli.value(stereo);

@@ -94,6 +94,8 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : 
     ws_->device().set_mode(i == 1 ? app::WorkstationDevice::Mode::Mouse : app::WorkstationDevice::Mode::Script);
     if (i == 1) ws_->set_mouse_finger(Eigen::Vector3d::Zero(), false);
     view_->set_tool(i == 1 ? VtkView::Tool::Palpate : VtkView::Tool::Camera);
+    if (i == 1)
+      statusBar()->showMessage(tr("Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in."), 8000);
     ws_->log_event("mode", i == 1 ? "device: mouse palpation" : "device: scripted hand");
   });
   connect(tumour_panel_->add, &QPushButton::clicked, this, [this] {
@@ -212,6 +214,7 @@ void MainWindow::build_actions() {
   a_instructor_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+I")));
   a_instructor_->setShortcutContext(Qt::ApplicationShortcut);
   a_trainee_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+T")));
+  a_instructor_->setVisible(false);  // shown in trainee mode only
 
   lang_menu_ = menuBar()->addMenu(QStringLiteral("Language / 言語"));
   a_en_ = lang_menu_->addAction(QStringLiteral("English"), this, [this] { set_language(QStringLiteral("en")); });
@@ -343,7 +346,8 @@ void MainWindow::tick() {
     update_status();
     const auto& s = ws_->stats();
     if (ws_->device().mode() == app::WorkstationDevice::Mode::Mouse)
-      view_->set_overlay_text(tr("Index finger: %1 N, press %2 mm (wheel or drag to press)")
+      // Numbers and units only: VTK's built-in font has no Japanese glyphs.
+      view_->set_overlay_text(QStringLiteral("F = %1 N    press %2 mm")
                                   .arg(s.force_n[1], 0, 'f', 2)
                                   .arg(view_->press_depth() * 1000, 0, 'f', 1));
     else

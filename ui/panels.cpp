@@ -1,6 +1,7 @@
 #include "panels.h"
 
 #include <QCheckBox>
+#include <QCoreApplication>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QEvent>
@@ -332,7 +333,7 @@ void DevicePanel::retranslate() {
   set_label(form_, jitter, tr("Loop jitter"));
   note->setText(tr("The HandHIRO network link is chosen at start: palpation-trainer --device emulator, "
                    "or --device handhiro --robot ADDRESS:PORT."));
-  for (int f = 0; f < 5; ++f) names_[f]->setText(tr(kFingers[f]));
+  for (int f = 0; f < 5; ++f) names_[f]->setText(QCoreApplication::translate("DevicePanel", kFingers[f]));
 }
 
 void DevicePanel::changeEvent(QEvent* e) {
