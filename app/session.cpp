@@ -29,6 +29,7 @@
 #include "recording.h"
 #include "haptic_thread.h"
 #include "scripted_device.h"
+#include "sim_fingers.h"
 #include "simulation.h"
 
 extern char** environ;
@@ -125,21 +126,12 @@ class SimulationThread {
       const double since = prev_start == 0 ? 0.0 : double(now - prev_start) * 1e-9;
       prev_start = now;
       for (int k = 0; k < nf; ++k) {
-        // The simulated fingertip: with the virtual coupling, the proxy balanced against
-        // this thread's newest contact model at the newest device position (computed here,
-        // not taken from the haptic loop, whose proxy may still be one model behind); with
-        // direct coupling, the device's fingertip. Its velocity: the proxy's since the
-        // previous step.
-        const int d = cfg_.finger_map[k];
-        const dv::FingerState& fs = pf.fingers[d];
-        const dv::Vec3 xd = kc_ > 0 ? dv::couple(last_[d], fs.position, kc_).proxy : fs.position;
-        const bool ok = dv::finite(xd) && dv::finite(fs.velocity);
-        const Eigen::Vector3d x = to_eigen(reg.to_world(ok ? xd : dv::Vec3{}));
-        in[k].velocity = (since > 0 && in[k].active && ok) ? Eigen::Vector3d((x - in[k].position) / since)
-                                                         : to_eigen(reg.vector_to_world(ok ? fs.velocity : dv::Vec3{}));
-        in[k].position = x;
-        // A detached fingertip or a lost link touches nothing.
-        in[k].active = ok && fs.present && fs.attached && pf.connected;
+        // The simulated fingertip (app/sim_fingers.h, shared with the workstation): with
+        // the virtual coupling, the proxy balanced against this thread's newest contact
+        // model at the newest device position (computed here, not taken from the haptic
+        // loop, whose proxy may still be one model behind); with direct coupling, the
+        // device's fingertip.
+        finger_from_pose(pf, cfg_.finger_map[k], last_[cfg_.finger_map[k]], kc_, reg, since, in[k]);
         x0[k] = in[k].position;
       }
       if (params.solver.dt != h) {
