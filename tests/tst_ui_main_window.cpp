@@ -7,12 +7,14 @@
 #include <QtTest>
 
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QMenuBar>
 #include <QStandardPaths>
 #include <QUndoStack>
 
 #include "force_plots.h"
 #include "main_window.h"
+#include "panels.h"
 #include "tumour_editor.h"
 #include "vtk_view.h"
 
@@ -164,6 +166,33 @@ class TstUiMainWindow : public QObject {
     ed->undo_stack()->undo();
     QVERIFY(synced());
     QVERIFY(ws.applied_young() == before);
+  }
+
+  // The brush through the real mouse path: pick on the 3-D view, drag, release.
+  void paint_with_the_mouse() {
+    ui::VtkView* v = w_->view();
+    ui::TumourEditor* ed = w_->editor();
+    Eigen::Vector3d p, n;
+    const QPoint c = v->rect().center();
+    QVERIFY(v->pick_surface(c, p, n));
+    QVERIFY(p.z() > 0.01);   // on the dome, above the chest wall
+    QVERIFY(n.z() > 0.0);    // outward, toward the camera side
+    const int index0 = ed->undo_stack()->index();
+    // The window takes the brush from the Tumours panel at the start of a stroke.
+    w_->tumour_panel()->young->setValue(150.0);  // kPa: differs from tissue and the patient's tumour
+    v->set_tool(ui::VtkView::Tool::Paint);
+    QTest::mousePress(v, Qt::LeftButton, Qt::NoModifier, c);
+    for (int i = 1; i <= 5; ++i) {
+      QMouseEvent move(QEvent::MouseMove, QPointF(c + QPoint(4 * i, 0)), v->mapToGlobal(QPointF(c + QPoint(4 * i, 0))),
+                       Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+      QApplication::sendEvent(v, &move);
+    }
+    QTest::mouseRelease(v, Qt::LeftButton, Qt::NoModifier, c + QPoint(20, 0));
+    v->set_tool(ui::VtkView::Tool::Camera);
+    QCOMPARE(ed->undo_stack()->index(), index0 + 1);
+    QVERIFY(synced());
+    ed->undo_stack()->undo();
+    QVERIFY(synced());
   }
 
   void plots_receive_data() {
