@@ -8,6 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <vector>
+
+#include "crc32.h"
 #include "handhiro_protocol.h"
 
 namespace pr = palpation::device::protocol;
@@ -16,7 +19,16 @@ namespace {
 bool all_finite(const palpation::device::Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* in, std::size_t size) {
+  // Datagrams end in a CRC-32 of everything before it: put the right one there (a peer
+  // can send any bytes with a valid CRC), so the fuzzer explores the field checks behind
+  // it. Inputs whose first byte is 0x5A keep theirs (the CRC test itself).
+  std::vector<std::uint8_t> bytes(in, in + size);
+  if (size >= 8 && in[0] != 0x5A) {
+    const std::uint32_t c = palpation::device::crc32(bytes.data(), size - 4);
+    for (int k = 0; k < 4; ++k) bytes[size - 4 + k] = std::uint8_t(c >> (8 * k));
+  }
+  const std::uint8_t* data = bytes.data();
   pr::PacketType type{};
   (void)pr::peek_type(data, size, type);
   std::uint8_t buf[pr::kMaxPacketSize];

@@ -8,6 +8,7 @@
 #include "handhiro_protocol.h"
 #include "mesh.h"
 #include "model_cache.h"
+#include "recording.h"
 #include "scenario.h"
 
 namespace pr = palpation::device::protocol;
@@ -50,7 +51,19 @@ int main(int argc, char** argv) {
 
   for (const auto& name : palpation::sim::builtin_scenario_names()) {
     const std::string j = palpation::sim::scenario_to_json(palpation::sim::builtin_scenario(name));
+    if (j.size() > 4096) continue;  // the paper sweeps (128 KB of keyframes) slow fuzzing down
     write(dir + "/scenario/" + name + ".json", j.data(), j.size());
+  }
+  {
+    nlohmann::json header = {{"scenario", nlohmann::json::parse(palpation::sim::scenario_to_json(
+                                              palpation::sim::builtin_scenario("hertz")))}};
+    palpation::app::RecordingWriter w(dir + "/recording/short.prec", header, 1);
+    for (int i = 0; i < 40; ++i) {
+      const Eigen::Vector3d x(0.001 * i, 0, 0.05), f(0, 0, 0.01 * i);
+      w.add_tick(0.001 * (i + 1), &x, &f);
+      if (i == 20) w.add_event(0.021, "mark", {{"note", "seed"}});
+    }
+    w.close();
   }
   return 0;
 }
