@@ -140,6 +140,16 @@ CommandAction add_patient_command(CLI::App& app) {
         p.body = {{"patient", {{"mesh", o->name + ".pmesh"}}},
                   {"tissue", {{"young_modulus", 19000}, {"poisson_ratio", 0.45}, {"density", 1000}}},
                   {"inclusions", nlohmann::json::array()}};
+        {
+          // The default press of `patient export`: straight down over the highest point.
+          Eigen::Vector3d top = r.mesh.nodes.front();
+          for (const auto& n : r.mesh.nodes)
+            if (n.z() > top.z()) top = n;
+          const double rad = 0.008, z0 = top.z() + rad + 0.005, z1 = top.z() + rad - 0.01;
+          p.body["fingers"] = nlohmann::json::array(
+              {{{"radius", rad}, {"path", {{0.0, top.x(), top.y(), z0}, {1.0, top.x(), top.y(), z1}, {2.0, top.x(), top.y(), z0}}}}});
+          p.body["duration"] = 2.0;
+        }
         PatientLibrary lib(lo);
         lib.add(p);
         std::printf("imported %s as \"%s\": %s; %s; base plane n = (%.3f, %.3f, %.3f) %s, %.1f cm^2; %d nodes, %d "

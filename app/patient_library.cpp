@@ -141,6 +141,10 @@ std::vector<PatientRecord> PatientLibrary::builtin_patients() {
 json patient_scenario(const PatientRecord& p, const std::string& mesh_file) {
   json s = p.body;
   if (!mesh_file.empty()) s["patient"]["mesh"] = mesh_file;
+  if (s.contains("fingers")) {  // the patient brings its own press (imported scans: over the top)
+    if (!s.contains("duration")) s["duration"] = 2.0;
+    return s;
+  }
   // A default press: over the first inclusion, else over the breast's axis / the origin.
   double x = 0.0, top = 0.1;
   if (s["patient"].value("phantom", "") == "breast") {

@@ -4,6 +4,7 @@
 #include <QtTest>
 
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sys/resource.h>
@@ -295,6 +296,73 @@ class TestRecording : public QObject {
     other.header["scenario"]["tissue"]["young_modulus"] = 40000;
     const ReplayResult r2 = replay_recording(other, {});
     QVERIFY(r2.max_force_diff > 1e-3);
+  }
+
+  // A full disk during a session (a 40 kB file-size limit in a child process): the
+  // recording stops with the error, the session runs to its end with every force finite
+  // and within the limit (the device stays safe), the recording up to then is readable.
+  void diskFullDuringASession() {
+    const std::string p = tmpdir("session-full") + "/session.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    const pid_t pid = ::fork();
+    QVERIFY(pid >= 0);
+    if (pid == 0) {
+      std::signal(SIGXFSZ, SIG_IGN);
+      rlimit rl{40000, 40000};
+      ::setrlimit(RLIMIT_FSIZE, &rl);
+      int code = 3;
+      try {
+        SessionOptions opt;
+        opt.device = "scripted";
+        opt.priority = 0;
+        opt.record_path = p;
+        opt.sim_realtime = false;
+        opt.duration = 1.0;
+        const SessionResult res = run_session(s, opt);
+        const bool stopped = !res.recording["complete"].get<bool>() &&
+                             res.recording["error"].get<std::string>().find("File too large") != std::string::npos;
+        code = res.ok && stopped && res.loop["forces"]["nonfinite_sent"].get<int>() == 0 ? 0 : 4;
+      } catch (...) {
+        code = 5;
+      }
+      ::_exit(code);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    QVERIFY(WIFEXITED(status));
+    QCOMPARE(WEXITSTATUS(status), 0);
+    const Recording r = read_recording(p);
+    QVERIFY(!r.complete);
+    QVERIFY(r.ticks() >= 250 && r.ticks() < 1000);  // 40 kB: the header and 250-500 of 1,000 ticks (56 bytes each)
+    qInfo("disk full: %zu of 1000 ticks kept, %llu bytes", r.ticks(), (unsigned long long)r.file_bytes);
+  }
+
+  // The command line: a corrupted recording is exit 2 with one line naming the file, the
+  // chunk and the reason, and writes nothing; a good one replays (exit 0).
+  void commandLine() {
+    const std::string dir = tmpdir("cli");
+    const std::string p = dir + "/run.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    s.duration = 0.1;
+    RunResult run = run_headless(s, {});
+    {
+      RecordingWriter w(p, header_for(s), 1);
+      for (const auto& smp : run.samples) w.add_tick(smp.t, &smp.x, &smp.f);
+      w.close();
+    }
+    const std::string exe = PALPATION_EXE;
+    const std::string ok_cmd = exe + " replay " + p + " --out " + dir + "/out --quiet > " + dir + "/ok.txt 2>&1";
+    QCOMPARE(WEXITSTATUS(std::system(ok_cmd.c_str())), 0);
+    QVERIFY(fs::exists(dir + "/out/fingers.csv"));
+    std::string b = bytes_of(p);
+    b[b.size() / 2] ^= 0x5A;
+    put_bytes(p, b);
+    const std::string bad_cmd = exe + " replay " + p + " --out " + dir + "/bad 2> " + dir + "/err.txt";
+    QCOMPARE(WEXITSTATUS(std::system(bad_cmd.c_str())), 2);
+    const QString err = QString::fromStdString(bytes_of(dir + "/err.txt")).trimmed();
+    QVERIFY2(!err.contains('\n') && err.contains(QString::fromStdString(p) + ": chunk ") && err.contains("checksum mismatch"),
+             qPrintable(err));
+    QVERIFY(!fs::exists(dir + "/bad/fingers.csv"));
   }
 
   // Every session records: a short scripted session writes a complete recording whose
