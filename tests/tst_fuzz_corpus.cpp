@@ -12,6 +12,7 @@
 extern "C" int fuzz_scenario_one(const std::uint8_t* data, std::size_t size);
 extern "C" int fuzz_model_cache_one(const std::uint8_t* data, std::size_t size);
 extern "C" int fuzz_protocol_one(const std::uint8_t* data, std::size_t size);
+extern "C" int fuzz_recording_one(const std::uint8_t* data, std::size_t size);
 
 namespace {
 
@@ -37,6 +38,7 @@ class TestFuzzCorpus : public QObject {
   void scenario() { QVERIFY(replay("scenario", fuzz_scenario_one) >= 3); }
   void modelCache() { QVERIFY(replay("model_cache", fuzz_model_cache_one) >= 2); }
   void protocol() { QVERIFY(replay("protocol", fuzz_protocol_one) >= 3); }
+  void recording() { QVERIFY(replay("recording", fuzz_recording_one) >= 1); }
 };
 
 QTEST_GUILESS_MAIN(TestFuzzCorpus)
