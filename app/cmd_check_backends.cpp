@@ -260,7 +260,8 @@ int run_check(const CheckOptions& o) {
     keymesh.nodes = model.rest;
     keymesh.tets = model.tets;
     std::ostringstream key;
-    key << "cpu-trace-v1-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sd)) << std::dec
+    // v2: area-weighted contact (session 2); bump whenever the CPU step changes results.
+    key << "cpu-trace-v2-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sd)) << std::dec
         << '-' << o.steps << ".bin";
     const std::string path = (std::filesystem::path(sim::cache_dir()) / key.str()).string();
     Trace cpu;

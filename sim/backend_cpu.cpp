@@ -55,10 +55,16 @@ class CpuBackend final : public Backend {
     x_.resize(3 * nn);
     v_.resize(3 * nn);
     q_.resize(ne);
-    blocks_.resize(9 * std::size_t(m_.num_blocks()));
-    b_.resize(3 * nf);
+    // Extra blocks and rows at the end (one per thread) take the contributions of fixed
+    // nodes, so that the element loop has no branches (see element()).
+#ifdef _OPENMP
+    threads_ = std::max(1, omp_get_max_threads());
+#endif
+    blocks_.resize(9 * (std::size_t(m_.num_blocks()) + threads_));
+    b_.resize(3 * (std::size_t(nf) + threads_));
     dv_.resize(3 * nf);
-    kv_.resize(3 * nf);
+    kv_.resize(3 * (std::size_t(nf) + threads_));
+    build_element_tables();
     precond_.resize(9 * std::size_t(nf));
     cg_.resize(3 * nf);
     update_materials();
@@ -82,6 +88,33 @@ class CpuBackend final : public Backend {
       mu_[e] = T(m_.mu[e]);
     }
     rested_ = false;
+  }
+
+  // Per-element constants in T, contiguous, read once per element per step: shape
+  // gradients, volume, g_a . g_b (a <= b), and the offsets of each of the 16 blocks and
+  // 4 rows (-1 for a fixed node: element() sends those to its thread's trash slot).
+  void build_element_tables() {
+    const int ne = m_.num_tets();
+    eg_.resize(12 * std::size_t(ne));
+    egg_.resize(10 * std::size_t(ne));
+    evol_.resize(ne);
+    eblk_.resize(16 * std::size_t(ne));
+    erow_.resize(4 * std::size_t(ne));
+    for (int e = 0; e < ne; ++e) {
+      evol_[e] = T(m_.volume[e]);
+      for (int a = 0; a < 4; ++a) {
+        for (int k = 0; k < 3; ++k) eg_[12 * std::size_t(e) + 3 * a + k] = T(m_.grad[e][a][k]);
+        const int row = m_.dof[m_.tets[e][a]];
+        erow_[4 * std::size_t(e) + a] = row < 0 ? -1 : 3 * row;
+      }
+      int pair = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a; b < 4; ++b) egg_[10 * std::size_t(e) + pair++] = T(m_.grad[e][a].dot(m_.grad[e][b]));
+      for (int k = 0; k < 16; ++k) {
+        const int blk = m_.tet_block[e][k];
+        eblk_[16 * std::size_t(e) + k] = blk < 0 ? -1 : 9 * blk;
+      }
+    }
   }
 
   void reset() override {
@@ -150,7 +183,10 @@ class CpuBackend final : public Backend {
   }
 
  private:
-  bool parallel() const { return m_.num_free() >= kParallelMinFree && p_.solver.threads != 1; }
+  // threads: 1 = serial, >= 2 = always parallel (OpenMP's team), 0 = where it pays.
+  bool parallel() const {
+    return p_.solver.threads >= 2 || (p_.solver.threads == 0 && m_.num_free() >= kParallelMinFree);
+  }
 
   void surface_bounds() {
     contact::Bounds b;
@@ -188,48 +224,72 @@ class CpuBackend final : public Backend {
 
   void element(int e, T kscale) {
     const auto& t = m_.tets[e];
-    V3 x[4], g[4], r[4], f[4], vv[4], kv[4];
+    const T* ge = &eg_[12 * std::size_t(e)];
+    int thread = 0;
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+#endif
+    const int trash_row = 3 * (m_.num_free() + thread), trash_blk = 9 * (m_.num_blocks() + thread);
+    int row[4], blk[16];
     for (int a = 0; a < 4; ++a) {
-      x[a] = V3(x_[3 * t[a]], x_[3 * t[a] + 1], x_[3 * t[a] + 2]);
-      vv[a] = V3(v_[3 * t[a]], v_[3 * t[a] + 1], v_[3 * t[a] + 2]);
-      g[a] = m_.grad[e][a].template cast<T>();
+      const int v = erow_[4 * std::size_t(e) + a];
+      row[a] = v < 0 ? trash_row : v;
+    }
+    for (int k = 0; k < 16; ++k) {
+      const int v = eblk_[16 * std::size_t(e) + k];
+      blk[k] = v < 0 ? trash_blk : v;
+    }
+    V3 x[4], g[4], r[4], vv[4], kv[4];
+    for (int a = 0; a < 4; ++a) {
+      const T* xa = &x_[3 * std::size_t(t[a])];
+      const T* va = &v_[3 * std::size_t(t[a])];
+      x[a] = V3(xa[0], xa[1], xa[2]);
+      vv[a] = V3(va[0], va[1], va[2]);
+      g[a] = V3(ge[3 * a], ge[3 * a + 1], ge[3 * a + 2]);
     }
     const M3 F = fem::deformation_gradient<T>(x, g);
     fem::extract_rotation<T>(F, q_[e]);
     const M3 R = q_[e].toRotationMatrix();
-    const T vol = T(m_.volume[e]);
-    fem::element_forces<T>(F, R, g, vol, lambda_[e], mu_[e], f);
+    const T vol = evol_[e], lam = lambda_[e], mu = mu_[e];
+    // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
+    // formed once).
+    const M3 RS = -vol * (R * fem::linear_stress<T>(R.transpose() * F - M3::Identity(), lam, mu));
     for (int a = 0; a < 4; ++a) r[a] = R * g[a];
-    fem::stiffness_apply<T>(r, vol, lambda_[e], mu_[e], vv, kv);
+    fem::stiffness_apply<T>(r, vol, lam, mu, vv, kv);
     for (int a = 0; a < 4; ++a) {
-      const int ia = m_.dof[t[a]];
-      if (ia < 0) continue;
+      const V3 f = RS * g[a];
+      T* bb = &b_[std::size_t(row[a])];
+      T* kk = &kv_[std::size_t(row[a])];
       for (int k = 0; k < 3; ++k) {
-        b_[3 * ia + k] += f[a][k];
-        kv_[3 * ia + k] += kv[a][k];
+        bb[k] += f[k];
+        kk[k] += kv[a][k];
       }
     }
-    // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
+    // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed. Blocks of fixed
+    // nodes land in the trash block (no branch).
+    const T* gg = &egg_[10 * std::size_t(e)];
     const T vs = kscale * vol;
-    const T la = vs * lambda_[e], mb = vs * mu_[e];
+    const T la = vs * lam, mb = vs * mu;
+    int pair = 0;
     for (int a = 0; a < 4; ++a) {
+      const V3 lra = la * r[a], mra = mb * r[a];
       for (int b = a; b < 4; ++b) {
-        const int ab = m_.tet_block[e][4 * a + b];
-        if (ab < 0) continue;
-        const T mg = mb * T(m_.grad[e][a].dot(m_.grad[e][b]));
+        const T mg = mb * gg[pair++];
         // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I), scaled.
         T k[9];
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) k[3 * i + j] = la * r[a][i] * r[b][j] + mb * r[b][i] * r[a][j];
+          for (int j = 0; j < 3; ++j) k[3 * i + j] = lra[i] * r[b][j] + r[b][i] * mra[j];
         k[0] += mg;
         k[4] += mg;
         k[8] += mg;
-        T* dst = &blocks_[9 * std::size_t(ab)];
-        for (int i = 0; i < 9; ++i) dst[i] += k[i];
-        if (b == a) continue;
-        T* tr = &blocks_[9 * std::size_t(m_.tet_block[e][4 * b + a])];
+        // Blocks are column-major (cg::multiply): K_ab goes in transposed index order,
+        // and K_ba = K_ab^T is then k in its own order.
+        T* dst = &blocks_[std::size_t(blk[4 * a + b])];
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) tr[3 * j + i] += k[3 * i + j];
+          for (int j = 0; j < 3; ++j) dst[3 * j + i] += k[3 * i + j];
+        if (b == a) continue;
+        T* tr = &blocks_[std::size_t(blk[4 * b + a])];
+        for (int i = 0; i < 9; ++i) tr[i] += k[i];
       }
     }
   }
@@ -264,7 +324,8 @@ class CpuBackend final : public Backend {
     const double ks = p_.contact.stiffness, ke = p_.contact.damping;
     for (const auto& c : contacts_) {
       const double rate = -c.n.dot(point_velocity(c) - fingers[c.finger].velocity);
-      const double mag = contact::penalty(ks, ke, c.depth, rate);
+      const double cks = c.scale * ks, cke = c.scale * ke;  // area-weighted (contact_sphere.h)
+      const double mag = contact::penalty(cks, cke, c.depth, rate);
       if (mag <= 0) continue;
       const Eigen::Matrix3d nn = c.n * c.n.transpose();
       for (int k = 0; k < 3; ++k) {
@@ -273,8 +334,8 @@ class CpuBackend final : public Backend {
         if (i < 0 || c.w[k] <= 0) continue;
         const Eigen::Vector3d vn(v_[3 * node], v_[3 * node + 1], v_[3 * node + 2]);
         // Linearised: f(x + h v') ~ f - h ks n n^T v', damping ke n n^T on v'.
-        const Eigen::Vector3d rhs = double(h) * c.w[k] * (mag * c.n - double(h) * ks * nn * vn);
-        const Eigen::Matrix3d A = c.w[k] * (double(h) * double(h) * ks + double(h) * ke) * nn;
+        const Eigen::Vector3d rhs = double(h) * c.w[k] * (mag * c.n - double(h) * cks * nn * vn);
+        const Eigen::Matrix3d A = c.w[k] * (double(h) * double(h) * cks + double(h) * cke) * nn;
         T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
         for (int r = 0; r < 3; ++r) {
           b_[3 * i + r] += T(rhs[r]);
@@ -294,10 +355,10 @@ class CpuBackend final : public Backend {
     for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
     for (const auto& c : contacts_) {
       const double rate = -c.n.dot(point_velocity(c) - fingers[c.finger].velocity);
-      const double mag = contact::penalty(ks, ke, c.depth, rate);
+      const double mag = contact::penalty(c.scale * ks, c.scale * ke, c.depth, rate);
       FingerOutput& o = out[c.finger];
       o.force_raw -= mag * c.n;
-      o.stiffness -= ks * c.n * c.n.transpose();
+      o.stiffness -= c.scale * ks * c.n * c.n.transpose();
       o.contact_point += c.p;
       ++o.contacts;
     }
@@ -316,7 +377,9 @@ class CpuBackend final : public Backend {
   std::vector<T> x_, v_;                     // (nnode x 3) state
   std::vector<Eigen::Quaternion<T>> q_;      // (ntet) element rotations, warm start
   std::vector<T> lambda_, mu_;               // (ntet) materials in T
-  std::vector<T> blocks_;                    // (nblock x 9) system matrix
+  std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
+  std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
+  std::vector<T> blocks_;                    // (nblock x 9) system matrix, column-major blocks
   std::vector<T> b_, dv_, kv_;               // (nfree x 3)
   std::vector<T> precond_;                   // (nfree x 9) inverse diagonal blocks
   cg::Workspace<T> cg_;
@@ -324,6 +387,7 @@ class CpuBackend final : public Backend {
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;
   bool rested_ = true;
+  int threads_ = 1;                          // trash slots (OpenMP threads)
 };
 
 }  // namespace

@@ -334,7 +334,7 @@ __device__ void closest_on_triangle(const double p[3], const double a[3], const 
 template <class T>
 __device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const StepConsts& k, bool system,
                              double* sacc, int* scount, int first, int stride) {
-  const double ks = k.ks, ke = k.ke, h = k.h;
+  const double h = k.h;
   for (int t = first; t < a.ntri; t += stride) {
     const int nd[3] = {a.tri[3 * t], a.tri[3 * t + 1], a.tri[3 * t + 2]};
     double P[3][3];
@@ -375,6 +375,16 @@ __device__ void detect_nodes(const DetectArgs<T>& a, const FingersArg& F, const 
         n2 = -cz / l;
       }
       const double depth = r - dist;
+      // Area weight of the penalty (contact::area_scale): triangle area / (pi r^2).
+      double sc;
+      {
+        const double e1[3] = {P[1][0] - P[0][0], P[1][1] - P[0][1], P[1][2] - P[0][2]};
+        const double e2[3] = {P[2][0] - P[0][0], P[2][1] - P[0][1], P[2][2] - P[0][2]};
+        const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2],
+                     cz = e1[0] * e2[1] - e1[1] * e2[0];
+        sc = 0.5 * sqrt(cx * cx + cy * cy + cz * cz) / (M_PI * r * r);
+      }
+      const double ks = sc * k.ks, ke = sc * k.ke;
       double vp[3] = {0, 0, 0};
       for (int m = 0; m < 3; ++m)
         for (int c = 0; c < 3; ++c) vp[c] += w[m] * double(a.v[3 * nd[m] + c]);

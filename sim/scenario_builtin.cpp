@@ -25,13 +25,16 @@ Scenario paper_sweep(bool tumour) {
   // around the tumour) is identical, so the two sweeps differ only in stiffness.
   Inclusion inc;
   inc.shape = "sphere";
-  inc.center = Eigen::Vector3d(0.125, 0.0, 0.035);
+  // Centre 2 cm below the skin at the apex (top 5 mm under it). The paper puts it "on
+  // the x axis"; with the chest wall on z = 0 that is a half ball against the fixed base,
+  // which no push of the sweep can feel (tumour/no-tumour 1.004, docs/simulation.md).
+  inc.center = Eigen::Vector3d(0.125, 0.0, 0.045);
   inc.radii = Eigen::Vector3d::Constant(0.015);
   inc.young_modulus = tumour ? 107000.0 : s.young_modulus;
   inc.poisson_ratio = 0.45;
   s.inclusions.push_back(inc);
   s.params.solver.dt = 0.001;
-  s.params.contact.stiffness = 2000.0;
+  s.params.contact.stiffness = 5000.0;  // N/m per fingertip cross-section of contact (params.h)
   s.params.contact.damping = 5.0;
   s.params.contact.force_filter_hz = 100.0;
 
@@ -77,7 +80,7 @@ Scenario hertz() {
   s.patient.edge = *resolution_edge("box", "paper");
   s.young_modulus = 19000.0;
   s.poisson_ratio = 0.45;
-  s.params.contact.stiffness = 20000.0;  // stiff penalty: small penetration vs 1 mm
+  s.params.contact.stiffness = 200000.0;  // stiff penalty: penetration ~5 um << 1 mm
   s.params.contact.damping = 5.0;
   const double R = 0.01, top = 0.05, d = 0.001;
   FingerPath fp;

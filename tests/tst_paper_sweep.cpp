@@ -32,11 +32,14 @@ sim::Scenario sweep(const std::string& name) {
 class TestPaperSweep : public QObject {
   Q_OBJECT
  private slots:
-  // What holds on the coarse mesh, asserted: the sweep stays finite with bounded forces,
-  // the four passes are found, and the pushes over the tumour (within 1.2 cm of
-  // x = 0.125 m, every pass) are stronger with it than without. The stricter
-  // criterion, the largest push of every pass within 1 cm of the tumour, is measured and
-  // printed; on the coarse mesh it does not hold (docs/benchmarks.md, "Paper sweep").
+  // Asserted on the coarse mesh: the sweep stays finite with bounded forces, the four
+  // passes are found, at least half of them have their largest push within 1 cm of the
+  // tumour, and the pushes over the tumour (within 1.2 cm of x = 0.125 m) are at least
+  // 15% stronger with it than without. Measured (docs/benchmarks.md, "Paper sweep"): on
+  // the coarse mesh 2 of 4 passes peak within 1 cm (the others 1.2 cm off: the tumour
+  // spans two or three coarse elements) and the ratio is 1.32-1.37; on the paper and
+  // fine meshes (GPU) all 4 passes peak within 4 mm, ratio 1.29-1.47. The thresholds
+  // leave room for Gmsh's meshes differing from run to run.
   void tumourRaisesTheForceOverIt() {
     const sim::Scenario with = sweep("paper-sweep"), without = sweep("paper-sweep-no-tumour");
     sim::patient_mesh(with);  // mesh once (cached) before the two runs share it
@@ -45,8 +48,8 @@ class TestPaperSweep : public QObject {
     rt = app::run_headless(with, {});
     other.join();
     QVERIFY(rt.summary["finite"].get<bool>() && rn.summary["finite"].get<bool>());
-    // A fingertip pressed 1.8 cm into 19 kPa tissue: a few newtons (Hertz for an 8 mm
-    // sphere gives ~6 N); 20 N would mean the contact went unstable.
+    // A fingertip pressed 1.8 cm into 19 kPa tissue: a few newtons (measured 2-6 N from
+    // the fine to the coarse mesh); 20 N would mean the contact went unstable.
     QVERIFY(rt.summary["max_force_n"].get<double>() < 20.0);
     const app::SweepAnalysis at = app::analyze_sweep(rt.samples), an = app::analyze_sweep(rn.samples);
     QCOMPARE(int(at.passes.size()), 4);
@@ -57,6 +60,7 @@ class TestPaperSweep : public QObject {
       if (std::abs(p.x - 0.125) <= 0.01) ++within;
     }
     qInfo("passes peaking within 1 cm of the tumour: %d of %d", within, int(at.passes.size()));
+    QVERIFY2(within >= 2, qPrintable(QString::number(within)));
     auto mean_over_tumour = [](const app::SweepAnalysis& a) {
       double sum = 0;
       int n = 0;
@@ -70,7 +74,7 @@ class TestPaperSweep : public QObject {
     const double ft = mean_over_tumour(at), fn = mean_over_tumour(an);
     qInfo("mean push peak within 1.2 cm of the tumour: %.3f N with it, %.3f N without: ratio %.3f", ft, fn, ft / fn);
     QVERIFY(fn > 1.0);
-    QVERIFY2(ft / fn > 1.02, qPrintable(QString::number(ft / fn)));
+    QVERIFY2(ft / fn > 1.15, qPrintable(QString::number(ft / fn)));
   }
 };
 

@@ -29,12 +29,12 @@ System make_system(double h) {
   s.A = ks * K;
   for (int i = 0; i < s.m.num_free(); ++i)
     for (int k = 0; k < 3; ++k) s.A.coeffRef(3 * i + k, 3 * i + k) += ms * s.m.mass[s.m.free_nodes[i]];
-  s.blocks.assign(9 * std::size_t(s.m.num_blocks()), 0.0);
+  s.blocks.assign(9 * std::size_t(s.m.num_blocks()) + 1, 0.0);  // + 1: cg::multiply reads one past a block
   for (int i = 0; i < s.m.num_free(); ++i)
     for (int k = s.m.row_ptr[i]; k < s.m.row_ptr[i + 1]; ++k) {
       const int j = s.m.col[k];
       for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) s.blocks[9 * std::size_t(k) + 3 * r + c] = s.A.coeff(3 * i + r, 3 * j + c);
+        for (int c = 0; c < 3; ++c) s.blocks[9 * std::size_t(k) + r + 3 * c] = s.A.coeff(3 * i + r, 3 * j + c);  // column-major
     }
   return s;
 }
