@@ -15,6 +15,8 @@
 #   bench  palpation bench: cuda on coarse, paper, xfine in double and float; the textbook
 #          baseline cuda-csr on paper and xfine in double (the equal-error comparison)
 #   idle   palpation bench --scenario idle (no contact, at rest)
+#   sweep  the paper's Fig. 6 sweep on CUDA at SWEEP_MESHES (default paper), with and without
+#          the tumour: largest push per pass and the tumour/no-tumour ratio (sweep.txt)
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
 # micro.txt, ncu.txt, bench.csv, bench.png (matplotlib where present), idle.csv.
 set -uo pipefail
@@ -24,7 +26,7 @@ ROOT=$(pwd)
 BUILD=${BUILD:-/tmp/palpation-build-gpu}
 export PALPATION_CACHE_DIR=${PALPATION_CACHE_DIR:-$ROOT/.gpu-carry/models}
 export PATH=/usr/local/cuda/bin:$PATH
-STAGES=${*:-build check micro bench idle}
+STAGES=${*:-build check micro bench idle sweep}
 BENCH_MESHES=${BENCH_MESHES:-coarse,paper,xfine}
 BASELINE_MESHES=${BASELINE_MESHES:-paper,xfine}
 BENCH_TIMEOUT=${BENCH_TIMEOUT:-330}
@@ -192,6 +194,27 @@ if has idle; then
   timeout 120 "$P" bench --scenario idle --meshes paper,xfine --backends cuda,cuda-csr,cpu --precisions double,float \
     --steps 1000 --out /tmp/palpation-idle
   [[ -f /tmp/palpation-idle/bench.csv ]] && cp /tmp/palpation-idle/bench.csv "$OUT/idle.csv"
+fi
+if has sweep; then
+  for res in ${SWEEP_MESHES:-paper}; do
+    for sc in paper-sweep paper-sweep-no-tumour; do
+      say "sweep: $sc on $res"
+      timeout 200 "$P" run $sc --backend cuda --resolution "$res" --out "/tmp/palpation-sweep-$res-$sc" | tail -1
+    done
+    python3 - "/tmp/palpation-sweep-$res-paper-sweep/summary.json" "/tmp/palpation-sweep-$res-paper-sweep-no-tumour/summary.json" "$res" <<'EOF' | tee -a "$OUT/sweep.txt"
+import json, sys
+t, n = (json.load(open(f)) for f in sys.argv[1:3])
+def near(s, p):
+    v = [q["fz"] for q in s["sweep"]["pushes"] if q["pass"] == p and abs(q["x"] - 0.125) < 0.0045 and q["fz"] > 0.2]
+    return max(v) if v else float("nan")
+passes = t["sweep"]["passes"]
+within = sum(abs(p["peak_x"] - 0.125) <= 0.01 for p in passes)
+print(f"{sys.argv[3]}: {t['nodes']} nodes, step {t['step_ms_median']:.3f} ms; largest push per pass at",
+      ", ".join(f"{p['peak_x']:.4f} m ({p['peak_fz']:.2f} N)" for p in passes),
+      f"-> {within} of {len(passes)} within 1 cm; tumour/no-tumour per pass",
+      ", ".join(f"{near(t, p) / near(n, p):.3f}" for p in range(len(passes))))
+EOF
+  done
 fi
 say "done (status $status)"
 exit $status
