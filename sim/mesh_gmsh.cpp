@@ -265,9 +265,11 @@ bool decode(const std::string& b, TetMesh& m, std::string& error) {
     std::memcpy(v.data(), p, 3 * sizeof(double));
     p += 3 * sizeof(double);
   }
-  std::memcpy(m.tets.data(), p, nt * 4 * sizeof(int));
-  p += nt * 4 * sizeof(int);
-  std::memcpy(m.region.data(), p, nt * sizeof(int));
+  if (nt > 0) {  // memcpy from/to an empty vector's null data() is undefined (UBSan)
+    std::memcpy(m.tets.data(), p, nt * 4 * sizeof(int));
+    p += nt * 4 * sizeof(int);
+    std::memcpy(m.region.data(), p, nt * sizeof(int));
+  }
   return true;
 }
 

@@ -103,9 +103,11 @@ bool load_mesh_cache(const std::string& path, const std::string& key, TetMesh& m
     std::memcpy(v.data(), p, 3 * sizeof(double));
     p += 3 * sizeof(double);
   }
-  std::memcpy(m.tets.data(), p, nt * 4 * sizeof(int));
-  p += nt * 4 * sizeof(int);
-  std::memcpy(m.region.data(), p, nt * sizeof(int));
+  if (nt > 0) {  // memcpy to an empty vector's null data() is undefined (UBSan)
+    std::memcpy(m.tets.data(), p, nt * 4 * sizeof(int));
+    p += nt * 4 * sizeof(int);
+    std::memcpy(m.region.data(), p, nt * sizeof(int));
+  }
   if (std::string v = m.validate(); !v.empty()) return no("corrupt: " + v);
   mesh = std::move(m);
   return true;
