@@ -24,6 +24,9 @@ sim::Scenario sweep(const std::string& name) {
   s.patient.edge = *sim::resolution_edge("breast", s.patient.resolution);
   s.backend = "cpu";
   s.params.solver.threads = 1;  // the two runs go in parallel, one core each
+  // PALPATION_LIGHT_TESTS (the sanitizer stage of .ci/run): the first pass only (6 s of
+  // the 24), a quarter of the work; the full sweep runs in the normal build.
+  if (const char* light = std::getenv("PALPATION_LIGHT_TESTS"); light && *light && *light != '0') s.duration = 6.0;
   return s;
 }
 
@@ -52,7 +55,8 @@ class TestPaperSweep : public QObject {
     // the fine to the coarse mesh); 20 N would mean the contact went unstable.
     QVERIFY(rt.summary["max_force_n"].get<double>() < 20.0);
     const app::SweepAnalysis at = app::analyze_sweep(rt.samples), an = app::analyze_sweep(rn.samples);
-    QCOMPARE(int(at.passes.size()), 4);
+    const bool light = rt.summary["steps"].get<int>() < 10000;
+    QCOMPARE(int(at.passes.size()), light ? 1 : 4);
     int within = 0;
     for (const auto& p : at.passes) {
       qInfo("pass %d (%s): largest push peak %.3f N at x = %.4f m (%.1f mm from the tumour)", p.pass,
@@ -60,7 +64,7 @@ class TestPaperSweep : public QObject {
       if (std::abs(p.x - 0.125) <= 0.01) ++within;
     }
     qInfo("passes peaking within 1 cm of the tumour: %d of %d", within, int(at.passes.size()));
-    QVERIFY2(within >= 2, qPrintable(QString::number(within)));
+    if (!light) QVERIFY2(within >= 2, qPrintable(QString::number(within)));
     auto mean_over_tumour = [](const app::SweepAnalysis& a) {
       double sum = 0;
       int n = 0;
