@@ -21,7 +21,7 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'A', 'L', 'R', 'E', 'C', '\r', '\n'};
 constexpr std::uint32_t kChunkTag = 0x4B4E4843u;  // "CHNK"
-constexpr std::uint32_t kTicks = 1, kEvent = 2, kEnd = 3;
+constexpr std::uint32_t kTicks = 1, kEvent = 2, kEnd = 3, kSteps = 4;
 constexpr std::uint32_t kMaxChunk = 64u << 20;
 constexpr std::uint32_t kMaxHeader = 16u << 20;
 constexpr std::uint32_t kTicksPerChunk = 250;  // 0.25 s at 1 kHz
@@ -152,6 +152,27 @@ void RecordingWriter::add_tick(double t, const Eigen::Vector3d* x, const Eigen::
   if (buffered_ >= kTicksPerChunk || t - buf_t0_ >= 0.25) flush();
 }
 
+void RecordingWriter::add_step(const RecordedStep& st) {
+  if (failed() || closed_) return;
+  if (step_buffered_ == 0) {
+    step_buf_.clear();
+    put_u32(step_buf_, 0);  // count, patched at flush
+  }
+  put_f64(step_buf_, st.t);
+  put_f64(step_buf_, st.h);
+  put_f64(step_buf_, double(st.commands_applied));
+  for (int k = 0; k < fingers_; ++k) {
+    const RecordedStep::Finger fi = k < int(st.fingers.size()) ? st.fingers[std::size_t(k)] : RecordedStep::Finger{};
+    put_f64(step_buf_, fi.active ? 1.0 : 0.0);
+    put_f64(step_buf_, fi.radius);
+    for (int i = 0; i < 3; ++i) put_f64(step_buf_, fi.x[i]);
+    for (int i = 0; i < 3; ++i) put_f64(step_buf_, fi.v[i]);
+    for (int i = 0; i < 3; ++i) put_f64(step_buf_, fi.f[i]);
+  }
+  ++step_buffered_;
+  ++steps_;
+}
+
 void RecordingWriter::add_event(double t, const std::string& kind, json data) {
   if (failed() || closed_) return;
   flush();
@@ -168,6 +189,11 @@ void RecordingWriter::flush(bool sync) {
     write_chunk(kTicks, buf_);
     buffered_ = 0;
   }
+  if (step_buffered_ > 0) {
+    for (int i = 0; i < 4; ++i) step_buf_[std::size_t(i)] = char((step_buffered_ >> (8 * i)) & 0xFF);
+    write_chunk(kSteps, step_buf_);
+    step_buffered_ = 0;
+  }
   const std::int64_t now = now_ns();
   if (sync || now - last_sync_ns_ > 1000000000LL) {
     ::fdatasync(fd_);
@@ -180,6 +206,7 @@ void RecordingWriter::close(json footer) {
   flush();
   if (!footer.is_object()) footer = json{{"value", footer}};
   footer["ticks"] = ticks_;
+  if (steps_ > 0) footer["steps"] = steps_;
   footer["duration_s"] = last_t_;
   footer["closed"] = utc_now();
   write_chunk(kEnd, footer.dump());
@@ -286,6 +313,44 @@ Recording read_recording(const std::string& path) {
           r.x.push_back(x);
           r.f.push_back(f);
         }
+      }
+    } else if (type == kSteps && r.version >= 2) {
+      const std::size_t step_bytes = 24 + 88 * std::size_t(r.fingers);
+      if (len < 4) throw fail(where, "steps chunk too short");
+      const std::uint32_t count = get_u32(q);
+      if (std::uint64_t(len) != 4 + std::uint64_t(count) * step_bytes)
+        throw fail(where, "steps chunk length " + std::to_string(len) + " does not match " + std::to_string(count) + " steps");
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const unsigned char* sp = q + 4 + std::size_t(i) * step_bytes;
+        RecordedStep st;
+        st.t = get_f64(sp);
+        st.h = get_f64(sp + 8);
+        const double applied = get_f64(sp + 16);
+        const std::string which = "step " + std::to_string(i);
+        if (!std::isfinite(st.t) || (!r.steps.empty() && st.t < r.steps.back().t))
+          throw fail(where, which + ": time not finite or decreasing");
+        if (!(st.h > 0 && st.h <= 1.0)) throw fail(where, which + ": dt " + std::to_string(st.h) + " s not in (0, 1]");
+        if (!(applied >= 0 && applied <= 9.0e15) || applied != std::floor(applied) ||
+            (!r.steps.empty() && std::uint64_t(applied) < r.steps.back().commands_applied))
+          throw fail(where, which + ": commands applied not a non-decreasing count");
+        st.commands_applied = std::uint64_t(applied);
+        st.fingers.resize(std::size_t(r.fingers));
+        for (int k = 0; k < r.fingers; ++k) {
+          const unsigned char* fp = sp + 24 + 88 * std::size_t(k);
+          RecordedStep::Finger& fi = st.fingers[std::size_t(k)];
+          const double active = get_f64(fp);
+          fi.radius = get_f64(fp + 8);
+          for (int c = 0; c < 3; ++c) {
+            fi.x[c] = get_f64(fp + 16 + 8 * c);
+            fi.v[c] = get_f64(fp + 40 + 8 * c);
+            fi.f[c] = get_f64(fp + 64 + 8 * c);
+          }
+          if (!(active == 0.0 || active == 1.0) || !(fi.radius > 0 && fi.radius < 1.0) || !fi.x.allFinite() ||
+              !fi.v.allFinite() || !fi.f.allFinite())
+            throw fail(where, which + " finger " + std::to_string(k) + ": bad value (flag, radius or not finite)");
+          fi.active = active == 1.0;
+        }
+        r.steps.push_back(std::move(st));
       }
     } else if (type == kEvent || type == kEnd) {
       json j;

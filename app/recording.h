@@ -5,6 +5,10 @@
 //     type 1 ticks : u32 count, then count x (f64 t, fingers x (f64 x[3], f64 f[3]))   device input + force sent
 //     type 2 event : JSON {"t", "kind": "instructor" | "parameter" | "mark" | "session", ...}
 //     type 3 end   : JSON footer (clean close, or {"recovered": true, ...} after recovery)
+//     type 4 steps : (version 2) u32 count, then count x (f64 t, f64 h, f64 commands_applied,
+//                    fingers x (f64 active, f64 radius, f64 x[3], f64 v[3], f64 f[3]))
+//                    the simulation thread's steps: dt, the fingertip inputs and the forces
+//                    out, so that a review re-simulates a real-time session exactly
 //
 // Little-endian. The writer appends whole chunks with write(2) at least every 0.25 s of
 // recording time and fdatasync()s at least every second, so a crashed process loses at
@@ -23,13 +27,29 @@
 
 namespace palpation::app {
 
-inline constexpr std::uint32_t kRecordingVersion = 1;
+/// Version 2 added the steps chunk (type 4); version 1 files read unchanged.
+inline constexpr std::uint32_t kRecordingVersion = 2;
 inline constexpr int kRecordingMaxFingers = 5;
 
 /// A bad recording: what() names the file, the chunk/offset and the reason.
 class RecordingError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// One simulation step of a real-time session (the workstation's simulation thread):
+/// what Backend::step was given and what it returned. World frame, SI.
+struct RecordedStep {
+  double t = 0;                        // s since the session started (wall clock, as the ticks)
+  double h = 0;                        // s, the step's dt
+  std::uint64_t commands_applied = 0;  // queued commands applied before this step
+  struct Finger {
+    bool active = false;
+    double radius = 0;                 // m
+    Eigen::Vector3d x = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();  // input, m, m/s
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();  // output force on the finger, N
+  };
+  std::vector<Finger> fingers;         // `fingers` of the recording
 };
 
 class RecordingWriter {
@@ -46,6 +66,8 @@ class RecordingWriter {
   /// Never throws: after a write error (disk full) the writer stops and failed() is set;
   /// what was written before stays readable.
   void add_tick(double t, const Eigen::Vector3d* x, const Eigen::Vector3d* f);
+  /// One simulation step (fingers() entries). Buffered, written with the ticks.
+  void add_step(const RecordedStep& s);
   /// An event (instructor event, parameter change, trainee mark); written at once.
   void add_event(double t, const std::string& kind, nlohmann::json data = nlohmann::json::object());
   /// Writes buffered ticks as a chunk; fdatasync when the last sync is over 1 s old (or `sync`).
@@ -57,6 +79,8 @@ class RecordingWriter {
   const std::string& error() const { return error_; }
   std::uint64_t bytes() const { return bytes_; }
   std::uint64_t ticks() const { return ticks_; }
+  std::uint64_t steps() const { return steps_; }
+  int fingers() const { return fingers_; }
   const std::string& path() const { return path_; }
 
   /// Test hook: fail every write after `bytes` bytes in total (0: off), as a full disk would.
@@ -71,6 +95,9 @@ class RecordingWriter {
   std::uint64_t bytes_ = 0, ticks_ = 0, limit_ = 0;
   std::string buf_;             // pending tick records
   std::uint32_t buffered_ = 0;  // ticks in buf_
+  std::string step_buf_;        // pending step records
+  std::uint32_t step_buffered_ = 0;
+  std::uint64_t steps_ = 0;
   double buf_t0_ = 0, last_t_ = 0;
   std::int64_t last_sync_ns_ = 0;
   bool closed_ = false;
@@ -84,6 +111,7 @@ struct Recording {
   std::vector<double> t;             // per tick
   std::vector<Eigen::Vector3d> x, f; // per tick x finger (index tick * fingers + finger)
   std::vector<nlohmann::json> events;
+  std::vector<RecordedStep> steps;   // version 2 workstation sessions; empty otherwise
   int chunks = 0;
   bool complete = false;             // ends with an end chunk
   bool recovered = false;            // the end chunk says it was recovered

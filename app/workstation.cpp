@@ -204,28 +204,49 @@ std::vector<double> Workstation::applied_young(std::uint64_t* applied) const {
   return applied_young_;
 }
 
+void apply_element_young(sim::Simulation& s, const std::vector<std::pair<int, double>>& changes) {
+  sim::Model& m = s.model();
+  for (const auto& [e, E] : changes)
+    if (e >= 0 && e < m.num_tets() && E > 0) m.set_element_material(e, E, m.poisson[e]);
+  s.backend().update_materials();
+}
+
+void apply_params(sim::Simulation& s, const sim::SimParams& p) {
+  sim::SimParams q = p;
+  q.solver.dt = s.backend().params().solver.dt;  // the real-time dt stays the thread's
+  q.solver.threads = s.backend().params().solver.threads;
+  s.backend().set_params(q);
+}
+
+void configure_workstation_threads(sim::Simulation& s) {
+  sim::SimParams params = s.backend().params();
+  // On a small machine the haptic thread needs a core of its own (see session.cpp).
+  if (params.solver.threads == 0 && std::thread::hardware_concurrency() <= 3) {
+    params.solver.threads = 1;
+    s.backend().set_params(params);
+  }
+}
+
+void Workstation::notify_command(CommandRecord r) {
+  r.index = posted_.load();  // the index post() is about to give it
+  for (auto& l : command_listeners_) l(r);
+}
+
 void Workstation::set_element_young(std::vector<std::pair<int, double>> changes, const std::string& event_text) {
   if (!event_text.empty()) log_event("material", event_text);
-  post([changes = std::move(changes)](sim::Simulation& s) {
-    sim::Model& m = s.model();
-    for (const auto& [e, E] : changes)
-      if (e >= 0 && e < m.num_tets() && E > 0) m.set_element_material(e, E, m.poisson[e]);
-    s.backend().update_materials();
-  });
+  if (!command_listeners_.empty()) notify_command({0, "young", changes, {}, {}, event_text});
+  post([changes = std::move(changes)](sim::Simulation& s) { apply_element_young(s, changes); });
 }
 
 void Workstation::set_params(const sim::SimParams& p) {
   log_event("params", "solver/contact parameters changed");
-  post([p](sim::Simulation& s) {
-    sim::SimParams q = p;
-    q.solver.dt = s.backend().params().solver.dt;  // the real-time dt stays the thread's
-    q.solver.threads = s.backend().params().solver.threads;
-    s.backend().set_params(q);
-  });
+  if (!command_listeners_.empty()) notify_command({0, "params", {}, p, {}, "solver/contact parameters changed"});
+  post([p](sim::Simulation& s) { apply_params(s, p); });
 }
 
 void Workstation::load_patient(const sim::Scenario& s) {
   log_event("patient", "loading patient: " + s.source);
+  if (!command_listeners_.empty()) notify_command({0, "patient", {}, {}, s, "loading patient: " + s.source});
   post([this, s](sim::Simulation&) {
     std::lock_guard<std::mutex> lk(mu_);
     opt_.scenario = s;
@@ -245,12 +266,7 @@ void Workstation::build(const sim::Scenario& s) {
   sim_.reset();
   auto simulation = std::make_unique<sim::Simulation>(s);
   simulation->reset();
-  sim::SimParams params = simulation->backend().params();
-  // On a small machine the haptic thread needs a core of its own (see session.cpp).
-  if (params.solver.threads == 0 && std::thread::hardware_concurrency() <= 3) {
-    params.solver.threads = 1;
-    simulation->backend().set_params(params);
-  }
+  configure_workstation_threads(*simulation);
   auto g = std::make_shared<PatientGeometry>();
   const sim::Model& m = simulation->model();
   g->generation = generation_.load() + 1;
@@ -405,7 +421,12 @@ void Workstation::sim_main() {
     cf.sim_time = sim_time;
     cf.published_ns = dv::monotonic_ns();
     contacts_.publish();
-    steps_.push({double(now - t0_ns_) * 1e-9, sim_time, float(ms), st.cg_iterations, st.contacts});
+    StepSample ss{double(now - t0_ns_) * 1e-9, sim_time, float(ms), st.cg_iterations, st.contacts, h, applied_.load(), {}, {}};
+    for (int d = 0; d < nf; ++d) {
+      ss.in[d] = in[d];
+      ss.force[d] = ok ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
+    }
+    steps_.push(ss);
 
     if (now - last_snapshot >= snapshot_period) {
       last_snapshot = now;

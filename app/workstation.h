@@ -115,7 +115,32 @@ struct StepSample {
   float step_ms = 0;
   int cg_iterations = 0;
   int contacts = 0;
+  // What the step was given and gave (the recorder's steps, issue 6: a review re-simulates
+  // the session from these exactly).
+  double h = 0;                                          // s, this step's dt
+  std::uint64_t commands_applied = 0;                    // queued commands applied before it
+  std::array<sim::FingerInput, dv::kMaxFingers> in{};    // device fingers, world
+  std::array<Eigen::Vector3d, dv::kMaxFingers> force{};  // on the finger, N (zero after a reset)
 };
+
+/// A change posted through set_element_young / set_params / load_patient, as data (for
+/// the recorder): `index` is its place among all posted commands (the count applied
+/// before a step says which ones that step saw).
+struct CommandRecord {
+  std::uint64_t index = 0;
+  std::string kind;                                  // "young", "params", "patient"
+  std::vector<std::pair<int, double>> young;         // element, Pa
+  sim::SimParams params;                             // "params"
+  sim::Scenario scenario;                            // "patient"
+  std::string text;
+};
+
+/// The commands' effects, shared with the review's re-simulation (app/review_session.h).
+void apply_element_young(sim::Simulation& s, const std::vector<std::pair<int, double>>& changes);
+void apply_params(sim::Simulation& s, const sim::SimParams& p);
+/// The solver threads the workstation gives a new simulation (one on a machine of 3
+/// cores or fewer, so that the haptic thread keeps a core).
+void configure_workstation_threads(sim::Simulation& s);
 
 struct Event {
   double t = 0;             // s since start()
@@ -220,6 +245,9 @@ class Workstation {
   void add_tick_listener(std::function<void(const TickSample&)> f) { tick_listeners_.push_back(std::move(f)); }
   void add_step_listener(std::function<void(const StepSample&)> f) { step_listeners_.push_back(std::move(f)); }
   void add_event_listener(std::function<void(const Event&)> f) { event_listeners_.push_back(std::move(f)); }
+  /// Called on the posting thread (the GUI) when set_element_young / set_params /
+  /// load_patient posts a command.
+  void add_command_listener(std::function<void(const CommandRecord&)> f) { command_listeners_.push_back(std::move(f)); }
   /// Logs an event (any thread).
   void log_event(const std::string& kind, const std::string& text);
   std::vector<Event> events() const;
@@ -262,6 +290,8 @@ class Workstation {
   std::vector<std::function<void(const TickSample&)>> tick_listeners_;
   std::vector<std::function<void(const StepSample&)>> step_listeners_;
   std::vector<std::function<void(const Event&)>> event_listeners_;
+  std::vector<std::function<void(const CommandRecord&)>> command_listeners_;
+  void notify_command(CommandRecord r);
   std::int64_t rate_window_ns_ = 0;
   std::uint64_t window_ticks_ = 0, window_steps_ = 0;
   std::int64_t prev_tick_ns_ = 0;

@@ -106,6 +106,66 @@ class TestRecording : public QObject {
           double(r.file_bytes) / 1e3, r.duration(), double(r.file_bytes) / r.duration() * 60 / 1e6);
   }
 
+  // Version 2: the workstation's simulation steps (dt, fingertip inputs, forces out) round
+  // trip bit for bit; a steps chunk in a version-1 file and bad step values are errors.
+  void stepsRoundTripAndVersions() {
+    const std::string p = tmpdir("steps") + "/a.palrec";
+    sim::Scenario s = sim::parse_scenario(kScene, "scene.json");
+    auto step = [](int i) {
+      RecordedStep st;
+      st.t = 0.013 * i;
+      st.h = 0.010 + 1e-5 * i;
+      st.commands_applied = std::uint64_t(i / 3);
+      st.fingers.resize(2);
+      st.fingers[1].active = i % 2 == 0;
+      st.fingers[1].radius = 0.008;
+      st.fingers[0].radius = 0.008;
+      st.fingers[1].x = {0.1 + 1e-3 * i, -0.2, 1.0 / 3.0};
+      st.fingers[1].v = {0.01, 0, -0.02};
+      st.fingers[1].f = {0, 0.1, 0.3 + 0.01 * i};
+      return st;
+    };
+    {
+      RecordingWriter w(p, header_for(s), 2);
+      for (int i = 0; i < 40; ++i) {
+        w.add_step(step(i));
+        write_synthetic(w, 13, 13 * i);
+      }
+      w.close();
+      QCOMPARE(w.steps(), std::uint64_t(40));
+    }
+    const Recording r = read_recording(p);
+    QCOMPARE(r.version, kRecordingVersion);
+    QCOMPARE(r.steps.size(), std::size_t(40));
+    QCOMPARE(int(r.ticks()), 520);
+    QCOMPARE(r.footer["steps"].get<int>(), 40);
+    for (int i : {0, 17, 39}) {
+      const RecordedStep a = step(i), &b = r.steps[std::size_t(i)];
+      QCOMPARE(b.t, a.t);
+      QCOMPARE(b.h, a.h);
+      QCOMPARE(b.commands_applied, a.commands_applied);
+      QCOMPARE(b.fingers[1].active, a.fingers[1].active);
+      QVERIFY(b.fingers[1].x == a.fingers[1].x && b.fingers[1].v == a.fingers[1].v && b.fingers[1].f == a.fingers[1].f);
+      QVERIFY(!b.fingers[0].active);
+    }
+    // The same bytes labelled version 1: the steps chunk is unknown there.
+    std::string b = bytes_of(p);
+    const std::string good = b;
+    b[8] = 1;
+    put_bytes(p, b);
+    QVERIFY2(error_reading(p).contains("unknown chunk type 4"), qPrintable(error_reading(p)));
+    // A zero dt, with a correct checksum (what a buggy writer would produce).
+    {
+      RecordingWriter w(p, header_for(s), 2);
+      RecordedStep st = step(1);
+      st.h = 0;
+      w.add_step(st);
+      write_synthetic(w, 5);
+      w.close();
+    }
+    QVERIFY2(error_reading(p).contains("dt 0") && error_reading(p).contains("step 0"), qPrintable(error_reading(p)));
+  }
+
   void corruptionGivesClearErrors() {
     const std::string dir = tmpdir("corrupt");
     const std::string p = dir + "/a.palrec";

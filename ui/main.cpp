@@ -14,6 +14,7 @@
 #include <QTimer>
 
 #include "main_window.h"
+#include "review_window.h"
 #include "vtk_view.h"
 #include "workstation.h"
 
@@ -54,8 +55,51 @@ int main(int argc, char** argv) {
                             QStringLiteral("KIND"), QStringLiteral("simulated"));
   QCommandLineOption robot(QStringLiteral("robot"), QStringLiteral("HandHIRO address ADDRESS:PORT (default: resources/handhiro.json's)."),
                            QStringLiteral("ADDRESS:PORT"));
-  cli.addOptions({shot, secs, lang, trainee, stereo, resolution, device, robot});
+  QCommandLineOption review(QStringLiteral("review"), QStringLiteral("Review a session recording (no live session)."),
+                            QStringLiteral("RECORDING"));
+  QCommandLineOption review_at(QStringLiteral("review-at"), QStringLiteral("With --review --screenshot: the time (s) to show."),
+                               QStringLiteral("T"));
+  QCommandLineOption record(QStringLiteral("record"), QStringLiteral("Record the session into FILE (default: a new file in the "
+                                                                     "recordings folder)."),
+                            QStringLiteral("FILE"));
+  cli.addOptions({shot, secs, lang, trainee, stereo, resolution, device, robot, review, review_at, record});
   cli.process(app);
+
+  if (cli.isSet(review)) {
+    // Review mode alone: a student's machine needs no device and no live simulation.
+    std::unique_ptr<palpation::app::ReviewSession> session;
+    try {
+      session = std::make_unique<palpation::app::ReviewSession>(cli.value(review).toStdString());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
+      return 2;
+    }
+    palpation::ui::ReviewWindow rw(std::move(session));
+    rw.show();
+    if (cli.isSet(shot)) {
+      const QString file = cli.value(shot);
+      const double at = cli.isSet(review_at) ? cli.value(review_at).toDouble() : -1.0;
+      auto* t = new QTimer(&rw);
+      t->start(100);
+      QObject::connect(t, &QTimer::timeout, &rw, [&rw, t, file, at]() {
+        auto& s = rw.session();
+        if (!s.finished()) return;
+        t->stop();
+        rw.seek(at >= 0 ? at : s.duration() * 0.5);
+        rw.tick();
+        QTimer::singleShot(300, &rw, [&rw, file]() {
+          const QImage img = rw.grab().toImage();
+          const bool ok = img.save(file);
+          const auto c = rw.session().compare();
+          std::fprintf(stderr, "palpation-trainer: %s %s (%dx%d); re-simulated %zu of %zu, largest difference %.3g N\n",
+                       ok ? "saved" : "could not save", qPrintable(file), img.width(), img.height(), rw.session().done(),
+                       rw.session().total(), c.max_diff);
+          QApplication::exit(ok ? 0 : 1);
+        });
+      });
+    }
+    return app.exec();
+  }
 
   palpation::app::WorkstationOptions opt;
   opt.scenario = palpation::app::default_workstation_scenario();
@@ -95,7 +139,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
     return 2;
   }
-  palpation::ui::MainWindow w(std::move(ws));
+  palpation::ui::MainWindow w(std::move(ws), nullptr, cli.isSet(record) ? cli.value(record) : QString());
+  if (!cli.isSet(resolution) && !cli.isSet(shot)) {
+    // The last patient chosen (QSettings), when the library still has it.
+    const QString last = QSettings().value(QStringLiteral("patient/name")).toString();
+    if (!last.isEmpty() && last.toStdString() != opt.scenario.source) {
+      QString err;
+      if (!w.choose_patient(last, &err)) std::fprintf(stderr, "palpation-trainer: last patient not loaded: %s\n", qPrintable(err));
+    }
+  }
   // Screenshots show the default scene: English, mono, whatever the stored settings say.
   if (cli.isSet(lang)) w.set_language(cli.value(lang));
   else if (cli.isSet(shot)) w.set_language(QStringLiteral("en"));

@@ -10,6 +10,7 @@
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDateTime>
+#include <QDir>
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QInputDialog>
@@ -22,17 +23,26 @@
 #include <QToolBar>
 #include <QUndoStack>
 
+#include <QStandardPaths>
+
 #include "force_plots.h"
+#include "import_dialog.h"
 #include "panels.h"
+#include "patient_library.h"
+#include "review_window.h"
+#include "scan_import_job.h"
+#include "workstation_recorder.h"
 #include "tumour_editor.h"
 #include "vtk_view.h"
 
 namespace palpation::ui {
 
-MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : QMainWindow(parent), ws_(std::move(ws)) {
+MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, const QString& record_path)
+    : QMainWindow(parent), ws_(std::move(ws)) {
   setObjectName(QStringLiteral("MainWindow"));
   setWindowIcon(QIcon(QStringLiteral(":/icons/palpation.png")));
   scenario_ = ws_->options().scenario;
+  chosen_ = scenario_;
   view_ = new VtkView(this);
   setCentralWidget(view_);
   editor_ = new TumourEditor(ws_.get(), this);
@@ -45,6 +55,19 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : 
     return d;
   };
   patient_panel_ = new PatientPanel;
+  try {
+    // The CLI's library (palpation patient ...): $PALPATION_DB, else <data>/palpation/patients.sqlite.
+    app::PatientLibrary::Options lo;
+    if (qEnvironmentVariableIsEmpty("PALPATION_DB"))
+      lo.db = (QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation) + QStringLiteral("/palpation/patients.sqlite"))
+                  .toStdString();
+    library_ = std::make_unique<app::PatientLibrary>(lo);
+  } catch (const std::exception& e) {
+    library_error_ = QString::fromStdString(e.what());
+  }
+  refresh_patients();
+  if (!patient_panel_->select_patient(QString::fromStdString(scenario_.source)))
+    patient_panel_->select_patient(scenario_.patient.phantom == "box" ? QStringLiteral("phantom:box") : QStringLiteral("phantom:breast"));
   patient_panel_->show_scenario(scenario_);
   tumour_panel_ = new TumourPanel(editor_);
   sim_panel_ = new SimulationPanel;
@@ -72,17 +95,24 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : 
   st_haptic_ = new QLabel;
   st_device_ = new QLabel;
   st_fps_ = new QLabel;
-  for (auto* l : {st_backend_, st_step_, st_haptic_, st_device_, st_fps_}) statusBar()->addPermanentWidget(l);
+  st_rec_ = new QLabel;
+  for (auto* l : {st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
 
   build_actions();
 
   // Panels -> commands.
   connect(patient_panel_, &PatientPanel::loadRequested, this, [this] {
-    scenario_ = patient_panel_->scenario(scenario_);
+    scenario_ = patient_panel_->scenario(chosen_);
     scenario_.backend = sim_panel_->backend->currentText().toStdString();
     ws_->load_patient(scenario_);
     QSettings().setValue(QStringLiteral("patient/resolution"), QString::fromStdString(scenario_.patient.resolution));
+    QSettings().setValue(QStringLiteral("patient/name"), patient_panel_->chosen());
   });
+  connect(patient_panel_, &PatientPanel::patientChosen, this, [this](const QString& name) {
+    QString err;
+    if (!choose_patient(name, &err)) QMessageBox::warning(this, tr("Patient"), err);
+  });
+  connect(patient_panel_, &PatientPanel::importRequested, this, [this] { open_import_dialog(); });
   connect(sim_panel_->apply, &QPushButton::clicked, this, [this] {
     sim::SimParams p = scenario_.params;
     p.solver.cg_tolerance = sim_panel_->tolerance->value();
@@ -139,15 +169,162 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent) : 
   connect(timer_, &QTimer::timeout, this, &MainWindow::tick);
   timer_->start(16);
   fps_t0_ = QDateTime::currentMSecsSinceEpoch();
+
+  // Every session records (issue 6): interrupted recordings of earlier sessions first.
+  const QString folder = recordings_folder();
+  QDir().mkpath(folder);
+  QStringList recovered;
+  for (const auto& line : app::recover_interrupted_recordings(folder.toStdString())) recovered << QString::fromStdString(line);
+  QString path = record_path;
+  if (path.isEmpty())
+    path = QDir(folder).filePath(QStringLiteral("session-%1.palrec").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-HHmmss-zzz"))));
+  try {
+    nlohmann::json recorded_settings{{"language", language_.toStdString()},
+                            {"trainee", trainee_},
+                            {"stereo", int(view_->stereo())},
+                            {"patient", patient_panel_->chosen().toStdString()},
+                            {"library", library_ ? library_->location() : std::string()}};
+    recorder_ = std::make_unique<app::WorkstationRecorder>(*ws_, path.toStdString(), recorded_settings);
+  } catch (const std::exception& e) {
+    statusBar()->showMessage(tr("This session is not recorded: %1").arg(QString::fromStdString(e.what())));
+  }
+  if (!recovered.isEmpty()) statusBar()->showMessage(tr("Recovered interrupted recordings: %1").arg(recovered.join(QStringLiteral("; "))), 15000);
+  if (!library_error_.isEmpty())
+    statusBar()->showMessage(tr("Patient library not available (built-in phantoms only): %1").arg(library_error_), 15000);
   ws_->start();
 }
 
-MainWindow::~MainWindow() { ws_->stop(); }
+MainWindow::~MainWindow() {
+  ws_->stop();
+  if (recorder_) {
+    ws_->poll();  // the last telemetry into the recording
+    recorder_->close();
+  }
+  delete review_.data();
+  delete import_.data();
+}
+
+QString MainWindow::recordings_folder() {
+  const QString env = qEnvironmentVariable("PALPATION_RECORDINGS");
+  if (!env.isEmpty()) return env;
+  return QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/recordings");
+}
+
+void MainWindow::refresh_patients() {
+  QList<PatientPanel::Entry> entries;
+  if (library_) {
+    try {
+      for (const auto& p : library_->list())
+        entries.append({QString::fromStdString(p.name), QString::fromStdString(p.category), QString::fromStdString(p.description)});
+    } catch (const std::exception& e) {
+      library_error_ = QString::fromStdString(e.what());
+    }
+  }
+  patient_panel_->set_patients(entries);
+}
+
+bool MainWindow::choose_patient(const QString& name, QString* error) {
+  sim::Scenario s;
+  try {
+    if (name == QLatin1String("phantom:breast") || name == QLatin1String("phantom:box")) {
+      s = app::default_workstation_scenario();
+      if (name.endsWith(QLatin1String("box"))) {
+        s.patient.phantom = "box";
+        s.patient.size = Eigen::Vector3d(0.1, 0.1, 0.05);
+        s.inclusions.clear();
+        if (auto e = sim::resolution_edge("box", s.patient.resolution)) s.patient.edge = *e;
+      }
+      s.source = name.toStdString();
+    } else {
+      if (!library_) throw std::runtime_error(tr("no patient library is open: %1").arg(library_error_).toStdString());
+      const auto rec = library_->find(name.toStdString());
+      if (!rec) throw std::runtime_error(library_->location() + ": no patient named \"" + name.toStdString() + "\"");
+      s = app::library_patient_scenario(
+          *rec, (QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/meshes")).toStdString());
+      if (!s.patient.phantom.empty()) {  // the workstation's resolution, not the library's default
+        const std::string r = patient_panel_->resolution->currentData().toString().toStdString();
+        if (auto e = sim::resolution_edge(s.patient.phantom, r)) {
+          s.patient.resolution = r;
+          s.patient.edge = *e;
+        }
+      }
+    }
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  s.params.solver.dt = scenario_.params.solver.dt;
+  chosen_ = s;
+  patient_panel_->select_patient(name);
+  patient_panel_->show_scenario(s);
+  scenario_ = patient_panel_->scenario(chosen_);
+  scenario_.backend = sim_panel_->backend->currentText().toStdString();
+  ws_->load_patient(scenario_);
+  QSettings().setValue(QStringLiteral("patient/name"), name);
+  QSettings().setValue(QStringLiteral("patient/resolution"), QString::fromStdString(scenario_.patient.resolution));
+  return true;
+}
+
+int MainWindow::mark_lump() {
+  const auto& snap = ws_->snapshot();
+  const int k = device::kIndex;
+  if (!snap.finger_active[k] || !recorder_) {
+    statusBar()->showMessage(recorder_ ? tr("No fingertip on the breast: nothing marked.") : tr("This session is not recorded: nothing marked."), 5000);
+    return 0;
+  }
+  const Eigen::Vector3d p = snap.finger_position[k];
+  const int n = recorder_->add_mark(p);
+  ws_->log_event("mark", "trainee mark " + std::to_string(n));
+  statusBar()->showMessage(tr("Mark %1: \"I feel a lump here\" at (%2, %3, %4) cm, recorded.")
+                               .arg(n)
+                               .arg(p.x() * 100, 0, 'f', 1)
+                               .arg(p.y() * 100, 0, 'f', 1)
+                               .arg(p.z() * 100, 0, 'f', 1),
+                           6000);
+  return n;
+}
+
+ReviewWindow* MainWindow::open_recording(const QString& path, QString* error) {
+  std::unique_ptr<app::ReviewSession> s;
+  try {
+    s = std::make_unique<app::ReviewSession>(path.toStdString());
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return nullptr;
+  }
+  delete review_.data();
+  review_ = new ReviewWindow(std::move(s), this);
+  review_->setWindowFlag(Qt::Window);
+  review_->show();
+  return review_;
+}
+
+ImportDialog* MainWindow::open_import_dialog() {
+  if (!import_) {
+    import_ = new ImportDialog(library_.get(), this);
+    connect(import_, &ImportDialog::patientSaved, this, [this](const QString& name) {
+      refresh_patients();
+      patient_panel_->select_patient(name);
+      statusBar()->showMessage(tr("Patient \"%1\" saved; choose it and Load patient to palpate it.").arg(name), 8000);
+    });
+  }
+  import_->show();
+  import_->raise();
+  return import_;
+}
 
 QList<QDockWidget*> MainWindow::instructor_docks() const { return {patient_dock_, tumour_dock_, sim_dock_, device_dock_}; }
 
 void MainWindow::build_actions() {
   file_menu_ = menuBar()->addMenu(QString());
+  a_open_rec_ = file_menu_->addAction(QString(), this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, tr("Open a session recording"), recordings_folder(),
+                                                   tr("Session recordings (*.palrec *.prec);;All files (*)"));
+    if (f.isEmpty()) return;
+    QString err;
+    if (!open_recording(f, &err)) QMessageBox::critical(this, tr("Cannot open the recording"), err);
+  });
+  a_open_rec_->setShortcut(QKeySequence::Open);
   a_screenshot_ = file_menu_->addAction(QString(), this, [this] {
     const QString f = QFileDialog::getSaveFileName(this, tr("Save screenshot"), QStringLiteral("screenshot.png"), tr("PNG images (*.png)"));
     if (!f.isEmpty()) grab().save(f);
@@ -236,6 +413,9 @@ void MainWindow::build_actions() {
   a_camera_tool_->setChecked(true);
   connect(a_camera_tool_, &QAction::triggered, this, [this] { device_panel_->mode->setCurrentIndex(0); });
   connect(a_palpate_tool_, &QAction::triggered, this, [this] { device_panel_->mode->setCurrentIndex(1); });
+  a_mark_ = toolbar_->addAction(QString(), this, [this] { mark_lump(); });
+  a_mark_->setShortcut(QKeySequence(Qt::Key_M));
+  mode_menu_->addAction(a_mark_);
   toolbar_->addSeparator();
   toolbar_->addAction(a_trainee_);
   toolbar_->addAction(a_instructor_);
@@ -244,6 +424,9 @@ void MainWindow::build_actions() {
 void MainWindow::retranslate() {
   setWindowTitle(tr("Palpation Trainer"));
   file_menu_->setTitle(tr("&File"));
+  a_open_rec_->setText(tr("&Open recording..."));
+  a_mark_->setText(tr("Mark lump here (M)"));
+  a_mark_->setToolTip(tr("Trainee: \"I feel a lump here\": marks the index fingertip's position in the recording"));
   a_screenshot_->setText(tr("Save &screenshot..."));
   a_quit_->setText(tr("&Quit"));
   edit_menu_->setTitle(tr("&Edit"));
@@ -341,6 +524,10 @@ void MainWindow::tick() {
     last_plot_ = now;
     if (forces_dock_->isVisible()) plots_->refresh();
   }
+  if (recorder_ && now - last_flush_ >= 1000) {
+    last_flush_ = now;
+    recorder_->flush();
+  }
   if (now - last_status_ >= 250) {
     last_status_ = now;
     update_status();
@@ -374,6 +561,12 @@ void MainWindow::update_status() {
                                                                                     : tr("simulated HandHIRO");
   st_device_->setText(tr("Device: %1, %2").arg(dev, s.connected ? tr("connected") : tr("not connected")));
   st_fps_->setText(tr("View: %1 fps").arg(fps_, 0, 'f', 0));
+  if (st_rec_) {
+    st_rec_->setText(!recorder_ ? tr("Not recording")
+                     : recorder_->failed() ? tr("Recording stopped: %1").arg(QString::fromStdString(recorder_->error()))
+                                           : tr("Recording (%1 marks)").arg(recorder_->marks()));
+    st_rec_->setToolTip(recorder_ ? QString::fromStdString(recorder_->path()) : QString());
+  }
   sim_panel_->show_stats(s, be);
   device_panel_->show_stats(s);
 }

@@ -8,7 +8,14 @@
 #include <QMainWindow>
 #include <QTranslator>
 
+#include <QPointer>
+
 #include "workstation.h"
+
+namespace palpation::app {
+class PatientLibrary;
+class WorkstationRecorder;
+}
 
 class QAction;
 class QActionGroup;
@@ -21,6 +28,8 @@ class QToolBar;
 namespace palpation::ui {
 
 class DevicePanel;
+class ImportDialog;
+class ReviewWindow;
 class ForcePlots;
 class PatientPanel;
 class SimulationPanel;
@@ -32,8 +41,10 @@ class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
-  /// Starts `ws` (the window owns it).
-  explicit MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent = nullptr);
+  /// Starts `ws` (the window owns it) and records the session (issue 6) into
+  /// `record_path`, or, when empty, a new file in the recordings folder
+  /// (recordings_folder()); interrupted recordings there are recovered first.
+  explicit MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent = nullptr, const QString& record_path = {});
   ~MainWindow() override;
 
   app::Workstation& workstation() { return *ws_; }
@@ -43,6 +54,27 @@ class MainWindow : public QMainWindow {
   QList<QDockWidget*> instructor_docks() const;
   QDockWidget* forces_dock() const { return forces_dock_; }
   TumourPanel* tumour_panel() const { return tumour_panel_; }
+  PatientPanel* patient_panel() const { return patient_panel_; }
+
+  // Issue 6 -------------------------------------------------------------------------
+  /// Where GUI sessions record: $PALPATION_RECORDINGS, else <app data>/recordings.
+  static QString recordings_folder();
+  /// The patient library (null when it could not be opened; the reason is in library_error()).
+  app::PatientLibrary* library() const { return library_.get(); }
+  QString library_error() const { return library_error_; }
+  app::WorkstationRecorder* recorder() const { return recorder_.get(); }
+  /// Chooses a patient (library name or "phantom:breast" / "phantom:box") and loads it.
+  /// False (and `error` set) when it is unknown or cannot be built.
+  bool choose_patient(const QString& name, QString* error = nullptr);
+  /// The trainee's "I feel a lump here": marks the index fingertip's position in the
+  /// recording. Returns the mark's number, 0 when no fingertip is on the body.
+  int mark_lump();
+  /// Opens a recording for review (a separate window). Null, with `error` set (file,
+  /// chunk, offset, reason), for a bad file; nothing is written.
+  ReviewWindow* open_recording(const QString& path, QString* error = nullptr);
+  ReviewWindow* review_window() const { return review_; }
+  ImportDialog* open_import_dialog();
+  void refresh_patients();
 
   /// Trainee mode: tumours hidden, instructor panels locked, mouse palpation.
   void set_trainee(bool on);
@@ -96,6 +128,15 @@ class MainWindow : public QMainWindow {
   qint64 fps_t0_ = 0, last_status_ = 0, last_plot_ = 0;
   double fps_ = 0;
   sim::Scenario scenario_;
+  sim::Scenario chosen_;  // the chosen patient, before the panel's resolution and tissue
+  std::unique_ptr<app::PatientLibrary> library_;
+  QString library_error_;
+  std::unique_ptr<app::WorkstationRecorder> recorder_;
+  QPointer<ReviewWindow> review_;
+  QPointer<ImportDialog> import_;
+  QAction *a_open_rec_ = nullptr, *a_mark_ = nullptr;
+  QLabel* st_rec_ = nullptr;
+  qint64 last_flush_ = 0;
 };
 
 }  // namespace palpation::ui

@@ -12,6 +12,7 @@
 #include <QLineEdit>
 #include <QListWidget>
 #include <QProgressBar>
+#include <QSignalBlocker>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QToolButton>
@@ -44,29 +45,72 @@ const char* const kFingers[5] = {QT_TRANSLATE_NOOP("DevicePanel", "Thumb"), QT_T
 // ---------------------------------------------------------------------------------------
 PatientPanel::PatientPanel(QWidget* parent) : QWidget(parent) {
   phantom = new QComboBox;
-  phantom->addItem(QString(), QStringLiteral("breast"));
-  phantom->addItem(QString(), QStringLiteral("box"));
+  phantom->setObjectName(QStringLiteral("PatientChooser"));
+  phantom->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  phantom->setMinimumContentsLength(18);
+  set_patients({});
+  description = new QLabel;
+  description->setWordWrap(true);
   resolution = new QComboBox;
   for (const char* r : {"coarse", "paper", "fine"}) resolution->addItem(QString(), QString::fromLatin1(r));
   young = spin(0.5, 500, 19, 1, 1, QStringLiteral(" kPa"));
   poisson = spin(0.0, 0.49, 0.45, 3, 0.01);
   apply = new QPushButton;
+  import_scan = new QPushButton;
   info = new QLabel;
   info->setWordWrap(true);
   form_ = new QFormLayout(this);
   form_->addRow(QStringLiteral("-"), phantom);
+  form_->addRow(description);
   form_->addRow(QStringLiteral("-"), resolution);
   form_->addRow(QStringLiteral("-"), young);
   form_->addRow(QStringLiteral("-"), poisson);
   form_->addRow(apply);
+  form_->addRow(import_scan);
   form_->addRow(info);
   connect(apply, &QPushButton::clicked, this, &PatientPanel::loadRequested);
+  connect(import_scan, &QPushButton::clicked, this, &PatientPanel::importRequested);
+  connect(phantom, qOverload<int>(&QComboBox::activated), this, [this](int i) {
+    description->setText(phantom->itemData(i, Qt::ToolTipRole).toString());
+    emit patientChosen(phantom->itemData(i).toString());
+  });
   retranslate();
 }
 
+void PatientPanel::set_patients(const QList<Entry>& entries) {
+  const QString keep = chosen();
+  QSignalBlocker block(phantom);
+  phantom->clear();
+  for (const auto& e : entries) {
+    phantom->addItem(e.name, e.name);
+    phantom->setItemData(phantom->count() - 1, e.description, Qt::ToolTipRole);
+    phantom->setItemData(phantom->count() - 1, e.category, Qt::UserRole + 1);
+  }
+  // The built-in phantoms, always there (also without a library).
+  phantom->addItem(QString(), QStringLiteral("phantom:breast"));
+  phantom->addItem(QString(), QStringLiteral("phantom:box"));
+  for (int i = phantom->count() - 2; i < phantom->count(); ++i) phantom->setItemData(i, QStringLiteral("phantom"), Qt::UserRole + 1);
+  if (form_) retranslate();
+  if (!keep.isEmpty()) select_patient(keep);
+}
+
+bool PatientPanel::select_patient(const QString& name) {
+  const int i = phantom->findData(name);
+  if (i < 0) return false;
+  QSignalBlocker block(phantom);
+  phantom->setCurrentIndex(i);
+  if (description) description->setText(phantom->itemData(i, Qt::ToolTipRole).toString());
+  return true;
+}
+
+QString PatientPanel::chosen() const { return phantom->currentData().toString(); }
+
 void PatientPanel::retranslate() {
-  phantom->setItemText(0, tr("Breast phantom (paper)"));
-  phantom->setItemText(1, tr("Box phantom"));
+  const int n = phantom->count();
+  phantom->setItemText(n - 2, tr("Breast phantom (paper's tumour)"));
+  phantom->setItemText(n - 1, tr("Box phantom"));
+  phantom->setItemData(n - 2, tr("The paper's breast with its tumour (107 kPa at x = 12.5 cm)."), Qt::ToolTipRole);
+  phantom->setItemData(n - 1, tr("A 10 x 10 x 5 cm block of tissue, no tumour."), Qt::ToolTipRole);
   resolution->setItemText(0, tr("Coarse (about 1,000 nodes, real time on a CPU)"));
   resolution->setItemText(1, tr("Paper (about 9,100 nodes, GPU)"));
   resolution->setItemText(2, tr("Fine (GPU)"));
@@ -75,7 +119,9 @@ void PatientPanel::retranslate() {
   set_label(form_, young, tr("Tissue Young's modulus"));
   set_label(form_, poisson, tr("Poisson ratio"));
   apply->setText(tr("Load patient"));
-  phantom->setToolTip(tr("Built-in phantoms; the patient library comes with a later version."));
+  import_scan->setText(tr("Import scan..."));
+  phantom->setToolTip(tr("Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms."));
+  resolution->setToolTip(tr("Phantom patients only; an imported scan keeps the resolution it was meshed at."));
 }
 
 void PatientPanel::changeEvent(QEvent* e) {
@@ -84,24 +130,20 @@ void PatientPanel::changeEvent(QEvent* e) {
 }
 
 void PatientPanel::show_scenario(const sim::Scenario& s) {
-  phantom->setCurrentIndex(std::max(0, phantom->findData(QString::fromStdString(s.patient.phantom))));
   resolution->setCurrentIndex(std::max(0, resolution->findData(QString::fromStdString(s.patient.resolution))));
+  resolution->setEnabled(!s.patient.phantom.empty());
   young->setValue(s.young_modulus / 1000.0);
   poisson->setValue(s.poisson_ratio);
 }
 
 sim::Scenario PatientPanel::scenario(const sim::Scenario& base) const {
   sim::Scenario s = base;
-  s.patient.phantom = phantom->currentData().toString().toStdString();
-  s.patient.resolution = resolution->currentData().toString().toStdString();
-  if (auto e = sim::resolution_edge(s.patient.phantom, s.patient.resolution)) s.patient.edge = *e;
+  if (!s.patient.phantom.empty()) {
+    s.patient.resolution = resolution->currentData().toString().toStdString();
+    if (auto e = sim::resolution_edge(s.patient.phantom, s.patient.resolution)) s.patient.edge = *e;
+  }
   s.young_modulus = young->value() * 1000.0;
   s.poisson_ratio = poisson->value();
-  if (s.patient.phantom == "box") {
-    s.patient.size = Eigen::Vector3d(0.1, 0.1, 0.05);
-    s.inclusions.clear();
-  }
-  s.source = "patient panel (" + s.patient.phantom + ", " + s.patient.resolution + ")";
   return s;
 }
 

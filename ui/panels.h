@@ -26,19 +26,34 @@ namespace palpation::ui {
 
 class TumourEditor;
 
-/// Patient: phantom, resolution, tissue parameters; Apply reloads the patient.
+/// Patient: a patient from the library (built-in shapes and tumour cases, imported
+/// scans) or a built-in phantom, resolution, tissue parameters; "Load patient" loads it;
+/// "Import scan..." opens the import dialog.
 class PatientPanel : public QWidget {
   Q_OBJECT
  public:
   explicit PatientPanel(QWidget* parent = nullptr);
+  struct Entry {
+    QString name;         // library name, or "phantom:breast" / "phantom:box"
+    QString category;     // "breast", "tumour", "imported", "phantom"
+    QString description;
+  };
+  /// Fills the chooser (the current choice is kept when still there).
+  void set_patients(const QList<Entry>& entries);
+  /// Selects an entry by name without emitting patientChosen; false when absent.
+  bool select_patient(const QString& name);
+  QString chosen() const;
   void show_scenario(const sim::Scenario& s);
+  /// `base` (the chosen patient) with the panel's resolution (phantoms) and tissue.
   sim::Scenario scenario(const sim::Scenario& base) const;
-  QComboBox *phantom = nullptr, *resolution = nullptr;
+  QComboBox *phantom = nullptr, *resolution = nullptr;  // phantom: the patient chooser
   QDoubleSpinBox *young = nullptr, *poisson = nullptr;
-  QPushButton* apply = nullptr;
-  QLabel* info = nullptr;
+  QPushButton *apply = nullptr, *import_scan = nullptr;
+  QLabel *info = nullptr, *description = nullptr;
  signals:
   void loadRequested();
+  void patientChosen(const QString& name);
+  void importRequested();
  protected:
   void changeEvent(QEvent* e) override;
  private:

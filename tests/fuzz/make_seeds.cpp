@@ -65,5 +65,27 @@ int main(int argc, char** argv) {
     }
     w.close();
   }
+  {
+    // Version 2: a workstation recording with simulation steps (two fingers).
+    nlohmann::json header = {{"scenario", nlohmann::json::parse(palpation::sim::scenario_to_json(
+                                              palpation::sim::builtin_scenario("hertz")))}};
+    palpation::app::RecordingWriter w(dir + "/recording/steps.prec", header, 2);
+    for (int i = 0; i < 12; ++i) {
+      const Eigen::Vector3d x[2] = {{0.001 * i, 0, 0.05}, {0, 0.01, 0.06}}, f[2] = {{0, 0, 0.01 * i}, {0, 0, 0}};
+      w.add_tick(0.001 * (i + 1), x, f);
+      if (i % 4 == 0) {
+        palpation::app::RecordedStep st;
+        st.t = 0.001 * (i + 1);
+        st.h = 0.004;
+        st.commands_applied = std::uint64_t(i / 4);
+        st.fingers.resize(2);
+        st.fingers[0] = {true, 0.008, x[0], Eigen::Vector3d(0.1, 0, 0), f[0]};
+        st.fingers[1] = {false, 0.008, x[1], Eigen::Vector3d::Zero(), f[1]};
+        w.add_step(st);
+      }
+    }
+    w.add_event(0.005, "parameter", {{"command", "young"}, {"index", 0}, {"changes", {{3, 40000.0}}}});
+    w.close();
+  }
   return 0;
 }

@@ -1,0 +1,109 @@
+// Review mode for students (issue 6): a recorded session played back. The 3-D view shows
+// the session re-simulated from the recorded input (app::ReviewSession's worker thread),
+// the force plots follow the timeline, instructor events and trainee marks sit on the
+// timeline and in a list; play, pause, scrub, speed 0.25x to 4x; CSV and PNG-frame export.
+// The widgets display app::ReviewSession; they hold no state of their own.
+#pragma once
+
+#include <array>
+#include <memory>
+
+#include <QMainWindow>
+#include <QWidget>
+
+#include "review_session.h"
+
+class QChart;
+class QChartView;
+class QComboBox;
+class QLabel;
+class QLineSeries;
+class QListWidget;
+class QPushButton;
+class QTimer;
+class QValueAxis;
+
+namespace palpation::ui {
+
+class VtkView;
+
+/// The timeline: the session's length, the re-simulated part, markers, the cursor. Click
+/// or drag to scrub.
+class Timeline : public QWidget {
+  Q_OBJECT
+ public:
+  explicit Timeline(QWidget* parent = nullptr);
+  void show_session(const app::ReviewSession* s) { session_ = s; update(); }
+  /// Time at a widget x (s).
+  double time_at(int x) const;
+  int x_at(double t) const;
+  QSize sizeHint() const override { return {600, 46}; }
+ signals:
+  void seekRequested(double t);
+ protected:
+  void paintEvent(QPaintEvent* e) override;
+  void mousePressEvent(QMouseEvent* e) override;
+  void mouseMoveEvent(QMouseEvent* e) override;
+ private:
+  const app::ReviewSession* session_ = nullptr;
+};
+
+class ReviewWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  /// Opens the review of `session` and starts its re-simulation.
+  explicit ReviewWindow(std::unique_ptr<app::ReviewSession> session, QWidget* parent = nullptr);
+  ~ReviewWindow() override;
+
+  app::ReviewSession& session() { return *session_; }
+  VtkView* view() const { return view_; }
+  Timeline* timeline() const { return timeline_; }
+  QPushButton* play_button() const { return play_; }
+  QComboBox* speed_box() const { return speed_; }
+  QLabel* time_label() const { return time_label_; }
+  QLabel* difference_label() const { return diff_label_; }
+  QListWidget* marker_list() const { return markers_; }
+  /// The time the plots' cursor stands at (s) and the points they show.
+  double plot_cursor() const;
+  int plot_points() const;
+
+  void seek(double t);
+  void set_playing(bool on);
+  /// Writes frames (the view, the plots and the timeline) every 1/fps s from t0 to t1 as
+  /// DIR/frame-0001.png ...; returns how many were written.
+  int export_frames(const QString& dir, double t0, double t1, double fps);
+  bool export_csv(const QString& path, QString* error = nullptr);
+
+ public slots:
+  void tick();
+
+ protected:
+  void changeEvent(QEvent* e) override;
+  void closeEvent(QCloseEvent* e) override;
+
+ private:
+  void retranslate();
+  void show_time();
+  void refresh_series();
+  void update_difference();
+
+  std::unique_ptr<app::ReviewSession> session_;
+  VtkView* view_ = nullptr;
+  Timeline* timeline_ = nullptr;
+  QPushButton *play_ = nullptr, *csv_ = nullptr, *png_ = nullptr;
+  QComboBox* speed_ = nullptr;
+  QLabel *time_label_ = nullptr, *diff_label_ = nullptr, *speed_label_ = nullptr, *markers_title_ = nullptr;
+  QListWidget* markers_ = nullptr;
+  QChart* chart_ = nullptr;
+  QChartView* chart_view_ = nullptr;
+  QValueAxis *t_axis_ = nullptr, *f_axis_ = nullptr;
+  std::array<QLineSeries*, 5> rec_{}, resim_{};
+  QLineSeries* cursor_ = nullptr;
+  QTimer* timer_ = nullptr;
+  qint64 last_tick_ms_ = 0, last_series_ms_ = 0;
+  std::uint64_t generation_ = 0;
+  std::size_t series_done_ = 0;
+  const app::ReviewFrame* shown_ = nullptr;
+};
+
+}  // namespace palpation::ui
