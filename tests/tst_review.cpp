@@ -16,11 +16,14 @@
 #include <QComboBox>
 #include <QCryptographicHash>
 #include <QLabel>
+#include <QLineEdit>
+#include <QProgressBar>
 #include <QListWidget>
 #include <QPushButton>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 
+#include "import_dialog.h"
 #include "main_window.h"
 #include "panels.h"
 #include "patient_library.h"
@@ -286,6 +289,48 @@ class TstReview : public QObject {
     QCOMPARE(QSettings().value(QStringLiteral("patient/name")).toString(), QStringLiteral("breast-small"));
     QVERIFY(!w->choose_patient(QStringLiteral("no-such-patient"), &err));
     QVERIFY(err.contains(QLatin1String("no-such-patient")));
+  }
+
+  // Import scan...: a broken scan is named with its problem and nothing is saved; a good
+  // one is meshed off the GUI thread, previewed, saved and then chosen like any patient.
+  void import_dialog_saves_a_patient() {
+    auto w = make_window(dir_.filePath(QStringLiteral("fourth.palrec")));
+    QTRY_VERIFY_WITH_TIMEOUT(w->patient_ready(), 120000);
+    QVERIFY(w->library());
+    const std::size_t before = w->library()->list().size();
+    ui::ImportDialog* d = w->open_import_dialog();
+    QVERIFY(d && d->isVisible());
+    const QString open = QStringLiteral(PALPATION_TEST_DATA "/open-dome.stl");
+    d->file->setText(open);
+    d->name->setText(QStringLiteral("scan-open"));
+    d->start_import();
+    QTRY_VERIFY_WITH_TIMEOUT(!d->importing(), 60000);
+    QVERIFY2(d->error->text().contains(open) && d->error->text().contains(QLatin1String("open edges")), qPrintable(d->error->text()));
+    QVERIFY(!d->save->isEnabled());
+    QCOMPARE(w->library()->list().size(), before);
+
+    d->file->setText(QStringLiteral(PALPATION_TEST_DATA "/dome.stl"));
+    d->name->setText(QStringLiteral("scan-dome"));
+    QElapsedTimer gui;
+    gui.start();
+    d->start_import();
+    QVERIFY2(gui.elapsed() < 500, "start_import returns at once (the import runs on its own thread)");
+    QTRY_VERIFY_WITH_TIMEOUT(!d->importing(), 300000);
+    QVERIFY2(d->error->text().isEmpty(), qPrintable(d->error->text()));
+    QVERIFY(d->save->isEnabled());
+    QCOMPARE(d->progress->value(), 1000);
+    QTest::mouseClick(d->save, Qt::LeftButton);
+    QCOMPARE(d->saved_name(), QStringLiteral("scan-dome"));
+    QCOMPARE(w->library()->list().size(), before + 1);
+    QVERIFY(w->patient_panel()->phantom->findData(QStringLiteral("scan-dome")) >= 0);
+    QTest::mouseClick(d->save, Qt::LeftButton);  // disabled after saving: no duplicate
+    QCOMPARE(w->library()->list().size(), before + 1);
+    // Chosen: the simulation runs on the imported mesh.
+    const std::uint64_t gen = w->workstation().geometry()->generation;
+    QString err;
+    QVERIFY2(w->choose_patient(QStringLiteral("scan-dome"), &err), qPrintable(err));
+    QTRY_VERIFY_WITH_TIMEOUT(w->workstation().geometry()->generation > gen, 120000);
+    QVERIFY(w->workstation().stats().state.rfind("error", 0) != 0);
   }
 };
 

@@ -299,6 +299,8 @@ ReviewWindow* MainWindow::open_recording(const QString& path, QString* error) {
   return review_;
 }
 
+ReviewWindow* MainWindow::review_window() const { return review_.data(); }
+
 ImportDialog* MainWindow::open_import_dialog() {
   if (!import_) {
     import_ = new ImportDialog(library_.get(), this);

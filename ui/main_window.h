@@ -72,7 +72,7 @@ class MainWindow : public QMainWindow {
   /// Opens a recording for review (a separate window). Null, with `error` set (file,
   /// chunk, offset, reason), for a bad file; nothing is written.
   ReviewWindow* open_recording(const QString& path, QString* error = nullptr);
-  ReviewWindow* review_window() const { return review_; }
+  ReviewWindow* review_window() const;
   ImportDialog* open_import_dialog();
   void refresh_patients();
 
