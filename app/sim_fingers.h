@@ -31,4 +31,21 @@ inline void finger_from_pose(const device::PoseFrame& pf, int d, const device::F
   in.active = ok && fs.present && fs.attached && pf.connected;
 }
 
+/// Release/onset spike guard for the force sent to the haptic loop (docs/stability.md,
+/// "Force spikes at real-time dt"). At the workstation's real-time dt (up to 10 ms) the
+/// simulated contact force chatters with a period of two steps while a fingertip is lifted
+/// (surface nodes recoiling into the fingertip within a step, outside that step's contact
+/// set, are pushed out in the next) and overshoots on the first step of a contact: single
+/// steps 3-5x too high (coarse breast, dt 10 ms: up to 27 N against 6 N at dt 1 ms). The
+/// guard sends the smaller of this step's and the previous step's force (a two-step
+/// minimum, erosion) with this step's stiffness, position and normal: one-step spikes
+/// vanish, falling forces pass at once, rising ones a step late (the local stiffness still
+/// renders the motion in between). `prev`: the previous step's simulated force of this
+/// finger (zero when it had no contact). Returns the output to build the contact model of.
+inline sim::FingerOutput guard_force_spike(const sim::FingerOutput& now, const Eigen::Vector3d& prev) {
+  sim::FingerOutput o = now;
+  if (prev.squaredNorm() < now.force.squaredNorm()) o.force = prev;
+  return o;
+}
+
 }  // namespace palpation::app

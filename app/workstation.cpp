@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "device_bridge.h"
+#include "fem_stress.h"
 #include "handhiro_emulator.h"
 #include "handhiro_link.h"
 #include "haptic_thread.h"
@@ -95,6 +96,35 @@ dv::HandScript default_hand_script(const DeviceConfig& cfg) {
 
 // ---------------------------------------------------------------------------------------
 // Workstation
+
+namespace {
+/// The linear blend (1 - g) a + g b of two local contact models (F(x) = F0 + K (x - x0)),
+/// exact at every x: expressed about b's x0 (or a's when b has none). g in [0, 1].
+dv::FingerContactModel blended(const dv::FingerContactModel& a, const dv::FingerContactModel& b, double g) {
+  if (!a.valid && !b.valid) return b;
+  dv::FingerContactModel m = b.valid ? b : a;
+  const double wa = a.valid ? 1.0 - g : 0.0, wb = b.valid ? g : 0.0;
+  const dv::Vec3 fa = a.valid ? a.force + a.stiffness * (m.position - a.position) : dv::Vec3{};
+  m.force = fa * wa + (b.valid ? b.force : dv::Vec3{}) * wb;
+  m.stiffness = (a.valid ? a.stiffness : dv::Mat3{}) * wa + (b.valid ? b.stiffness : dv::Mat3{}) * wb;
+  m.contacts = std::max(a.valid ? a.contacts : 0, b.valid ? b.contacts : 0);
+  if (!b.valid || b.contacts == 0) {
+    m.normal = a.normal;
+    m.contact_point = a.contact_point;
+  }
+  m.valid = true;
+  return m;
+}
+}  // namespace
+
+void Workstation::publish_empty(std::uint64_t& seq, double sim_time) {
+  dv::ContactFrame& cf = contacts_.write_slot();
+  cf.fingers = {};
+  cf.sequence = ++seq;
+  cf.sim_time = sim_time;
+  cf.published_ns = dv::monotonic_ns();
+  contacts_.publish();
+}
 
 struct Workstation::Threads {
   HapticThread haptic;
@@ -289,6 +319,7 @@ void Workstation::build(const sim::Scenario& s) {
     std::lock_guard<std::mutex> lk(mu_);
     geometry_ = g;
     applied_young_ = m.young;
+    backend_name_ = g->backend;
   }
   sim_ = std::move(simulation);
   log_event("patient", "patient loaded: " + std::to_string(m.num_nodes()) + " nodes, " + std::to_string(m.num_tets()) +
@@ -311,12 +342,14 @@ void Workstation::sim_main() {
   std::vector<sim::FingerInput> in(nf);
   std::vector<sim::FingerOutput> out(nf);
   std::array<dv::FingerContactModel, nf> last{};
+  std::array<Eigen::Vector3d, nf> prev_force{};  // previous step's simulated force (spike guard)
   const double dt = opt_.scenario.params.solver.dt;
   std::int64_t prev_start = 0, last_snapshot = 0;
   const auto snapshot_period = std::int64_t(1e9 / std::max(1.0, opt_.snapshot_hz));
   std::uint64_t seq = 0;
   double sim_time = 0;
   std::vector<double> xyz;
+  sim::StressScratch stress_scratch;
   std::vector<Command> cmds;
   while (!stop_.load(std::memory_order_acquire)) {
     // Queued commands, between steps.
@@ -350,6 +383,9 @@ void Workstation::sim_main() {
           dv::sleep_until_ns(dv::monotonic_ns() + 2000000);
         }
         last = {};
+        prev_force = {};
+        good_ = held_ = {};
+        recovering_.store(false);
         sim::Scenario s;
         {
           std::lock_guard<std::mutex> lk(mu_);
@@ -395,27 +431,87 @@ void Workstation::sim_main() {
       in[d].radius = opt_.scenario.fingers.empty() ? 0.008 : opt_.scenario.fingers[0].radius;
       finger_from_pose(pf, d, last[d], kc, reg, since, in[d]);
     }
-    sim::Backend& be = sim_->backend();
-    if (be.params().solver.dt != h) {
-      sim::SimParams p = be.params();
+    if (sim_->backend().params().solver.dt != h) {
+      sim::SimParams p = sim_->backend().params();
       p.solver.dt = h;
-      be.set_params(p);
+      sim_->backend().set_params(p);
     }
     const auto a = std::chrono::steady_clock::now();
-    const sim::StepStats st = be.step(in, out);
+    sim::StepStats st;
+    bool fault = false;
+    try {
+      st = sim_->backend().step(in, out);
+    } catch (const std::exception& e) {
+      // A backend error mid-session (a CUDA error, design.md section 7): continue on the
+      // CPU from rest; the forces are held, then blended below (no spike).
+      const std::string why = e.what();
+      if (!sim_->fall_back_to_cpu(why)) {
+        // The CPU backend itself failed: nothing left to step. Fade the forces out.
+        log_event("error", "simulation stopped: " + why);
+        {
+          std::lock_guard<std::mutex> lk(mu_);
+          load_error_ = "simulation stopped: " + why;
+        }
+        sim_state_.store(4);
+        publish_empty(seq, sim_time);
+        return;
+      }
+      fault = true;
+      fallbacks_.fetch_add(1);
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        backend_name_ = sim_->backend().name();
+        safety_note_ = sim_->backend_reason();
+      }
+      log_event("fallback", "backend error: " + why + "; continuing on the CPU from rest (forces held, then blended)");
+      st = sim_->backend().step(in, out);
+    }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();
     sim_time += h;
-    bool ok = st.finite;
+    // Divergence guard (design.md section 7, sim::Simulation::check_divergence): NaN/Inf
+    // or an energy blow-up puts the body back to rest, logged.
+    const sim::DivergenceCheck& chk = sim_->check_divergence(st, out);
+    bool ok = !chk.diverged;
     for (const auto& o : out) ok = ok && o.force.allFinite() && o.stiffness.allFinite();
+    if (!ok) {
+      if (!chk.diverged) sim_->backend().reset();
+      divergences_.fetch_add(1);
+      const std::string why = chk.reason.empty() ? std::string("non-finite contact output") : chk.reason;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        safety_note_ = "divergence reset: " + why;
+      }
+      log_event("reset", "simulation diverged (" + why + "): body reset to rest (forces held, then blended)");
+      fault = true;
+    }
+    if (fault) {
+      // Recovery: the body restarted at rest, so its first forces (a fingertip deep in an
+      // undeformed body) are not the ones the hand felt. Hold the last good models while
+      // the new body settles around the fingers, then blend over to the new ones.
+      recover_start_ = now;
+      if (!recovering_.load()) held_ = good_;
+      recovering_.store(true);
+    }
     dv::ContactFrame& cf = contacts_.write_slot();
     cf.fingers = {};
-    if (!ok) {
-      be.reset();  // divergence (design.md section 7): back to rest, no forces this step
-      log_event("reset", "simulation diverged: body reset to rest");
-    } else {
-      for (int d = 0; d < nf; ++d)
-        if (in[d].active) cf.fingers[d] = contact_model(out[d], in[d].position, reg);
+    for (int d = 0; d < nf; ++d) {
+      if (ok && in[d].active)
+        cf.fingers[d] = contact_model(opt_.spike_guard ? guard_force_spike(out[d], prev_force[d]) : out[d], in[d].position, reg);
+      prev_force[d] = ok && in[d].active && out[d].contacts > 0 ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
     }
+    if (recovering_.load()) {
+      const double t = double(now - recover_start_) * 1e-9;
+      const double hold = std::max(opt_.recover_hold_s, 0.0), blend = std::max(opt_.recover_blend_s, 0.0);
+      if (t < hold) {
+        cf.fingers = held_;
+      } else if (t < hold + blend) {
+        const double g = (t - hold) / blend;
+        for (int d = 0; d < nf; ++d) cf.fingers[d] = blended(held_[d], cf.fingers[d], g);
+      } else {
+        recovering_.store(false);
+      }
+    }
+    if (!recovering_.load()) good_ = cf.fingers;
     last = cf.fingers;
     cf.sequence = ++seq;
     cf.sim_time = sim_time;
@@ -430,6 +526,7 @@ void Workstation::sim_main() {
 
     if (now - last_snapshot >= snapshot_period) {
       last_snapshot = now;
+      sim::Backend& be = sim_->backend();
       be.positions(xyz);
       RenderSnapshot& rs = snapshots_.write_slot();
       rs.model_generation = generation_.load();
@@ -443,6 +540,8 @@ void Workstation::sim_main() {
         rs.finger_active[d] = pf.fingers[d].present;
       }
       rs.finger_radius = in[0].radius;
+      if (stress_enabled_.load(std::memory_order_acquire)) sim::nodal_von_mises(sim_->model(), xyz.data(), rs.von_mises, stress_scratch);
+      else rs.von_mises.clear();
       snapshots_.publish();
     }
   }
@@ -496,6 +595,14 @@ bool Workstation::poll() {
     rate_window_ns_ = now;
   }
   stats_.dropped = ticks_.dropped();
+  stats_.fallbacks = fallbacks_.load();
+  stats_.divergences = divergences_.load();
+  stats_.recovering = recovering_.load();
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    stats_.backend = backend_name_;
+    stats_.safety_note = safety_note_;
+  }
   if (any_tick) stats_.connected = running() && any_attached;
   if (!running()) stats_.connected = false;
   switch (sim_state_.load()) {

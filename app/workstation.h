@@ -99,6 +99,9 @@ struct RenderSnapshot {
   std::array<Eigen::Vector3d, dv::kMaxFingers> finger_force{};  // on the finger, N
   std::array<bool, dv::kMaxFingers> finger_active{};
   double finger_radius = 0.008;
+  /// Von Mises stress at the nodes (nnode, Pa; sim/fem_stress.h), filled only while
+  /// Workstation::set_stress_enabled(true), else empty.
+  std::vector<float> von_mises;
 };
 
 struct TickSample {
@@ -171,6 +174,11 @@ struct LiveStats {
   std::array<double, dv::kMaxFingers> force_n{};
   std::uint64_t dropped = 0;
   std::string state = "stopped";  // "loading", "running", "swapping", "error: ..."
+  std::string backend;            // the backend stepping now ("cpu" after a fallback)
+  int fallbacks = 0;              // backend errors survived by falling back to the CPU
+  int divergences = 0;            // divergence resets (body put back to rest)
+  std::string safety_note;        // the newest of those, one line ("" when none)
+  bool recovering = false;        // forces held/blended after a fallback or reset
 };
 
 struct WorkstationOptions {
@@ -185,6 +193,15 @@ struct WorkstationOptions {
   int haptic_priority = 80;            // SCHED_FIFO where allowed
   double snapshot_hz = 40;             // render snapshots per second (at most; the view draws one frame per snapshot)
   double sim_max_dt = 0.01;            // s, cap of the real-time dt
+  /// After a backend error (CPU fallback) or a divergence reset the body restarts at
+  /// rest: the last good contact models are held for recover_hold_s while the new body
+  /// settles around the fingers, then blended linearly into the new ones over
+  /// recover_blend_s (0 and 0: the new forces at once, as before).
+  double recover_hold_s = 0.3;
+  double recover_blend_s = 0.5;
+  /// The two-step minimum on the force sent to the haptic loop (app/sim_fingers.h,
+  /// guard_force_spike): no release chatter or contact-onset overshoot at real-time dt.
+  bool spike_guard = true;
 };
 
 /// The default patient: the paper's breast and tumour at the coarse resolution (about
@@ -238,6 +255,11 @@ class Workstation {
   /// What the haptic loop talks to, in words.
   std::string device_description() const;
   bool simulated_device() const { return link_ == nullptr; }
+  /// The stress colour map: the simulation thread adds nodal von Mises stress to the
+  /// render snapshots while on (about 0.1 ms per snapshot on the coarse breast).
+  void set_stress_enabled(bool on) { stress_enabled_.store(on, std::memory_order_release); }
+  bool stress_enabled() const { return stress_enabled_.load(std::memory_order_acquire); }
+
   /// Mouse palpation: the index fingertip goes to `world` (m); others stay away.
   void set_mouse_finger(const Eigen::Vector3d& world, bool present);
 
@@ -284,6 +306,14 @@ class Workstation {
   std::string load_error_;
   bool swap_pending_ = false;        // simulation thread only
   std::atomic<int> sim_state_{0};  // 0 stopped, 1 loading, 2 running, 3 swapping, 4 error
+  std::string backend_name_, safety_note_;            // guarded by mu_
+  std::atomic<int> fallbacks_{0}, divergences_{0};
+  std::atomic<bool> recovering_{false};
+  std::atomic<bool> stress_enabled_{false};
+  // Simulation thread only: the recovery after a fallback or reset (sim_main).
+  std::int64_t recover_start_ = 0;
+  std::array<dv::FingerContactModel, dv::kMaxFingers> good_{}, held_{};
+  void publish_empty(std::uint64_t& seq, double sim_time);
 
   // GUI-thread side
   LiveStats stats_;

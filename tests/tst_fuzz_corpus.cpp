@@ -9,10 +9,13 @@
 #include <iterator>
 #include <vector>
 
+#include "scan_import.h"
+
 extern "C" int fuzz_scenario_one(const std::uint8_t* data, std::size_t size);
 extern "C" int fuzz_model_cache_one(const std::uint8_t* data, std::size_t size);
 extern "C" int fuzz_protocol_one(const std::uint8_t* data, std::size_t size);
 extern "C" int fuzz_recording_one(const std::uint8_t* data, std::size_t size);
+extern "C" int fuzz_scan_import_one(const std::uint8_t* data, std::size_t size);
 
 namespace {
 
@@ -39,6 +42,10 @@ class TestFuzzCorpus : public QObject {
   void modelCache() { QVERIFY(replay("model_cache", fuzz_model_cache_one) >= 2); }
   void protocol() { QVERIFY(replay("protocol", fuzz_protocol_one) >= 3); }
   void recording() { QVERIFY(replay("recording", fuzz_recording_one) >= 1); }
+  void scanImport() {
+    if (!palpation::app::scan_reader_available()) QSKIP("this build has no assimp (scan import)");
+    QVERIFY(replay("scan_import", fuzz_scan_import_one) >= 5);
+  }
 };
 
 QTEST_GUILESS_MAIN(TestFuzzCorpus)

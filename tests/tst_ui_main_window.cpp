@@ -27,6 +27,7 @@ struct ImageStats {
   double skin_fraction = 0;  // pixels with the skin's warm colour (r > g > b, r high)
   double red_cyan = 0;       // pixels where r and g/b differ strongly (anaglyph fringes)
   double bright = 0;         // pixels brighter than the background and the chest can be (lit skin)
+  double blue = 0;           // saturated blue pixels (a colour map's low end; not the background)
 };
 
 ImageStats stats(const QImage& img0) {
@@ -43,6 +44,7 @@ ImageStats stats(const QImage& img0) {
       if (r > 120 && r > g + 15 && g > b) s.skin_fraction += 1;
       if (std::abs(r - (g + b) / 2) > 60) s.red_cyan += 1;
       if (r + g + b > 3 * 150) s.bright += 1;
+      if (b > 120 && b > r + 60 && b > g + 30) s.blue += 1;
     }
   }
   s.mean_r /= n;
@@ -51,6 +53,7 @@ ImageStats stats(const QImage& img0) {
   s.skin_fraction /= n;
   s.red_cyan /= n;
   s.bright /= n;
+  s.blue /= n;
   return s;
 }
 
@@ -195,7 +198,8 @@ class TstUiMainWindow : public QObject {
     QVERIFY(synced());
   }
 
-  void plots_receive_data() {
+  // (Not "..._data": QtTest takes a slot ending in _data for a data function and never ran it.)
+  void plots_are_fed() {
     ui::ForcePlots* p = w_->plots();
     QTRY_VERIFY_WITH_TIMEOUT(p->point_count(1) > 30, 30000);
     QTRY_VERIFY_WITH_TIMEOUT(p->shown_points() > 30, 30000);
@@ -203,7 +207,11 @@ class TstUiMainWindow : public QObject {
     QVERIFY(p->export_csv(csv));
     QFile f(csv);
     QVERIFY(f.open(QIODevice::ReadOnly));
-    QVERIFY(f.readLine().startsWith("t,finger"));
+    QVERIFY(f.readLine().startsWith("t,finger,x,fmag,fz,sim_fmag,sim_fz"));
+    // Both forces: the simulated contact force exceeds the device limit during the
+    // scripted deep palpation, the force sent to the device never does.
+    QTRY_VERIFY_WITH_TIMEOUT(p->max_simulated(1) > 4.0 + 0.2, 30000);
+    QVERIFY(p->max_sent(1) <= 4.0 + 1e-6);
     p->set_paused(true);
     const int n = p->point_count(1);
     QTest::qWait(300);
@@ -232,10 +240,55 @@ class TstUiMainWindow : public QObject {
     // Not the mono image again: anaglyph desaturates and splits the eyes into channels.
     QVERIFY(std::abs(ana.mean_r - mono.mean_r) + std::abs(ana.mean_g - mono.mean_g) + std::abs(ana.mean_b - mono.mean_b) > 1.0);
     QVERIFY(ana.mean_r > 10);  // not an empty black image
-    QString why;
-    if (!v->set_stereo(ui::VtkView::Stereo::QuadBuffer, &why)) QVERIFY(!why.isEmpty());
     QVERIFY(v->set_stereo(ui::VtkView::Stereo::Mono));
     v->set_eye_angle(2.0);
+    v->set_tumours_visible(true);
+  }
+
+  // Quad-buffer stereo where the display has no stereo visuals (Xvfb, offscreen): a clear
+  // reason and the view falls back to anaglyph, still drawing the breast.
+  void quad_buffer_falls_back_to_anaglyph() {
+    ui::VtkView* v = w_->view();
+    QString probe;
+    if (ui::VtkView::quad_buffer_available(&probe)) QSKIP("this display grants stereo buffers: no fallback to test");
+    QVERIFY(!probe.isEmpty());
+    QString why;
+    QVERIFY(!v->set_stereo(ui::VtkView::Stereo::QuadBuffer, &why));
+    qInfo("%s", qPrintable(why));
+    QVERIFY(why.contains(QLatin1String("not available")) && why.contains(QLatin1String("anaglyph")));
+    QCOMPARE(v->stereo(), ui::VtkView::Stereo::Anaglyph);
+    QTest::qWait(200);
+    QVERIFY(stats(v->grabFramebuffer()).bright > 0.02);
+    QVERIFY(v->set_stereo(ui::VtkView::Stereo::Mono));
+  }
+
+  // The stress colour map: the workstation adds nodal von Mises stress to the snapshots
+  // while it is on; the pressed breast shows the map's colours (blue at rest, warmer
+  // where it is stressed) instead of the skin tone, with the scalar bar.
+  void stress_colour_map() {
+    ui::VtkView* v = w_->view();
+    v->set_tumours_visible(false);
+    w_->workstation().set_stress_enabled(true);
+    v->set_colour_mode(ui::VtkView::ColourMap::Stress);
+    QTRY_VERIFY_WITH_TIMEOUT((w_->workstation().snapshot().von_mises.size() == w_->workstation().geometry()->rest.size()),
+                             20000);
+    float vmax = 0;
+    QTRY_VERIFY_WITH_TIMEOUT(([&] {
+                               vmax = 0;
+                               for (float x : w_->workstation().snapshot().von_mises) vmax = std::max(vmax, x);
+                               return vmax > 100.0f;  // Pa: the scripted finger presses
+                             }()),
+                             30000);
+    QTest::qWait(200);
+    const ImageStats st = stats(v->grabFramebuffer());
+    qInfo("stress map: max %.0f Pa; skin %.3f, blue %.3f", double(vmax), st.skin_fraction, st.blue);
+    QVERIFY2(st.skin_fraction < 0.02, "the colour map replaces the skin tone");
+    QVERIFY2(st.blue > 0.05, "mostly low stress: the map's blue");
+    w_->workstation().set_stress_enabled(false);
+    v->set_colour_mode(ui::VtkView::ColourMap::None);
+    QTRY_VERIFY_WITH_TIMEOUT(w_->workstation().snapshot().von_mises.empty(), 20000);
+    QTest::qWait(200);
+    QVERIFY(stats(v->grabFramebuffer()).skin_fraction > 0.05);
     v->set_tumours_visible(true);
   }
 

@@ -1,5 +1,8 @@
 #include "force_plots.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <QChart>
 #include <QCoreApplication>
 #include <QChartView>
@@ -7,7 +10,9 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QHBoxLayout>
+#include <QLegendMarker>
 #include <QLineSeries>
+#include <QPen>
 #include <QPushButton>
 #include <QTabWidget>
 #include <QTextStream>
@@ -21,17 +26,37 @@ const char* const kFingerName[5] = {QT_TRANSLATE_NOOP("ForcePlots", "thumb"), QT
                                     QT_TRANSLATE_NOOP("ForcePlots", "middle"), QT_TRANSLATE_NOOP("ForcePlots", "ring"),
                                     QT_TRANSLATE_NOOP("ForcePlots", "little")};
 
-QChart* make_chart(std::array<QLineSeries*, 5>& series, QValueAxis** xaxis, QValueAxis** yaxis_out) {
+// Solid: sent to the device; dashed, same colour: simulated. Only the solid series
+// appear in the legend (the title says what dashed means).
+QChart* make_chart(std::array<QLineSeries*, 5>& series, std::array<QLineSeries*, 5>& simulated, QLineSeries** limit,
+                   QValueAxis** xaxis, QValueAxis** yaxis_out) {
   auto* chart = new QChart;
   auto* x = new QValueAxis;
   auto* y = new QValueAxis;
   chart->addAxis(x, Qt::AlignBottom);
   chart->addAxis(y, Qt::AlignLeft);
+  static const QColor kColour[5] = {QColor(0x20, 0x77, 0xb4), QColor(0x2c, 0xa0, 0x2c), QColor(0xff, 0x7f, 0x0e),
+                                    QColor(0x94, 0x67, 0xbd), QColor(0xd6, 0x27, 0x28)};
   for (int f = 0; f < 5; ++f) {
     series[f] = new QLineSeries;
-    chart->addSeries(series[f]);
-    series[f]->attachAxis(x);
-    series[f]->attachAxis(y);
+    simulated[f] = new QLineSeries;
+    QPen solid(kColour[f], 2.0);
+    series[f]->setPen(solid);
+    QPen dashed(kColour[f], 1.5, Qt::DashLine);
+    simulated[f]->setPen(dashed);
+    for (QLineSeries* s : {series[f], simulated[f]}) {
+      chart->addSeries(s);
+      s->attachAxis(x);
+      s->attachAxis(y);
+    }
+    for (auto* m : chart->legend()->markers(simulated[f])) m->setVisible(false);
+  }
+  if (limit) {
+    *limit = new QLineSeries;
+    (*limit)->setPen(QPen(QColor(120, 120, 120), 1.0, Qt::DotLine));
+    chart->addSeries(*limit);
+    (*limit)->attachAxis(x);
+    (*limit)->attachAxis(y);
   }
   chart->legend()->setAlignment(Qt::AlignRight);
   chart->setMargins(QMargins(2, 2, 2, 2));
@@ -42,13 +67,13 @@ QChart* make_chart(std::array<QLineSeries*, 5>& series, QValueAxis** xaxis, QVal
 }  // namespace
 
 ForcePlots::ForcePlots(QWidget* parent) : QWidget(parent) {
-  QValueAxis *my = nullptr, *fy = nullptr, *xx = nullptr, *xy = nullptr;
-  mag_chart_ = make_chart(mag_, &mag_t_, &my);
-  fz_chart_ = make_chart(fz_, &fz_t_, &fy);
-  fx_chart_ = make_chart(fx_, &xx, &xy);
-  my->setRange(0, 4.5);
-  fy->setRange(-1, 4.5);
-  xy->setRange(-1, 4.5);
+  QValueAxis* xx = nullptr;
+  mag_chart_ = make_chart(mag_, sim_mag_, &mag_limit_, &mag_t_, &mag_y_);
+  fz_chart_ = make_chart(fz_, sim_fz_, &fz_limit_, &fz_t_, &fz_y_);
+  fx_chart_ = make_chart(fx_, sim_fx_, nullptr, &xx, &fx_y_);
+  mag_y_->setRange(0, 4.5);
+  fz_y_->setRange(-1, 4.5);
+  fx_y_->setRange(-1, 4.5);
   xx->setRange(0.08, 0.17);
   mag_view_ = new QChartView(mag_chart_);
   fz_view_ = new QChartView(fz_chart_);
@@ -88,15 +113,22 @@ void ForcePlots::retranslate() {
   tabs_->setTabText(0, tr("|F| vs time"));
   tabs_->setTabText(1, tr("Fz vs time"));
   tabs_->setTabText(2, tr("Fz vs x (Fig. 6)"));
-  mag_chart_->setTitle(tr("Force magnitude per finger (N)"));
-  fz_chart_->setTitle(tr("Fz per finger (N)"));
-  fx_chart_->setTitle(tr("Fz (N) against finger x (m)"));
+  const QString key = tr("solid: sent to the device (limit %1 N, dotted); dashed: simulated contact force").arg(limit_, 0, 'f', 1);
+  mag_chart_->setTitle(tr("Force magnitude per finger (N)") + QStringLiteral("<br><small>") + key + QStringLiteral("</small>"));
+  fz_chart_->setTitle(tr("Fz per finger (N)") + QStringLiteral("<br><small>") + key + QStringLiteral("</small>"));
+  fx_chart_->setTitle(tr("Fz (N) against finger x (m)") + QStringLiteral("<br><small>") + key + QStringLiteral("</small>"));
   for (int f = 0; f < 5; ++f) {
     const QString n = QCoreApplication::translate("ForcePlots", kFingerName[f]);
     mag_[f]->setName(n);
     fz_[f]->setName(n);
     fx_[f]->setName(n);
+    const QString sim = tr("%1 (simulated)").arg(n);
+    sim_mag_[f]->setName(sim);
+    sim_fz_[f]->setName(sim);
+    sim_fx_[f]->setName(sim);
   }
+  mag_limit_->setName(tr("device limit"));
+  fz_limit_->setName(tr("device limit"));
   pause_->setText(paused_ ? tr("Resume") : tr("Pause"));
   png_->setText(tr("Export PNG..."));
   csv_->setText(tr("Export CSV..."));
@@ -111,9 +143,31 @@ void ForcePlots::add_sample(const app::TickSample& s) {
   if (paused_ || s.finger < 0 || s.finger >= 5) return;
   if (!data_[s.finger].empty() && s.t - last_t_[s.finger] < 0.02) return;  // 50 Hz is plenty for the eye
   last_t_[s.finger] = s.t;
-  data_[s.finger].push_back({s.t, s.force.norm(), s.force.z(), s.position.x()});
+  const Eigen::Vector3d& sim = sim_force_[s.finger];
+  data_[s.finger].push_back({s.t, s.force.norm(), s.force.z(), s.position.x(), sim.norm(), sim.z()});
   newest_ = std::max(newest_, s.t);
   while (!data_[s.finger].empty() && data_[s.finger].front().t < s.t - window_) data_[s.finger].pop_front();
+}
+
+void ForcePlots::add_step_sample(const app::StepSample& s) {
+  for (int f = 0; f < 5; ++f) sim_force_[f] = s.in[f].active ? s.force[f] : Eigen::Vector3d::Zero();
+}
+
+void ForcePlots::set_device_limit(double newtons) {
+  limit_ = newtons;
+  retranslate();
+}
+
+double ForcePlots::max_sent(int finger) const {
+  double m = 0;
+  for (const auto& p : data_[finger]) m = std::max(m, p.fmag);
+  return m;
+}
+
+double ForcePlots::max_simulated(int finger) const {
+  double m = 0;
+  for (const auto& p : data_[finger]) m = std::max(m, p.sim_mag);
+  return m;
 }
 
 int ForcePlots::shown_points() const {
@@ -132,15 +186,30 @@ void ForcePlots::refresh() {
   if (paused_) return;
   // Only the chart on show is refilled (the others when their tab comes up).
   const int tab = tabs_->currentIndex();
+  double top = 0, bottom = 0;
   for (int f = 0; f < 5; ++f) {
-    QList<QPointF> pts;
+    QList<QPointF> pts, sim;
     pts.reserve(int(data_[f].size()));
-    for (const auto& p : data_[f]) pts.append(tab == 0 ? QPointF(p.t, p.fmag) : tab == 1 ? QPointF(p.t, p.fz) : QPointF(p.x, p.fz));
+    sim.reserve(int(data_[f].size()));
+    for (const auto& p : data_[f]) {
+      pts.append(tab == 0 ? QPointF(p.t, p.fmag) : tab == 1 ? QPointF(p.t, p.fz) : QPointF(p.x, p.fz));
+      sim.append(tab == 0 ? QPointF(p.t, p.sim_mag) : tab == 1 ? QPointF(p.t, p.sim_z) : QPointF(p.x, p.sim_z));
+      top = std::max({top, pts.back().y(), sim.back().y()});
+      bottom = std::min({bottom, pts.back().y(), sim.back().y()});
+    }
     (tab == 0 ? mag_ : tab == 1 ? fz_ : fx_)[f]->replace(pts);
+    (tab == 0 ? sim_mag_ : tab == 1 ? sim_fz_ : sim_fx_)[f]->replace(sim);
   }
   const double t1 = std::max(newest_, window_);
   mag_t_->setRange(t1 - window_, t1);
   fz_t_->setRange(t1 - window_, t1);
+  mag_limit_->replace(QList<QPointF>{{t1 - window_, limit_}, {t1, limit_}});
+  fz_limit_->replace(QList<QPointF>{{t1 - window_, limit_}, {t1, limit_}});
+  // The y range follows the simulated force above the device limit (in 2 N steps, so
+  // that it does not jitter), never below the limit.
+  const double hi = std::max(limit_ + 0.5, 2.0 * std::ceil(top * 1.05 / 2.0));
+  const double lo = std::min(-1.0, -2.0 * std::ceil(-bottom * 1.05 / 2.0));
+  (tab == 0 ? mag_y_ : tab == 1 ? fz_y_ : fx_y_)->setRange(tab == 0 ? 0.0 : lo, hi);
 }
 
 bool ForcePlots::export_png(const QString& path) {
@@ -152,9 +221,11 @@ bool ForcePlots::export_csv(const QString& path) const {
   QFile file(path);
   if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text)) return false;
   QTextStream out(&file);
-  out << "t,finger,x,fmag,fz\n";
+  // fmag, fz: sent to the device; sim_fmag, sim_fz: the simulated contact force.
+  out << "t,finger,x,fmag,fz,sim_fmag,sim_fz\n";
   for (int f = 0; f < 5; ++f)
-    for (const auto& p : data_[f]) out << p.t << ',' << f << ',' << p.x << ',' << p.fmag << ',' << p.fz << '\n';
+    for (const auto& p : data_[f])
+      out << p.t << ',' << f << ',' << p.x << ',' << p.fmag << ',' << p.fz << ',' << p.sim_mag << ',' << p.sim_z << '\n';
   return true;
 }
 

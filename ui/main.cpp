@@ -179,9 +179,11 @@ int main(int argc, char** argv) {
       const QImage img = w.grab().toImage();
       const bool ok = img.save(file);
       const auto& s = w.workstation().stats();
-      std::fprintf(stderr, "palpation-trainer: %s %s (%dx%d); view %.0f fps, simulation %.0f Hz, haptic %.0f Hz\n",
+      std::fprintf(stderr,
+                   "palpation-trainer: %s %s (%dx%d); view %.0f fps (paint %.1f ms/frame, snapshot %.2f ms), "
+                   "simulation %.0f Hz, haptic %.0f Hz\n",
                    ok ? "saved" : "could not save", qPrintable(file), img.width(), img.height(), w.frame_rate(),
-                   s.step_rate_hz, s.haptic_rate_hz);
+                   w.view()->paint_ms(), w.view()->update_ms(), s.step_rate_hz, s.haptic_rate_hz);
       QApplication::exit(ok ? 0 : 1);
     });
   }

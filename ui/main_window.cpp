@@ -151,6 +151,8 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   });
   connect(editor_, &TumourEditor::changed, this, [this] { view_->set_element_young(editor_->young()); });
   ws_->add_tick_listener([this](const app::TickSample& s) { plots_->add_sample(s); });
+  ws_->add_step_listener([this](const app::StepSample& s) { plots_->add_step_sample(s); });
+  plots_->set_device_limit(std::min(ws_->device_config().loop.safety.max_force, ws_->device_config().hand.capabilities.max_force));
   ws_->add_event_listener([this](const app::Event& e) {
     statusBar()->showMessage(QString::fromStdString(e.text), 4000);
   });
@@ -379,7 +381,22 @@ void MainWindow::build_actions() {
   });
   a_colour_ = view_menu_->addAction(QString());
   a_colour_->setCheckable(true);
-  connect(a_colour_, &QAction::toggled, view_, &VtkView::set_colour_map);
+  // Colour maps, at most one: displacement, or stress (the simulation thread computes
+  // nodal von Mises stress only while that one is on).
+  a_stress_ = view_menu_->addAction(QString());
+  a_stress_->setCheckable(true);
+  auto* colour_group = new QActionGroup(this);
+  colour_group->setExclusionPolicy(QActionGroup::ExclusionPolicy::ExclusiveOptional);
+  colour_group->addAction(a_colour_);
+  colour_group->addAction(a_stress_);
+  auto apply_colour = [this] {
+    ws_->set_stress_enabled(a_stress_->isChecked());
+    view_->set_colour_mode(a_stress_->isChecked()   ? VtkView::ColourMap::Stress
+                           : a_colour_->isChecked() ? VtkView::ColourMap::Displacement
+                                                    : VtkView::ColourMap::None);
+  };
+  connect(a_colour_, &QAction::toggled, this, apply_colour);
+  connect(a_stress_, &QAction::toggled, this, apply_colour);
   a_tumours_ = view_menu_->addAction(QString());
   a_tumours_->setCheckable(true);
   a_tumours_->setChecked(true);
@@ -444,6 +461,7 @@ void MainWindow::retranslate() {
   a_eye_->setText(tr("Eye separation..."));
   a_mirror_->setText(tr("Mirrored (half-mirror display)"));
   a_colour_->setText(tr("Displacement colour map"));
+  a_stress_->setText(tr("Stress colour map (von Mises)"));
   a_tumours_->setText(tr("Show tumours"));
   panels_menu_->setTitle(tr("Panels"));
   mode_menu_->setTitle(tr("&Mode"));
@@ -554,8 +572,12 @@ void MainWindow::update_status() {
   if (!st_backend_) return;
   const auto& s = ws_->stats();
   const auto g = ws_->geometry();
-  const QString be = g ? QString::fromStdString(g->backend) : QStringLiteral("-");
-  st_backend_->setText(tr("Backend: %1").arg(be));
+  // The backend stepping now (after a CUDA error: the CPU it fell back to).
+  const QString be = !s.backend.empty() ? QString::fromStdString(s.backend)
+                     : g                ? QString::fromStdString(g->backend)
+                                        : QStringLiteral("-");
+  st_backend_->setText(s.fallbacks > 0 ? tr("Backend: %1 (fallback)").arg(be) : tr("Backend: %1").arg(be));
+  st_backend_->setToolTip(QString::fromStdString(s.safety_note));
   st_step_->setText(tr("Simulation: %1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
   st_haptic_->setText(tr("Haptic: %1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
   const QString dev = !ws_->simulated_device() ? QString::fromStdString(ws_->device_description())

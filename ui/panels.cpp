@@ -297,12 +297,15 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   step_rate = new QLabel;
   haptic_rate = new QLabel;
   state = new QLabel;
+  safety = new QLabel;
+  safety->setWordWrap(true);
   form_ = new QFormLayout(this);
   form_->addRow(QStringLiteral("-"), backend);
   form_->addRow(QStringLiteral("-"), tolerance);
   form_->addRow(QStringLiteral("-"), iterations);
   form_->addRow(apply);
   form_->addRow(QStringLiteral("-"), state);
+  form_->addRow(QStringLiteral("-"), safety);
   form_->addRow(QStringLiteral("-"), step_ms);
   form_->addRow(QStringLiteral("-"), cg);
   form_->addRow(QStringLiteral("-"), step_rate);
@@ -315,6 +318,7 @@ void SimulationPanel::retranslate() {
   set_label(form_, tolerance, tr("CG tolerance"));
   set_label(form_, iterations, tr("CG max. iterations"));
   set_label(form_, state, tr("State"));
+  set_label(form_, safety, tr("Safety"));
   set_label(form_, step_ms, tr("Step time"));
   set_label(form_, cg, tr("CG iterations"));
   set_label(form_, step_rate, tr("Simulation rate"));
@@ -330,6 +334,15 @@ void SimulationPanel::changeEvent(QEvent* e) {
 
 void SimulationPanel::show_stats(const app::LiveStats& s, const QString& be) {
   state->setText(QString::fromStdString(s.state) + (be.isEmpty() ? QString() : QStringLiteral(" (") + be + QStringLiteral(")")));
+  // Backend fallbacks and divergence resets (design.md section 7), with the newest reason.
+  QString text = s.fallbacks == 0 && s.divergences == 0
+                     ? tr("no fault")
+                     : tr("%n backend fallback(s)", nullptr, s.fallbacks) + QStringLiteral(", ") +
+                           tr("%n divergence reset(s)", nullptr, s.divergences);
+  if (s.recovering) text += QStringLiteral("; ") + tr("forces held and blended");
+  if (!s.safety_note.empty()) text += QStringLiteral("\n") + QString::fromStdString(s.safety_note);
+  safety->setText(text);
+  safety->setStyleSheet(s.fallbacks + s.divergences > 0 ? QStringLiteral("color: #b35c00") : QString());
   step_ms->setText(tr("%1 ms").arg(s.step_ms, 0, 'f', 2));
   cg->setText(QString::number(s.cg_iterations));
   step_rate->setText(tr("%1 Hz").arg(s.step_rate_hz, 0, 'f', 0));

@@ -98,6 +98,7 @@ class SimulationPanel : public QWidget {
   QSpinBox* iterations = nullptr;
   QPushButton* apply = nullptr;
   QLabel *step_ms = nullptr, *cg = nullptr, *step_rate = nullptr, *haptic_rate = nullptr, *state = nullptr;
+  QLabel* safety = nullptr;  // fallbacks / divergence resets and the newest reason
  protected:
   void changeEvent(QEvent* e) override;
  private:

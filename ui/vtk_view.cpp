@@ -2,11 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
 
+#include <QCoreApplication>
+#include <QElapsedTimer>
+#include <QGuiApplication>
 #include <QMouseEvent>
+#include <QOffscreenSurface>
+#include <QScopeGuard>
 #include <QOpenGLContext>
+#include <QOpenGLExtraFunctions>
 #include <QOpenGLFunctions>
+#include <QOpenGLWindow>
 #include <QWheelEvent>
+#include <QSurfaceFormat>
+#include <QWindow>
 
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
@@ -17,7 +28,6 @@
 #include <vtkFloatArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkGenericRenderWindowInteractor.h>
-#include <vtkGeometryFilter.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkLookupTable.h>
 #include <vtkOpenGLState.h>
@@ -25,13 +35,14 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
-#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
+#include <vtkOpenGLFramebufferObject.h>
 #include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextureObject.h>
 #include <vtkSphereSource.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
-#include <vtkUnstructuredGrid.h>
 
 namespace palpation::ui {
 
@@ -71,43 +82,68 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent) {
   window_->AddObserver(vtkCommand::WindowIsCurrentEvent, is_current);
   auto frame = vtkSmartPointer<vtkCallbackCommand>::New();
   frame->SetClientData(this);
-  frame->SetCallback([](vtkObject*, unsigned long, void* self, void*) { static_cast<VtkView*>(self)->update(); });
+  // A render VTK starts itself (not from paintGL) needs a repaint; one inside paintGL must
+  // not schedule another, or the view re-renders continuously (it did: 7-13 fps of
+  // back-to-back frames under llvmpipe, taking CPU from the simulation).
+  frame->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+    auto* w = static_cast<VtkView*>(self);
+    if (!w->painting_) w->update();
+  });
   window_->AddObserver(vtkCommand::WindowFrameEvent, frame);
 
   renderer_->SetBackground(0.13, 0.15, 0.19);
   renderer_->SetBackground2(0.32, 0.36, 0.44);
   renderer_->GradientBackgroundOn();
 
-  // Breast surface: all nodes as points (the snapshot's layout), surface triangles as cells.
+  // Breast surface: all nodes as points (the snapshot's layout, updated in place), the
+  // surface triangles as cells, point normals computed here (update_normals), no filter.
   surface_->SetPoints(points_);
-  displacement_->SetName("displacement");
-  normals_->SetInputData(surface_);
-  normals_->SplittingOff();
-  normals_->ConsistencyOff();
+  normals_->SetName("normals");
+  normals_->SetNumberOfComponents(3);
+  surface_->GetPointData()->SetNormals(normals_);
+  scalars_->SetName("colour");
+  surface_->GetPointData()->SetScalars(scalars_);
   vtkNew<vtkPolyDataMapper> sm;
-  sm->SetInputConnection(normals_->GetOutputPort());
+  sm->SetInputData(surface_);
   sm->ScalarVisibilityOff();
-  vtkNew<vtkLookupTable> lut;
-  lut->SetHueRange(0.66, 0.0);
-  lut->Build();
-  sm->SetLookupTable(lut);
-  sm->SetScalarRange(0.0, 0.015);
+  sm->SetColorModeToMapScalars();
+  sm->InterpolateScalarsBeforeMappingOn();
+  lut_->SetHueRange(0.66, 0.0);
+  lut_->Build();
+  sm->SetLookupTable(lut_);
+  sm->UseLookupTableScalarRangeOn();
+  lut_->SetTableRange(0.0, 15.0);
   surface_actor_->SetMapper(sm);
   surface_actor_->GetProperty()->SetColor(0.96, 0.80, 0.70);
   surface_actor_->GetProperty()->SetSpecular(0.2);
   surface_actor_->GetProperty()->SetSpecularPower(20);
   surface_actor_->GetProperty()->SetOpacity(0.6);
+  // Only the skin's front faces: with the tumour opaque under it, plain alpha blending
+  // of a convex shell needs no depth sorting (no depth peeling, a single pass).
+  surface_actor_->GetProperty()->BackfaceCullingOn();
   renderer_->AddActor(surface_actor_);
 
-  // Tumours: the stiff elements, sharing the deformed points.
-  tumour_grid_->SetPoints(points_);
-  vtkNew<vtkGeometryFilter> tf;
-  tf->SetInputData(tumour_grid_);
+  scalar_bar_->SetLookupTable(lut_);
+  scalar_bar_->SetNumberOfLabels(4);
+  scalar_bar_->SetLabelFormat("%.3g");
+  scalar_bar_->SetMaximumWidthInPixels(90);
+  scalar_bar_->SetMaximumHeightInPixels(260);
+  scalar_bar_->SetPosition(0.86, 0.08);
+  scalar_bar_->SetWidth(0.12);
+  scalar_bar_->SetHeight(0.5);
+  scalar_bar_->GetTitleTextProperty()->SetFontSize(12);
+  scalar_bar_->GetLabelTextProperty()->SetFontSize(11);
+  scalar_bar_->VisibilityOff();
+  renderer_->AddActor2D(scalar_bar_);
+
+  // Tumours: the boundary faces of the stiff elements, sharing the deformed points;
+  // opaque, flat-shaded from the fragment derivatives (no normals to update).
+  tumour_poly_->SetPoints(points_);
   vtkNew<vtkPolyDataMapper> tm;
-  tm->SetInputConnection(tf->GetOutputPort());
+  tm->SetInputData(tumour_poly_);
+  tm->ScalarVisibilityOff();
   tumour_actor_->SetMapper(tm);
   tumour_actor_->GetProperty()->SetColor(0.85, 0.1, 0.15);
-  tumour_actor_->GetProperty()->SetOpacity(0.85);
   tumour_actor_->PickableOff();
   renderer_->AddActor(tumour_actor_);
 
@@ -153,6 +189,9 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent) {
 }
 
 VtkView::~VtkView() {
+  delete quad_container_;
+  quad_container_ = nullptr;
+  quad_window_ = nullptr;
   makeCurrent();
   window_->Finalize();
   doneCurrent();
@@ -167,19 +206,36 @@ void VtkView::initializeGL() {
 }
 
 void VtkView::resizeGL(int w, int h) {
+  if (quad_container_) quad_container_->setGeometry(rect());
   const qreal r = devicePixelRatioF();
   window_->SetSize(int(w * r), int(h * r));
   interactor_->UpdateSize(int(w * r), int(h * r));
 }
 
-void VtkView::paintGL() {
-  if (!initialized_) return;
+void VtkView::render_vtk() {
+  painting_ = true;
+  const auto done = qScopeGuard([this] { painting_ = false; });
   vtkOpenGLState* st = window_->GetState();
   st->Reset();
   st->Push();
   st->vtkglDepthFunc(GL_LEQUAL);
   window_->Render();
+  st->Pop();
+}
+
+void VtkView::paintGL() {
+  if (!initialized_) return;
+  if (quad_window_) {  // quad-buffer stereo: the stereo window renders and presents
+    quad_window_->requestUpdate();
+    return;
+  }
+  QElapsedTimer timer;
+  timer.start();
+  render_vtk();
   // Blit VTK's display framebuffer into the widget's (mirrored for the half mirror).
+  vtkOpenGLState* st = window_->GetState();
+  st->Reset();
+  st->Push();
   const qreal r = devicePixelRatioF();
   const int w = int(width() * r), h = int(height() * r);
   st->PushDrawFramebufferBinding();
@@ -196,6 +252,110 @@ void VtkView::paintGL() {
   st->PopDrawFramebufferBinding();
   st->Pop();
   ++frames_;
+  paint_ns_ += double(timer.nsecsElapsed());
+}
+
+// ---------------------------------------------------------------------------------------
+// Quad-buffer stereo. Qt 6.4's QOpenGLWidget has no stereo buffers (stack-notes.md), so a
+// native window with a stereo format, sharing objects with the view's context, covers the
+// view: VTK renders both eyes (CrystalEyes) in the view's context into the two colour
+// textures of its display framebuffer; this window blits them into GL_BACK_LEFT and
+// GL_BACK_RIGHT of its own default framebuffer. Mouse and wheel events go on to the view.
+
+namespace {
+QSurfaceFormat stereo_format() {
+  QSurfaceFormat f = QSurfaceFormat::defaultFormat();
+  f.setStereo(true);
+  return f;
+}
+}  // namespace
+
+class QuadBufferWindow : public QOpenGLWindow {
+ public:
+  explicit QuadBufferWindow(VtkView* view) : QOpenGLWindow(view->context(), QOpenGLWindow::NoPartialUpdate), view_(view) {
+    setFormat(stereo_format());
+  }
+  ~QuadBufferWindow() override {
+    if (fbo_ && context()) {
+      makeCurrent();
+      context()->extraFunctions()->glDeleteFramebuffers(1, &fbo_);
+      doneCurrent();
+    }
+  }
+
+ protected:
+  void paintGL() override {
+    QElapsedTimer timer;
+    timer.start();
+    // 1. Both eyes, in the view's context.
+    view_->makeCurrent();
+    view_->render_vtk();
+    vtkOpenGLFramebufferObject* display = view_->window_->GetDisplayFramebuffer();
+    vtkTextureObject* lt = display ? display->GetColorAttachmentAsTextureObject(0) : nullptr;
+    vtkTextureObject* rt = display ? display->GetColorAttachmentAsTextureObject(1) : nullptr;
+    const GLuint left = lt ? lt->GetHandle() : 0, right = rt ? rt->GetHandle() : left;
+    view_->context()->functions()->glFinish();
+    view_->doneCurrent();
+    // 2. Into the stereo back buffers, in this window's context.
+    makeCurrent();
+    if (!left) return;
+    QOpenGLExtraFunctions* f = context()->extraFunctions();
+    using DrawBuffer = void (*)(GLenum);
+    auto draw_buffer = reinterpret_cast<DrawBuffer>(context()->getProcAddress("glDrawBuffer"));
+    if (!fbo_) f->glGenFramebuffers(1, &fbo_);
+    const qreal r = devicePixelRatio();
+    const int w = int(width() * r), h = int(height() * r);
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+    f->glBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+    for (int eye = 0; eye < 2; ++eye) {
+      f->glFramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, eye ? right : left, 0);
+      f->glReadBuffer(GL_COLOR_ATTACHMENT0);
+      if (draw_buffer) draw_buffer(eye ? GL_BACK_RIGHT : GL_BACK_LEFT);
+      if (view_->mirrored_) f->glBlitFramebuffer(0, 0, w, h, w, 0, 0, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      else f->glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    f->glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    ++view_->frames_;
+    view_->paint_ns_ += double(timer.nsecsElapsed());
+  }
+  void mousePressEvent(QMouseEvent* e) override { QCoreApplication::sendEvent(view_, e); }
+  void mouseMoveEvent(QMouseEvent* e) override { QCoreApplication::sendEvent(view_, e); }
+  void mouseReleaseEvent(QMouseEvent* e) override { QCoreApplication::sendEvent(view_, e); }
+  void wheelEvent(QWheelEvent* e) override { QCoreApplication::sendEvent(view_, e); }
+
+ private:
+  VtkView* view_;
+  GLuint fbo_ = 0;
+};
+
+bool VtkView::quad_buffer_available(QString* why) {
+  static int granted = -1;
+  static QString reason;
+  if (granted < 0) {
+    // A small native window with a stereo format and a context for it: whether the
+    // platform chose a stereo visual/pixel format shows in the context's format.
+    QWindow probe;
+    probe.setSurfaceType(QSurface::OpenGLSurface);
+    probe.setFormat(stereo_format());
+    probe.resize(16, 16);
+    probe.create();
+    QOpenGLContext ctx;
+    ctx.setFormat(stereo_format());
+    if (!probe.handle() || !ctx.create()) {
+      granted = 0;
+      reason = tr("no OpenGL context for a native window on this platform (%1)").arg(QGuiApplication::platformName());
+    } else if (!ctx.makeCurrent(&probe) || !ctx.format().stereo()) {
+      granted = 0;
+      reason = tr("the display's OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, "
+                  "driver and display").arg(QGuiApplication::platformName());
+      ctx.doneCurrent();
+    } else {
+      granted = 1;
+      ctx.doneCurrent();
+    }
+  }
+  if (why) *why = reason;
+  return granted == 1;
 }
 
 void VtkView::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
@@ -207,61 +367,147 @@ void VtkView::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
   for (std::size_t i = 0; i < rest.size(); ++i) points_->SetPoint(vtkIdType(i), rest[i].x(), rest[i].y(), rest[i].z());
   points_->Modified();
   vtkNew<vtkCellArray> tris;
+  tris->AllocateExact(vtkIdType(geometry_->surface.size()), vtkIdType(geometry_->surface.size() * 3));
   for (const auto& t : geometry_->surface) {
     const vtkIdType ids[3] = {t[0], t[1], t[2]};
     tris->InsertNextCell(3, ids);
   }
   surface_->SetPolys(tris);
-  displacement_->SetNumberOfTuples(vtkIdType(rest.size()));
-  displacement_->Fill(0.0);
-  surface_->GetPointData()->SetScalars(displacement_);
+  normals_->SetNumberOfTuples(vtkIdType(rest.size()));
+  scalars_->SetNumberOfTuples(vtkIdType(rest.size()));
+  scalars_->Fill(0.0);
+  shown_positions_.clear();
+  shown_stress_.clear();
+  update_normals();
   surface_->Modified();
   set_element_young(geometry_->young);
   update();
 }
 
-void VtkView::show_snapshot(const app::RenderSnapshot& s) {
-  if (geometry_ && s.model_generation == geometry_->generation && s.positions.size() == geometry_->rest.size() * 3) {
-    const auto& rest = geometry_->rest;
-    float* p = static_cast<float*>(points_->GetVoidPointer(0));
-    std::copy(s.positions.begin(), s.positions.end(), p);
-    for (std::size_t i = 0; i < rest.size(); ++i) {
-      const double dx = s.positions[3 * i] - rest[i].x(), dy = s.positions[3 * i + 1] - rest[i].y(),
-                   dz = s.positions[3 * i + 2] - rest[i].z();
-      displacement_->SetValue(vtkIdType(i), float(std::sqrt(dx * dx + dy * dy + dz * dz)));
+void VtkView::update_normals() {
+  // Area-weighted vertex normals of the surface triangles (outward): the cross product's
+  // length is twice the area, so summing unnormalized face normals weights by area.
+  if (!geometry_) return;
+  const vtkIdType n = points_->GetNumberOfPoints();
+  float* nrm = normals_->GetPointer(0);
+  std::fill(nrm, nrm + 3 * n, 0.0f);
+  const float* p = static_cast<const float*>(points_->GetVoidPointer(0));
+  for (const auto& t : geometry_->surface) {
+    const float* a = p + 3 * t[0];
+    const float* b = p + 3 * t[1];
+    const float* c = p + 3 * t[2];
+    const float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const float f[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k)
+      for (int j = 0; j < 3; ++j) nrm[3 * t[k] + j] += f[j];
+  }
+  for (vtkIdType i = 0; i < n; ++i) {
+    float* q = nrm + 3 * i;
+    const float l = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    if (l > 0) {
+      q[0] /= l;
+      q[1] /= l;
+      q[2] /= l;
+    } else {
+      q[2] = 1.0f;  // interior nodes: not drawn
     }
-    points_->Modified();
-    displacement_->Modified();
-    surface_->Modified();
-    tumour_grid_->Modified();
+  }
+  normals_->Modified();
+}
+
+void VtkView::update_scalars(const app::RenderSnapshot* s) {
+  if (!geometry_ || colour_map_ == ColourMap::None) return;
+  const auto& rest = geometry_->rest;
+  float* out = scalars_->GetPointer(0);
+  const float* p = static_cast<const float*>(points_->GetVoidPointer(0));
+  if (colour_map_ == ColourMap::Displacement) {
+    for (std::size_t i = 0; i < rest.size(); ++i) {
+      const double dx = p[3 * i] - rest[i].x(), dy = p[3 * i + 1] - rest[i].y(), dz = p[3 * i + 2] - rest[i].z();
+      out[i] = float(1000.0 * std::sqrt(dx * dx + dy * dy + dz * dz));  // mm
+    }
+  } else {
+    const std::vector<float>* vm = s ? &s->von_mises : &shown_stress_;
+    const bool have = vm->size() == rest.size();
+    for (std::size_t i = 0; i < rest.size(); ++i) out[i] = have ? 1e-3f * (*vm)[i] : 0.0f;  // kPa
+  }
+  scalars_->Modified();
+}
+
+void VtkView::show_snapshot(const app::RenderSnapshot& s) {
+  QElapsedTimer timer;
+  timer.start();
+  bool changed = false;
+  if (geometry_ && s.model_generation == geometry_->generation && s.positions.size() == geometry_->rest.size() * 3) {
+    const bool moved = shown_positions_.size() != s.positions.size() ||
+                       std::memcmp(shown_positions_.data(), s.positions.data(), s.positions.size() * sizeof(float)) != 0;
+    const bool stress = colour_map_ == ColourMap::Stress &&
+                        (shown_stress_.size() != s.von_mises.size() ||
+                         std::memcmp(shown_stress_.data(), s.von_mises.data(), s.von_mises.size() * sizeof(float)) != 0);
+    if (moved) {
+      shown_positions_ = s.positions;
+      float* p = static_cast<float*>(points_->GetVoidPointer(0));
+      std::copy(s.positions.begin(), s.positions.end(), p);
+      points_->Modified();
+      update_normals();
+    }
+    if (stress) shown_stress_ = s.von_mises;
+    if (moved || stress) update_scalars(&s);
+    changed = moved || stress;
   }
   for (int f = 0; f < 5; ++f) {
+    const bool active = s.finger_active[f];
+    if (active == shown_active_[f] && (!active || s.finger_position[f] == shown_fingers_[f])) continue;
+    shown_active_[f] = active;
+    shown_fingers_[f] = s.finger_position[f];
     auto& a = finger_actors_[f];
-    a->SetVisibility(s.finger_active[f]);
+    a->SetVisibility(active);
     a->SetPosition(s.finger_position[f].x(), s.finger_position[f].y(), s.finger_position[f].z());
     a->SetScale(s.finger_radius);
+    changed = true;
+  }
+  ++snapshots_;
+  update_ns_ += double(timer.nsecsElapsed());
+  if (!changed) {
+    ++skipped_;  // nothing moved: keep the last frame
+    return;
   }
   update();
 }
 
 void VtkView::set_element_young(const std::vector<double>& young) {
   young_ = young;
-  tumour_grid_->Reset();
-  tumour_grid_->SetPoints(points_);
-  if (!geometry_) return;
-  tumour_grid_->Allocate(64);
-  const double threshold = geometry_->tissue_young * 1.2;
-  for (std::size_t e = 0; e < young.size() && e < geometry_->tets.size(); ++e) {
-    if (young[e] <= threshold) continue;
-    const auto& t = geometry_->tets[e];
-    const vtkIdType ids[4] = {t[0], t[1], t[2], t[3]};
-    tumour_grid_->InsertNextCell(VTK_TETRA, 4, ids);
+  // The boundary of the stiff elements: their faces that no other stiff element shares,
+  // oriented outward (away from the element's fourth node). Once per material change.
+  vtkNew<vtkCellArray> faces;
+  tumour_cells_ = 0;
+  if (geometry_) {
+    const double threshold = geometry_->tissue_young * 1.2;
+    std::map<std::array<int, 3>, std::array<int, 3>> open;  // sorted face -> oriented face
+    static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    for (std::size_t e = 0; e < young.size() && e < geometry_->tets.size(); ++e) {
+      if (young[e] <= threshold) continue;
+      ++tumour_cells_;
+      const auto& t = geometry_->tets[e];
+      for (const auto& f : kFace) {
+        std::array<int, 3> o{t[f[0]], t[f[1]], t[f[2]]}, key = o;
+        std::sort(key.begin(), key.end());
+        auto it = open.find(key);
+        if (it != open.end()) open.erase(it);
+        else open.emplace(key, o);
+      }
+    }
+    faces->AllocateExact(vtkIdType(open.size()), vtkIdType(open.size() * 3));
+    for (const auto& [key, o] : open) {
+      const vtkIdType ids[3] = {o[0], o[1], o[2]};
+      faces->InsertNextCell(3, ids);
+    }
   }
-  tumour_grid_->Modified();
+  tumour_poly_->SetPolys(faces);
+  tumour_poly_->Modified();
   update();
 }
 
-int VtkView::tumour_cell_count() const { return int(tumour_grid_->GetNumberOfCells()); }
+int VtkView::tumour_cell_count() const { return tumour_cells_; }
 
 void VtkView::set_tumours_visible(bool on) {
   tumours_visible_ = on;
@@ -271,23 +517,42 @@ void VtkView::set_tumours_visible(bool on) {
   update();
 }
 
-void VtkView::set_colour_map(bool on) {
-  colour_map_ = on;
-  surface_actor_->GetMapper()->SetScalarVisibility(on);
+void VtkView::set_colour_mode(ColourMap m) {
+  colour_map_ = m;
+  auto* mapper = surface_actor_->GetMapper();
+  mapper->SetScalarVisibility(m != ColourMap::None);
+  if (m == ColourMap::Displacement) {
+    lut_->SetTableRange(0.0, 15.0);
+    scalar_bar_->SetTitle("|u| mm");
+  } else if (m == ColourMap::Stress) {
+    // 0-10 kPa: the tissue (19 kPa) under a deep push reaches a few kPa; the tumour
+    // (107 kPa) beneath the finger more (saturates red).
+    lut_->SetTableRange(0.0, 10.0);
+    scalar_bar_->SetTitle("von Mises kPa");
+  }
+  scalar_bar_->SetVisibility(m != ColourMap::None);
+  update_scalars(nullptr);
   update();
 }
 
 bool VtkView::set_stereo(Stereo mode, QString* why) {
+  bool ok = true;
   if (mode == Stereo::QuadBuffer) {
-    // Qt 6.4's QOpenGLWidget has no stereo buffers (stack-notes.md); a context with
-    // stereo would have to come from a QOpenGLWindow where the driver grants it.
-    const bool granted = context() && context()->format().stereo();
-    if (!granted) {
+    QString reason;
+    if (!quad_buffer_available(&reason) || !context()) {
+      // Refused: say why and show anaglyph, which needs nothing of the display.
       if (why)
-        *why = tr("Quad-buffer stereo is not available: this display's OpenGL context has no stereo buffers "
-                  "(needs a stereo-capable GPU, driver and display). Use anaglyph, side-by-side or interlaced.");
-      return false;
+        *why = tr("Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; "
+                  "side-by-side and interlaced are also available.")
+                   .arg(context() ? reason : tr("the view is not initialised yet"));
+      mode = Stereo::Anaglyph;
+      ok = false;
     }
+  }
+  if (mode != Stereo::QuadBuffer && quad_container_) {
+    delete quad_container_;  // deletes the stereo window
+    quad_container_ = nullptr;
+    quad_window_ = nullptr;
   }
   stereo_ = mode;
   switch (mode) {
@@ -307,10 +572,16 @@ bool VtkView::set_stereo(Stereo mode, QString* why) {
     case Stereo::QuadBuffer:
       window_->SetStereoTypeToCrystalEyes();
       window_->SetStereoRender(1);
+      if (!quad_window_) {
+        quad_window_ = new QuadBufferWindow(this);
+        quad_container_ = QWidget::createWindowContainer(quad_window_, this);
+        quad_container_->setGeometry(rect());
+        quad_container_->show();
+      }
       break;
   }
   update();
-  return true;
+  return ok;
 }
 
 void VtkView::set_eye_angle(double degrees) {

@@ -1,11 +1,20 @@
 // The 3-D view: VTK 9.1 rendering inside a Qt 6 QOpenGLWidget (Debian's VTK Qt module is
 // Qt5-only; ../shared/stack-notes.md says how this is wired). Shows the deformed breast
 // surface from the simulation's snapshots, the static chest, five fingertip spheres, the
-// stiff (tumour) elements translucent for instructors, an optional displacement colour
-// map; stereo (anaglyph, side-by-side, interlaced) and a mirrored mode for the paper's
-// half-mirror display. Holds no state beyond what it displays.
+// stiff (tumour) elements through a translucent skin for instructors, an optional colour
+// map (displacement, or von Mises stress computed by the simulation thread) with a scalar
+// bar; stereo (anaglyph, side-by-side, interlaced, quad-buffer where the display grants
+// stereo buffers) and a mirrored mode for the paper's half-mirror display. Holds no state
+// beyond what it displays.
+//
+// Cost per frame (docs/gui.md, measured under Xvfb with llvmpipe): a snapshot only
+// rewrites the points array, the point normals (area-weighted, over the surface
+// triangles) and the scalars in place and marks them Modified(); nothing is re-created
+// and no VTK filter runs per frame; the tumour's boundary faces are extracted when the
+// materials change, not per frame. A snapshot that moves nothing renders nothing.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -18,17 +27,18 @@
 
 #include "workstation.h"
 
+class QOpenGLWindow;
 class vtkActor;
+class vtkLookupTable;
+class vtkScalarBarActor;
 class vtkCellPicker;
 class vtkGenericOpenGLRenderWindow;
 class vtkGenericRenderWindowInteractor;
 class vtkPoints;
 class vtkPolyData;
-class vtkPolyDataNormals;
 class vtkRenderer;
 class vtkSphereSource;
 class vtkTextActor;
-class vtkUnstructuredGrid;
 class vtkFloatArray;
 
 namespace palpation::ui {
@@ -53,10 +63,21 @@ class VtkView : public QOpenGLWidget {
   void set_tumours_visible(bool on);
   bool tumours_visible() const { return tumours_visible_; }
   int tumour_cell_count() const;
-  void set_colour_map(bool on);
-  /// False (and `why` set) when the mode is not available here (quad-buffer without
-  /// stereo buffers); the view then stays in its previous mode.
+  enum class ColourMap { None, Displacement, Stress };
+  /// Displacement (mm, 0-15) or von Mises stress (kPa, from the snapshot's von_mises;
+  /// the workstation computes it while the stress map is on), with a scalar bar.
+  void set_colour_mode(ColourMap m);
+  ColourMap colour_mode() const { return colour_map_; }
+  /// The displacement map on or off (the View menu's action).
+  void set_colour_map(bool displacement) { set_colour_mode(displacement ? ColourMap::Displacement : ColourMap::None); }
+  void set_stress_map(bool on) { set_colour_mode(on ? ColourMap::Stress : ColourMap::None); }
+  /// False (and `why` set) when the mode is not available here. Quad-buffer asks the
+  /// display for a stereo OpenGL format; where it is refused (Xvfb, most desktop GPUs)
+  /// the view falls back to anaglyph and `why` says so.
   bool set_stereo(Stereo mode, QString* why = nullptr);
+  /// Whether this display grants an OpenGL context with stereo (quad) buffers; `why`
+  /// gets the reason when not. Probes once with a small native window.
+  static bool quad_buffer_available(QString* why = nullptr);
   Stereo stereo() const { return stereo_; }
   void set_eye_angle(double degrees);
   void set_mirrored(bool on);
@@ -70,6 +91,12 @@ class VtkView : public QOpenGLWidget {
   bool pick_surface(const QPoint& pos, Eigen::Vector3d& point, Eigen::Vector3d& normal);
   /// Frames rendered so far (for the measured frame rate).
   quint64 frames() const { return frames_; }
+  /// Snapshots that changed nothing visible and so rendered nothing.
+  quint64 skipped_snapshots() const { return skipped_; }
+  /// Mean time of one paintGL (VTK render + blit), ms, over the frames so far; and the
+  /// time spent turning snapshots into VTK arrays (show_snapshot), ms per snapshot.
+  double paint_ms() const { return frames_ ? paint_ns_ * 1e-6 / double(frames_) : 0.0; }
+  double update_ms() const { return snapshots_ ? update_ns_ * 1e-6 / double(snapshots_) : 0.0; }
 
  signals:
   /// A brush dab at a surface point (Paint or Erase tool); `first` starts a stroke.
@@ -91,16 +118,23 @@ class VtkView : public QOpenGLWidget {
  private:
   void palpate_at(const QPoint& pos);
   void forward_mouse(QMouseEvent* e, unsigned long vtk_event);
+  void update_normals();
+  void update_scalars(const app::RenderSnapshot* s);
+  void render_vtk();
+  void present_quad_buffer();
+  friend class QuadBufferWindow;
 
   vtkNew<vtkGenericOpenGLRenderWindow> window_;
   vtkNew<vtkGenericRenderWindowInteractor> interactor_;
   vtkNew<vtkRenderer> renderer_;
   vtkNew<vtkPoints> points_;
   vtkNew<vtkPolyData> surface_;
-  vtkNew<vtkPolyDataNormals> normals_;
+  vtkNew<vtkFloatArray> normals_;        // (nnode x 3) point normals of the surface
   vtkNew<vtkActor> surface_actor_;
-  vtkNew<vtkFloatArray> displacement_;
-  vtkNew<vtkUnstructuredGrid> tumour_grid_;
+  vtkNew<vtkFloatArray> scalars_;        // (nnode) displacement mm or stress kPa
+  vtkNew<vtkLookupTable> lut_;
+  vtkNew<vtkScalarBarActor> scalar_bar_;
+  vtkNew<vtkPolyData> tumour_poly_;      // boundary faces of the stiff elements
   vtkNew<vtkActor> tumour_actor_;
   vtkNew<vtkActor> chest_actor_;
   std::vector<vtkSmartPointer<vtkActor>> finger_actors_;
@@ -108,13 +142,21 @@ class VtkView : public QOpenGLWidget {
   vtkNew<vtkTextActor> overlay_;
   std::shared_ptr<const app::PatientGeometry> geometry_;
   std::vector<double> young_;
+  std::vector<float> shown_positions_, shown_stress_;  // what the last render showed
+  std::array<Eigen::Vector3d, 5> shown_fingers_{};
+  std::array<bool, 5> shown_active_{};
+  QOpenGLWindow* quad_window_ = nullptr;  // quad-buffer stereo: presents the two eyes
+  QWidget* quad_container_ = nullptr;
   Stereo stereo_ = Stereo::Mono;
   Tool tool_ = Tool::Camera;
-  bool tumours_visible_ = true, colour_map_ = false, mirrored_ = false, stroke_ = false, pressing_ = false;
-  bool initialized_ = false;
+  ColourMap colour_map_ = ColourMap::None;
+  bool tumours_visible_ = true, mirrored_ = false, stroke_ = false, pressing_ = false;
+  bool initialized_ = false, painting_ = false;
   double press_ = 0.0;
   QPoint last_pos_;
-  quint64 frames_ = 0;
+  quint64 frames_ = 0, snapshots_ = 0, skipped_ = 0;
+  int tumour_cells_ = 0;
+  double paint_ns_ = 0, update_ns_ = 0;
 };
 
 }  // namespace palpation::ui
