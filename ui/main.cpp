@@ -184,6 +184,26 @@ int main(int argc, char** argv) {
                    "simulation %.0f Hz, haptic %.0f Hz\n",
                    ok ? "saved" : "could not save", qPrintable(file), img.width(), img.height(), w.frame_rate(),
                    w.view()->paint_ms(), w.view()->update_ms(), s.step_rate_hz, s.haptic_rate_hz);
+      if (qEnvironmentVariableIsSet("PALPATION_BENCH_VIEW")) {
+        // docs/gui.md: the view's own cost. The simulation stopped (its core free), the
+        // last snapshot drawn N times back to back, each a full repaint of the view
+        // (VTK render, blit, Qt's composition of the window).
+        w.workstation().stop();
+        const int n = std::max(1, qEnvironmentVariableIntValue("PALPATION_BENCH_VIEW"));
+        w.view()->repaint();
+        QElapsedTimer bench;
+        bench.start();
+        for (int i = 0; i < n; ++i) {
+          w.view()->repaint();
+          QCoreApplication::processEvents();
+        }
+        const double repaint_ms = double(bench.nsecsElapsed()) * 1e-6 / n;
+        const double render_ms = w.view()->bench_render(n);
+        std::fprintf(stderr,
+                     "palpation-trainer: view alone: %.1f ms per repaint (%.0f fps; %d frames), of which VTK's render "
+                     "%.1f ms\n",
+                     repaint_ms, 1000.0 / repaint_ms, n, render_ms);
+      }
       QApplication::exit(ok ? 0 : 1);
     });
   }

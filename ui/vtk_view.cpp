@@ -255,6 +255,20 @@ void VtkView::paintGL() {
   paint_ns_ += double(timer.nsecsElapsed());
 }
 
+double VtkView::bench_render(int n) {
+  if (!initialized_ || n <= 0) return 0;
+  makeCurrent();
+  QElapsedTimer t;
+  t.start();
+  for (int i = 0; i < n; ++i) {
+    render_vtk();
+    context()->functions()->glFinish();
+  }
+  const double ms = double(t.nsecsElapsed()) * 1e-6 / n;
+  doneCurrent();
+  return ms;
+}
+
 // ---------------------------------------------------------------------------------------
 // Quad-buffer stereo. Qt 6.4's QOpenGLWidget has no stereo buffers (stack-notes.md), so a
 // native window with a stereo format, sharing objects with the view's context, covers the

@@ -91,6 +91,9 @@ class VtkView : public QOpenGLWidget {
   bool pick_surface(const QPoint& pos, Eigen::Vector3d& point, Eigen::Vector3d& normal);
   /// Frames rendered so far (for the measured frame rate).
   quint64 frames() const { return frames_; }
+  /// Benchmark (docs/gui.md): renders the current scene `n` times in VTK alone (no blit,
+  /// no composition), waiting for each; ms per frame.
+  double bench_render(int n);
   /// Snapshots that changed nothing visible and so rendered nothing.
   quint64 skipped_snapshots() const { return skipped_; }
   /// Mean time of one paintGL (VTK render + blit), ms, over the frames so far; and the
