@@ -54,7 +54,9 @@ SurfaceMesh read_surface(const std::string& path) {
   imp.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS | aiComponent_COLORS);
   // ValidateDataStructure first: assimp 5.2's PLY reader passes out-of-range face indices on to
   // the other steps, which then read out of bounds (fuzz_scan_import crash, docs/fuzzing.md).
-  const aiScene* sc = imp.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_DropNormals |
+  // No aiProcess_Triangulate: its ai_assert aborts the process on some malformed PLY
+  // faces (fuzz_scan_import); polygons are fanned into triangles below instead.
+  const aiScene* sc = imp.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_DropNormals |
                                              aiProcess_RemoveComponent | aiProcess_JoinIdenticalVertices |
                                              aiProcess_PreTransformVertices);
   if (!sc) {
@@ -79,13 +81,12 @@ SurfaceMesh read_surface(const std::string& path) {
     }
     for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
       const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines
-      std::array<int, 3> t{};
-      for (int k = 0; k < 3; ++k) {
+      if (face.mNumIndices < 3) continue;  // points and lines
+      for (unsigned k = 0; k < face.mNumIndices; ++k)
         if (face.mIndices[k] >= mesh->mNumVertices) throw ImportError(path + ": face " + std::to_string(f) + " refers to a missing vertex");
-        t[std::size_t(k)] = base + int(face.mIndices[k]);
-      }
-      s.triangles.push_back(t);
+      // A polygon as a fan of triangles (scans are triangles; OBJ may hold quads).
+      for (unsigned k = 1; k + 1 < face.mNumIndices; ++k)
+        s.triangles.push_back({base + int(face.mIndices[0]), base + int(face.mIndices[k]), base + int(face.mIndices[k + 1])});
     }
   }
   if (s.triangles.empty()) throw ImportError(path + ": empty: no triangles in the file");
