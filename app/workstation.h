@@ -256,7 +256,8 @@ class Workstation {
   std::string device_description() const;
   bool simulated_device() const { return link_ == nullptr; }
   /// The stress colour map: the simulation thread adds nodal von Mises stress to the
-  /// render snapshots while on (about 0.1 ms per snapshot on the coarse breast).
+  /// render snapshots while on (0.36 ms per snapshot on the coarse breast, 3.7 ms on the
+  /// paper mesh; docs/gui.md).
   void set_stress_enabled(bool on) { stress_enabled_.store(on, std::memory_order_release); }
   bool stress_enabled() const { return stress_enabled_.load(std::memory_order_acquire); }
 

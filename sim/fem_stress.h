@@ -8,7 +8,8 @@
 // the corotational model (design.md section 4) S equals its rotated-back stress
 // R^T sigma R to first order in the strain; sigma_v is rotation invariant, so the two
 // agree to that order (tests/tst_fem_stress.cpp: uniaxial strain, rigid rotation).
-// Cost: about 100 flops per element (44,000 elements of the paper mesh: well under 1 ms).
+// Cost (measured, nodal_von_mises, this 2-core machine under load): 0.36 ms for the coarse
+// breast (1,014 nodes, 4,286 elements), 3.7 ms for the paper mesh (43,406 elements).
 #pragma once
 
 #include <algorithm>

@@ -57,6 +57,7 @@ QChart* make_chart(std::array<QLineSeries*, 5>& series, std::array<QLineSeries*,
     chart->addSeries(*limit);
     (*limit)->attachAxis(x);
     (*limit)->attachAxis(y);
+    for (auto* m : chart->legend()->markers(*limit)) m->setVisible(false);  // the title says "dotted"
   }
   chart->legend()->setAlignment(Qt::AlignRight);
   chart->setMargins(QMargins(2, 2, 2, 2));
@@ -206,9 +207,12 @@ void ForcePlots::refresh() {
   mag_limit_->replace(QList<QPointF>{{t1 - window_, limit_}, {t1, limit_}});
   fz_limit_->replace(QList<QPointF>{{t1 - window_, limit_}, {t1, limit_}});
   // The y range follows the simulated force above the device limit (in 2 N steps, so
-  // that it does not jitter), never below the limit.
-  const double hi = std::max(limit_ + 0.5, 2.0 * std::ceil(top * 1.05 / 2.0));
-  const double lo = std::min(-1.0, -2.0 * std::ceil(-bottom * 1.05 / 2.0));
+  // that it does not jitter), never below the limit and at most 3x the limit: single-step
+  // spikes of the simulated force at real-time dt (docs/stability.md) are clipped rather
+  // than squeezing what the device sends into the bottom of the plot.
+  const double cap = 3.0 * limit_;
+  const double hi = std::clamp(2.0 * std::ceil(top * 1.05 / 2.0), limit_ + 0.5, cap);
+  const double lo = std::max(-cap, std::min(-1.0, -2.0 * std::ceil(-bottom * 1.05 / 2.0)));
   (tab == 0 ? mag_y_ : tab == 1 ? fz_y_ : fx_y_)->setRange(tab == 0 ? 0.0 : lo, hi);
 }
 
