@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="39"/>
+        <location filename="../ui/panels.cpp" line="40"/>
         <source>Thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="39"/>
+        <location filename="../ui/panels.cpp" line="40"/>
         <source>Index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="40"/>
+        <location filename="../ui/panels.cpp" line="41"/>
         <source>Middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="40"/>
+        <location filename="../ui/panels.cpp" line="41"/>
         <source>Ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="42"/>
         <source>Little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -32,27 +32,27 @@
 <context>
     <name>ForcePlots</name>
     <message>
-        <location filename="../ui/force_plots.cpp" line="20"/>
+        <location filename="../ui/force_plots.cpp" line="25"/>
         <source>thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="20"/>
+        <location filename="../ui/force_plots.cpp" line="25"/>
         <source>index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="21"/>
+        <location filename="../ui/force_plots.cpp" line="26"/>
         <source>middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="21"/>
+        <location filename="../ui/force_plots.cpp" line="26"/>
         <source>ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="22"/>
+        <location filename="../ui/force_plots.cpp" line="27"/>
         <source>little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -66,49 +66,77 @@
     </message>
 </context>
 <context>
+    <name>ReviewWindow</name>
+    <message>
+        <location filename="../ui/review_window.cpp" line="31"/>
+        <source>thumb</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="31"/>
+        <source>index</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="32"/>
+        <source>middle</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="32"/>
+        <source>ring</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="33"/>
+        <source>little</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="329"/>
+        <location filename="../ui/panels.cpp" line="384"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="330"/>
+        <location filename="../ui/panels.cpp" line="385"/>
         <source>Mouse palpation (no robot)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="331"/>
+        <location filename="../ui/panels.cpp" line="386"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="332"/>
+        <location filename="../ui/panels.cpp" line="387"/>
         <source>HandHIRO address</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="333"/>
+        <location filename="../ui/panels.cpp" line="388"/>
         <source>Loop jitter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="334"/>
+        <location filename="../ui/panels.cpp" line="389"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="347"/>
+        <location filename="../ui/panels.cpp" line="402"/>
         <source>attached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="347"/>
+        <location filename="../ui/panels.cpp" line="402"/>
         <source>released</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="404"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -116,331 +144,631 @@
 <context>
     <name>palpation::ui::ForcePlots</name>
     <message>
-        <location filename="../ui/force_plots.cpp" line="77"/>
+        <location filename="../ui/force_plots.cpp" line="103"/>
         <source>Export plot as PNG</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="77"/>
+        <location filename="../ui/force_plots.cpp" line="103"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="81"/>
+        <location filename="../ui/force_plots.cpp" line="107"/>
         <source>Export forces as CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="81"/>
+        <location filename="../ui/force_plots.cpp" line="107"/>
         <source>CSV files (*.csv)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="88"/>
+        <location filename="../ui/force_plots.cpp" line="114"/>
         <source>|F| vs time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="89"/>
+        <location filename="../ui/force_plots.cpp" line="115"/>
         <source>Fz vs time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="90"/>
+        <location filename="../ui/force_plots.cpp" line="116"/>
         <source>Fz vs x (Fig. 6)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="91"/>
+        <location filename="../ui/force_plots.cpp" line="117"/>
+        <source>solid: sent to the device (limit %1 N, dotted); dashed: simulated contact force</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="118"/>
         <source>Force magnitude per finger (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="92"/>
+        <location filename="../ui/force_plots.cpp" line="119"/>
         <source>Fz per finger (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="93"/>
+        <location filename="../ui/force_plots.cpp" line="120"/>
         <source>Fz (N) against finger x (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="100"/>
+        <location filename="../ui/force_plots.cpp" line="126"/>
+        <source>%1 (simulated)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="131"/>
+        <location filename="../ui/force_plots.cpp" line="132"/>
+        <source>device limit</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="133"/>
         <source>Resume</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="100"/>
+        <location filename="../ui/force_plots.cpp" line="133"/>
         <source>Pause</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="101"/>
+        <location filename="../ui/force_plots.cpp" line="134"/>
         <source>Export PNG...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="102"/>
+        <location filename="../ui/force_plots.cpp" line="135"/>
         <source>Export CSV...</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::ImportDialog</name>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="98"/>
+        <source>Scanned breast surface</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="99"/>
+        <source>Surface meshes (*.stl *.obj *.ply);;All files (*)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="109"/>
+        <source>Cancelling...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="124"/>
+        <source>Import a scanned breast</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="130"/>
+        <source>Patient name</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="131"/>
+        <source>Resolution</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="132"/>
+        <source>File units</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="133"/>
+        <source>Chest-wall plane</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="137"/>
+        <source>Scan file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="138"/>
+        <source>n (into the chest), d (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="143"/>
+        <source>Browse...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="144"/>
+        <source>Coarse (real time on a CPU)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="145"/>
+        <source>Paper (GPU)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="146"/>
+        <source>Fine (GPU)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="147"/>
+        <source>metres</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="148"/>
+        <source>centimetres</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="149"/>
+        <source>millimetres</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="150"/>
+        <source>Find automatically (the largest flat region)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="151"/>
+        <source>Untick to give the plane n . x = d by hand: n points out of the body into the chest.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="152"/>
+        <source>Import</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="153"/>
+        <source>Cancel import</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="154"/>
+        <source>Save as patient</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="155"/>
+        <source>Close</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="179"/>
+        <source>Choose a scan file (STL, OBJ or PLY) first.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="188"/>
+        <source>The base plane&apos;s normal must not be zero.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="203"/>
+        <source>Reading %1...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="218"/>
+        <source>Cancelled: nothing was saved.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="224"/>
+        <source>Import failed: nothing was saved.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="229"/>
+        <source>Done in %1 s (meshing %2 s).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="231"/>
+        <source>%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="234"/>
+        <source>none</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <source>found</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <source>given</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="244"/>
+        <source>No patient library is open.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="252"/>
+        <source>Give the patient a name.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="257"/>
+        <source>A patient named &quot;%1&quot; exists already in %2: choose another name.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="268"/>
+        <source>Saved as &quot;%1&quot; in the patient library.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="98"/>
+        <location filename="../ui/main_window.cpp" line="128"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="108"/>
+        <location filename="../ui/main_window.cpp" line="138"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="152"/>
+        <location filename="../ui/main_window.cpp" line="191"/>
+        <source>This session is not recorded: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="193"/>
+        <source>Recovered interrupted recordings: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="195"/>
+        <source>Patient library not available (built-in phantoms only): %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="241"/>
+        <source>no patient library is open: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="274"/>
+        <source>No fingertip on the breast: nothing marked.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="274"/>
+        <source>This session is not recorded: nothing marked.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="280"/>
+        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, recorded.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="312"/>
+        <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="325"/>
+        <source>Open a session recording</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="326"/>
+        <source>Session recordings (*.palrec *.prec);;All files (*)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="329"/>
+        <source>Cannot open the recording</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="333"/>
         <source>Save screenshot</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="152"/>
+        <location filename="../ui/main_window.cpp" line="333"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="182"/>
-        <location filename="../ui/main_window.cpp" line="255"/>
+        <location filename="../ui/main_window.cpp" line="363"/>
+        <location filename="../ui/main_window.cpp" line="458"/>
         <source>Stereo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="192"/>
+        <location filename="../ui/main_window.cpp" line="373"/>
         <source>Eye separation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="192"/>
+        <location filename="../ui/main_window.cpp" line="373"/>
         <source>Eye angle (degrees):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="244"/>
+        <location filename="../ui/main_window.cpp" line="444"/>
         <source>Palpation Trainer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="245"/>
+        <location filename="../ui/main_window.cpp" line="445"/>
         <source>&amp;File</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="246"/>
+        <location filename="../ui/main_window.cpp" line="446"/>
+        <source>&amp;Open recording...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="447"/>
+        <source>Mark lump here (M)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="448"/>
+        <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="449"/>
         <source>Save &amp;screenshot...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="247"/>
+        <location filename="../ui/main_window.cpp" line="450"/>
         <source>&amp;Quit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="248"/>
+        <location filename="../ui/main_window.cpp" line="451"/>
         <source>&amp;Edit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="249"/>
+        <location filename="../ui/main_window.cpp" line="452"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="250"/>
+        <location filename="../ui/main_window.cpp" line="453"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="251"/>
+        <location filename="../ui/main_window.cpp" line="454"/>
         <source>&amp;View</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="252"/>
+        <location filename="../ui/main_window.cpp" line="455"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="253"/>
+        <location filename="../ui/main_window.cpp" line="456"/>
         <source>Oblique</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="253"/>
+        <location filename="../ui/main_window.cpp" line="456"/>
         <source>Top</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="253"/>
+        <location filename="../ui/main_window.cpp" line="456"/>
         <source>Side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="253"/>
+        <location filename="../ui/main_window.cpp" line="456"/>
         <source>Front</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="459"/>
         <source>Mono</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="459"/>
         <source>Anaglyph (red/cyan)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="459"/>
         <source>Side by side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="459"/>
         <source>Interlaced</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="459"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="258"/>
+        <location filename="../ui/main_window.cpp" line="461"/>
         <source>Eye separation...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="259"/>
+        <location filename="../ui/main_window.cpp" line="462"/>
         <source>Mirrored (half-mirror display)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="260"/>
+        <location filename="../ui/main_window.cpp" line="463"/>
         <source>Displacement colour map</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="261"/>
+        <location filename="../ui/main_window.cpp" line="464"/>
+        <source>Stress colour map (von Mises)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="465"/>
         <source>Show tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="262"/>
+        <location filename="../ui/main_window.cpp" line="466"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="263"/>
+        <location filename="../ui/main_window.cpp" line="467"/>
         <source>&amp;Mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="264"/>
+        <location filename="../ui/main_window.cpp" line="468"/>
         <source>Trainee mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="265"/>
+        <location filename="../ui/main_window.cpp" line="469"/>
         <source>Instructor mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="266"/>
+        <location filename="../ui/main_window.cpp" line="470"/>
         <source>Tools</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="267"/>
+        <location filename="../ui/main_window.cpp" line="471"/>
         <source>Camera / scripted hand</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="268"/>
+        <location filename="../ui/main_window.cpp" line="472"/>
         <source>Palpate with the mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="269"/>
+        <location filename="../ui/main_window.cpp" line="589"/>
+        <source>Not recording</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="590"/>
+        <source>Recording stopped: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="591"/>
+        <source>Recording (%1 marks)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="113"/>
+        <location filename="../ui/main_window.cpp" line="473"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="270"/>
+        <location filename="../ui/main_window.cpp" line="474"/>
         <source>Tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="271"/>
+        <location filename="../ui/main_window.cpp" line="475"/>
         <source>Forces</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="272"/>
+        <location filename="../ui/main_window.cpp" line="476"/>
         <source>Simulation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="273"/>
+        <location filename="../ui/main_window.cpp" line="477"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="335"/>
+        <location filename="../ui/main_window.cpp" line="539"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="368"/>
+        <location filename="../ui/main_window.cpp" line="579"/>
         <source>Backend: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="369"/>
+        <location filename="../ui/main_window.cpp" line="579"/>
+        <source>Backend: %1 (fallback)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="581"/>
         <source>Simulation: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="370"/>
+        <location filename="../ui/main_window.cpp" line="582"/>
         <source>Haptic: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="372"/>
+        <location filename="../ui/main_window.cpp" line="584"/>
         <source>mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="373"/>
+        <location filename="../ui/main_window.cpp" line="585"/>
         <source>simulated HandHIRO</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="374"/>
+        <location filename="../ui/main_window.cpp" line="586"/>
         <source>Device: %1, %2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="374"/>
+        <location filename="../ui/main_window.cpp" line="586"/>
         <source>connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="374"/>
+        <location filename="../ui/main_window.cpp" line="586"/>
         <source>not connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="375"/>
+        <location filename="../ui/main_window.cpp" line="587"/>
         <source>View: %1 fps</source>
         <translation type="unfinished"></translation>
     </message>
@@ -448,121 +776,316 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="68"/>
-        <source>Breast phantom (paper)</source>
+        <location filename="../ui/panels.cpp" line="110"/>
+        <source>Breast phantom (paper&apos;s tumour)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="69"/>
+        <location filename="../ui/panels.cpp" line="111"/>
         <source>Box phantom</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="70"/>
+        <location filename="../ui/panels.cpp" line="112"/>
+        <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="113"/>
+        <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="114"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="71"/>
+        <location filename="../ui/panels.cpp" line="115"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="72"/>
+        <location filename="../ui/panels.cpp" line="116"/>
         <source>Fine (GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="73"/>
+        <location filename="../ui/panels.cpp" line="117"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="74"/>
+        <location filename="../ui/panels.cpp" line="118"/>
         <source>Resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="75"/>
+        <location filename="../ui/panels.cpp" line="119"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="76"/>
+        <location filename="../ui/panels.cpp" line="120"/>
         <source>Poisson ratio</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="77"/>
+        <location filename="../ui/panels.cpp" line="121"/>
         <source>Load patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="78"/>
-        <source>Built-in phantoms; the patient library comes with a later version.</source>
+        <location filename="../ui/panels.cpp" line="122"/>
+        <source>Import scan...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="123"/>
+        <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="124"/>
+        <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::ReviewWindow</name>
+    <message>
+        <location filename="../ui/review_window.cpp" line="193"/>
+        <source>Export the session as CSV</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="193"/>
+        <source>CSV files (*.csv)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="195"/>
+        <source>Export CSV</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="198"/>
+        <source>Folder for the PNG frames</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/review_window.cpp" line="201"/>
+        <source>%n frame(s) written to %1</source>
+        <translation type="unfinished">
+            <numerusform></numerusform>
+            <numerusform></numerusform>
+        </translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="246"/>
+        <source>Review: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="247"/>
+        <location filename="../ui/review_window.cpp" line="292"/>
+        <source>Pause</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="247"/>
+        <location filename="../ui/review_window.cpp" line="292"/>
+        <location filename="../ui/review_window.cpp" line="301"/>
+        <source>Play</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="248"/>
+        <source>Speed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="249"/>
+        <source>Export CSV...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="250"/>
+        <source>Export PNG frames...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="251"/>
+        <source>Instructor events and trainee marks (click to go there)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="253"/>
+        <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="254"/>
+        <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="258"/>
+        <source>%1 (re-sim.)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="260"/>
+        <source>now</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="261"/>
+        <source>Events</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="356"/>
+        <source>Re-simulation stopped: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="359"/>
+        <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="368"/>
+        <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="375"/>
+        <source>Reproduced: same backend and settings give the same forces.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="376"/>
+        <source>Not reproduced exactly (another backend or settings).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="378"/>
+        <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="382"/>
+        <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="391"/>
+        <source>The recording was interrupted: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="392"/>
+        <source>The recording was recovered after an interruption.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="399"/>
+        <source>Written: %1</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="317"/>
         <source>Backend</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="318"/>
         <source>CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="319"/>
         <source>CG max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="275"/>
+        <location filename="../ui/panels.cpp" line="320"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="276"/>
+        <location filename="../ui/panels.cpp" line="321"/>
+        <source>Safety</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="322"/>
         <source>Step time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="277"/>
+        <location filename="../ui/panels.cpp" line="323"/>
         <source>CG iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="278"/>
+        <location filename="../ui/panels.cpp" line="324"/>
         <source>Simulation rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="279"/>
+        <location filename="../ui/panels.cpp" line="325"/>
         <source>Haptic rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="280"/>
+        <location filename="../ui/panels.cpp" line="326"/>
         <source>Apply solver settings</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="281"/>
+        <location filename="../ui/panels.cpp" line="327"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="291"/>
+        <location filename="../ui/panels.cpp" line="339"/>
+        <source>no fault</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/panels.cpp" line="340"/>
+        <source>%n backend fallback(s)</source>
+        <translation>
+            <numerusform>%n backend fallback</numerusform>
+            <numerusform>%n backend fallbacks</numerusform>
+        </translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/panels.cpp" line="341"/>
+        <source>%n divergence reset(s)</source>
+        <translation>
+            <numerusform>%n divergence reset</numerusform>
+            <numerusform>%n divergence resets</numerusform>
+        </translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="342"/>
+        <source>forces held and blended</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="346"/>
         <source>%1 ms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="293"/>
-        <location filename="../ui/panels.cpp" line="294"/>
+        <location filename="../ui/panels.cpp" line="348"/>
+        <location filename="../ui/panels.cpp" line="349"/>
         <source>%1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
@@ -657,7 +1180,10 @@
     <message numerus="yes">
         <location filename="../ui/tumour_editor.cpp" line="78"/>
         <source>%1 (%n elements)</source>
-        <translation><numerusform>%1 (%n element)</numerusform><numerusform>%1 (%n elements)</numerusform></translation>
+        <translation>
+            <numerusform>%1 (%n element)</numerusform>
+            <numerusform>%1 (%n elements)</numerusform>
+        </translation>
     </message>
     <message>
         <location filename="../ui/tumour_editor.cpp" line="120"/>
@@ -697,12 +1223,18 @@
     <message numerus="yes">
         <location filename="../ui/tumour_editor.cpp" line="177"/>
         <source>Erase stroke (%n elements)</source>
-        <translation><numerusform>Erase stroke (%n element)</numerusform><numerusform>Erase stroke (%n elements)</numerusform></translation>
+        <translation>
+            <numerusform>Erase stroke (%n element)</numerusform>
+            <numerusform>Erase stroke (%n elements)</numerusform>
+        </translation>
     </message>
     <message numerus="yes">
         <location filename="../ui/tumour_editor.cpp" line="180"/>
         <source>Paint stroke (%n elements)</source>
-        <translation><numerusform>Paint stroke (%n element)</numerusform><numerusform>Paint stroke (%n elements)</numerusform></translation>
+        <translation>
+            <numerusform>Paint stroke (%n element)</numerusform>
+            <numerusform>Paint stroke (%n elements)</numerusform>
+        </translation>
     </message>
     <message>
         <location filename="../ui/tumour_editor.cpp" line="181"/>
@@ -713,103 +1245,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="186"/>
-        <location filename="../ui/panels.cpp" line="212"/>
+        <location filename="../ui/panels.cpp" line="228"/>
+        <location filename="../ui/panels.cpp" line="254"/>
         <source>Source: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="213"/>
+        <location filename="../ui/panels.cpp" line="255"/>
         <source>Preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="214"/>
+        <location filename="../ui/panels.cpp" line="256"/>
         <source>Stiffness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="215"/>
+        <location filename="../ui/panels.cpp" line="257"/>
         <source>Add by shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="216"/>
+        <location filename="../ui/panels.cpp" line="258"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="217"/>
+        <location filename="../ui/panels.cpp" line="259"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="218"/>
+        <location filename="../ui/panels.cpp" line="260"/>
         <source>Shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="219"/>
+        <location filename="../ui/panels.cpp" line="261"/>
         <source>Centre x, y, z</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="220"/>
+        <location filename="../ui/panels.cpp" line="262"/>
         <source>Radius (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="221"/>
+        <location filename="../ui/panels.cpp" line="263"/>
         <source>Add tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="222"/>
+        <location filename="../ui/panels.cpp" line="264"/>
         <source>Remove selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="223"/>
+        <location filename="../ui/panels.cpp" line="265"/>
         <source>Brush</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="224"/>
+        <location filename="../ui/panels.cpp" line="266"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="225"/>
+        <location filename="../ui/panels.cpp" line="267"/>
         <source>Depth below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="226"/>
+        <location filename="../ui/panels.cpp" line="268"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="227"/>
+        <location filename="../ui/panels.cpp" line="269"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="228"/>
+        <location filename="../ui/panels.cpp" line="270"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="229"/>
+        <location filename="../ui/panels.cpp" line="271"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="230"/>
+        <location filename="../ui/panels.cpp" line="272"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="231"/>
+        <location filename="../ui/panels.cpp" line="273"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>
@@ -817,8 +1349,23 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="287"/>
-        <source>Quad-buffer stereo is not available: this display&apos;s OpenGL context has no stereo buffers (needs a stereo-capable GPU, driver and display). Use anaglyph, side-by-side or interlaced.</source>
+        <location filename="../ui/vtk_view.cpp" line="360"/>
+        <source>no OpenGL context for a native window on this platform (%1)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/vtk_view.cpp" line="363"/>
+        <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/vtk_view.cpp" line="559"/>
+        <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/vtk_view.cpp" line="561"/>
+        <source>the view is not initialised yet</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
