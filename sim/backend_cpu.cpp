@@ -1,12 +1,25 @@
 // One step (design.md section 4), per time step h:
-//   1. per element: F, rotation R (warm-started), elastic force, rotated stiffness blocks,
-//      K v (for the right-hand side);
-//   2. penalty contact on surface vertices inside finger spheres, k_s n n^T and
-//      k_e n n^T added to the diagonal blocks;
-//   3. solve (M + h C + h^2 K) dv = h (f - h K v), C = alpha M + beta K + contact damping,
-//      by block-Jacobi preconditioned CG, warm-started with the previous dv, over the
-//      free nodes only (the chest wall is removed from the system);
-//   4. v += dv, x += h v; finger forces re-evaluated at the new state, low-pass filtered.
+//   1. per element: F and the elastic force f = -V R sigma(R^T F - I) g; the rotation R
+//      (warm-started) and the element's rotated stiffness blocks are updated only for
+//      elements whose F changed by more than `solver.corotation_tolerance` since their
+//      last update (below). The rotated stiffness K is kept assembled from step to
+//      step; an update adds the element's new blocks minus its old ones;
+//   2. K v by one product with the kept K;
+//   3. penalty contact on surface triangles inside finger spheres: k_s n n^T and
+//      k_e n n^T go to a separate diagonal D with the mass terms;
+//   4. solve ((h^2 + h beta) K + D) dv = h (f - (h + beta) K v + ...), D = (1 + h alpha) M
+//      + contact, by block-Jacobi preconditioned CG, warm-started with the previous dv,
+//      over the free nodes only (the chest wall is removed from the system);
+//   5. v += dv, x += h v; finger forces re-evaluated at the new state, low-pass filtered.
+//
+// Skipping the unchanged elements (what a palpation scene does not need): away from
+// the fingers the tissue is still and F does not change, so neither do R and the
+// blocks. An element keeping a rotation that is off by d theta (of order the F change,
+// at most the tolerance) gets a force off by d theta relative and the symmetric part of
+// its strain only to second order; between its updates it is exactly a linear
+// element in a fixed frame (energy-consistent). Tolerance 0 updates every element every
+// step, which is the arithmetic of the CUDA backend (CPU-GPU agreement checks use it).
+// docs/benchmarks.md has the measured step time against force error.
 #include "backend_cpu.h"
 
 #include <algorithm>
@@ -44,6 +57,13 @@ namespace {
 // see docs/benchmarks.md, "threads").
 constexpr int kParallelMinFree = 3000;
 
+// Full re-assembly of K after this many steps of element-wise updates. Each update adds
+// new minus old blocks, so K carries one rounding per update; after 2^16 updates of one
+// block that is ~sqrt(65536) x 6e-8 = 1.5e-5 relative in float (2.9e-14 in double), far
+// below the CG tolerance. The re-assembly costs one step at the full price (~once a
+// minute at 1 kHz).
+constexpr long kReassembleSteps = 65536;
+
 template <class T>
 class CpuBackend final : public Backend {
  public:
@@ -55,15 +75,19 @@ class CpuBackend final : public Backend {
     x_.resize(3 * nn);
     v_.resize(3 * nn);
     q_.resize(ne);
+    erot_.resize(9 * std::size_t(ne));
+    eF_.resize(9 * std::size_t(ne));
     // Extra blocks and rows at the end (one per thread) take the contributions of fixed
     // nodes, so that the element loop has no branches (see element()).
 #ifdef _OPENMP
     threads_ = std::max(1, omp_get_max_threads());
 #endif
     blocks_.resize(9 * (std::size_t(m_.num_blocks()) + threads_));
+    diag_.resize(9 * std::size_t(nf) + 1);  // + 1: cg::multiply reads one past a block
     b_.resize(3 * (std::size_t(nf) + threads_));
     dv_.resize(3 * nf);
-    kv_.resize(3 * (std::size_t(nf) + threads_));
+    kv_.resize(3 * nf);
+    vfree_.resize(3 * nf);
     build_element_tables();
     precond_.resize(9 * std::size_t(nf));
     cg_.resize(3 * nf);
@@ -88,6 +112,7 @@ class CpuBackend final : public Backend {
       mu_[e] = T(m_.mu[e]);
     }
     rested_ = false;
+    assembled_ = false;  // every element's blocks change: assemble K afresh
   }
 
   // Per-element constants in T, contiguous, read once per element per step: shape
@@ -125,6 +150,7 @@ class CpuBackend final : public Backend {
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
+    assembled_ = false;
   }
 
   void positions(std::vector<double>& xyz) const override { xyz.assign(x_.begin(), x_.end()); }
@@ -152,6 +178,9 @@ class CpuBackend final : public Backend {
     add_contacts(fingers, h);
 
     cg::BlockSystem<T> sys{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data(), precond_.data()};
+    sys.scale = h * h + h * T(p_.damping.stiffness);  // (h^2 + h beta) K + D
+    sys.diag = diag_.data();
+    sys.diag_index = m_.diag_block.data();
     const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
                                cg_, parallel());
     st.cg_iterations = res.iterations;
@@ -198,99 +227,137 @@ class CpuBackend final : public Backend {
     bounds_ = b;
   }
 
-  // Elastic forces into b_ (as f), rotated stiffness into blocks_, K v into kv_.
+  // Elastic forces into b_ (as f); the rotated stiffness K (unscaled) kept in blocks_,
+  // updated element by element; K v into kv_; mass terms into diag_.
   void assemble() {
-    std::fill(blocks_.begin(), blocks_.end(), T(0));
+    // Assembled in full at the start, after a reset or a material change, and every
+    // kReassembleSteps updates (the increments' rounding stays far below the CG
+    // tolerance even in float; see kReassembleSteps).
+    // Tolerance 0 (every element every step) assembles afresh rather than adding
+    // new-minus-old blocks (half the block work).
+    const T tol = T(p_.solver.corotation_tolerance);
+    const bool full = !assembled_ || !(tol > 0) || steps_since_assembly_ >= kReassembleSteps;
+    if (full) {
+      std::fill(blocks_.begin(), blocks_.end(), T(0));
+      steps_since_assembly_ = 0;
+    }
+    ++steps_since_assembly_;
     std::fill(b_.begin(), b_.end(), T(0));
-    std::fill(kv_.begin(), kv_.end(), T(0));
-    const T h = T(p_.solver.dt);
-    const T kscale = h * h + h * T(p_.damping.stiffness);  // h^2 K + h beta K
     const bool par = parallel();
     for (const auto& colour : m_.colours) {
       const int count = static_cast<int>(colour.size());
 #pragma omp parallel for schedule(static) if (par)
-      for (int c = 0; c < count; ++c) element(colour[c], kscale);
+      for (int c = 0; c < count; ++c) element(colour[c], full, tol);
     }
-    // Mass terms on the diagonal: (1 + h alpha) M.
-    const T mscale = T(1) + h * T(p_.damping.mass);
-    for (int i = 0; i < m_.num_free(); ++i) {
-      T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
+    assembled_ = true;
+    // K v over the free nodes (the chest wall does not move).
+    const int nf = m_.num_free();
+    for (int i = 0; i < nf; ++i)
+      for (int k = 0; k < 3; ++k) vfree_[3 * i + k] = v_[3 * m_.free_nodes[i] + k];
+    cg::BlockSystem<T> K{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data(), nullptr};
+    cg::multiply(K, vfree_.data(), kv_.data(), par);
+    // Mass terms of the diagonal: (1 + h alpha) M.
+    const T mscale = T(1) + T(p_.solver.dt) * T(p_.damping.mass);
+    std::fill(diag_.begin(), diag_.end(), T(0));
+    for (int i = 0; i < nf; ++i) {
+      T* d = &diag_[9 * std::size_t(i)];
       const T mm = mscale * T(m_.mass[m_.free_nodes[i]]);
-      d[0] += mm;
-      d[4] += mm;
-      d[8] += mm;
+      d[0] = d[4] = d[8] = mm;
     }
   }
 
-  void element(int e, T kscale) {
-    const auto& t = m_.tets[e];
-    const T* ge = &eg_[12 * std::size_t(e)];
-    int thread = 0;
-#ifdef _OPENMP
-    thread = omp_get_thread_num();
-#endif
-    const int trash_row = 3 * (m_.num_free() + thread), trash_blk = 9 * (m_.num_blocks() + thread);
-    int row[4], blk[16];
-    for (int a = 0; a < 4; ++a) {
-      const int v = erow_[4 * std::size_t(e) + a];
-      row[a] = v < 0 ? trash_row : v;
-    }
-    for (int k = 0; k < 16; ++k) {
-      const int v = eblk_[16 * std::size_t(e) + k];
-      blk[k] = v < 0 ? trash_blk : v;
-    }
-    V3 x[4], g[4], r[4], vv[4], kv[4];
-    for (int a = 0; a < 4; ++a) {
-      const T* xa = &x_[3 * std::size_t(t[a])];
-      const T* va = &v_[3 * std::size_t(t[a])];
-      x[a] = V3(xa[0], xa[1], xa[2]);
-      vv[a] = V3(va[0], va[1], va[2]);
-      g[a] = V3(ge[3 * a], ge[3 * a + 1], ge[3 * a + 2]);
-    }
-    const M3 F = fem::deformation_gradient<T>(x, g);
-    fem::extract_rotation<T>(F, q_[e]);
-    const M3 R = q_[e].toRotationMatrix();
-    const T vol = evol_[e], lam = lambda_[e], mu = mu_[e];
-    // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
-    // formed once).
-    const M3 RS = -vol * (R * fem::linear_stress<T>(R.transpose() * F - M3::Identity(), lam, mu));
-    for (int a = 0; a < 4; ++a) r[a] = R * g[a];
-    fem::stiffness_apply<T>(r, vol, lam, mu, vv, kv);
-    for (int a = 0; a < 4; ++a) {
-      const V3 f = RS * g[a];
-      T* bb = &b_[std::size_t(row[a])];
-      T* kk = &kv_[std::size_t(row[a])];
-      for (int k = 0; k < 3; ++k) {
-        bb[k] += f[k];
-        kk[k] += kv[a][k];
-      }
-    }
-    // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed. Blocks of fixed
-    // nodes land in the trash block (no branch).
-    const T* gg = &egg_[10 * std::size_t(e)];
-    const T vs = kscale * vol;
-    const T la = vs * lam, mb = vs * mu;
+  // Adds sign * (the element's rotated stiffness blocks for r_a = R g_a) to blocks_.
+  // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
+  void add_blocks(std::size_t e, const V3 r[4], T sign, const int blk[16]) {
+    const T* gg = &egg_[10 * e];
+    const T vs = sign * evol_[e];
+    const T la = vs * lambda_[e], mb = vs * mu_[e];
     int pair = 0;
     for (int a = 0; a < 4; ++a) {
       const V3 lra = la * r[a], mra = mb * r[a];
       for (int b = a; b < 4; ++b) {
         const T mg = mb * gg[pair++];
-        // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I), scaled.
-        T k[9];
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) k[3 * i + j] = lra[i] * r[b][j] + r[b][i] * mra[j];
-        k[0] += mg;
-        k[4] += mg;
-        k[8] += mg;
-        // Blocks are column-major (cg::multiply): K_ab goes in transposed index order,
-        // and K_ba = K_ab^T is then k in its own order.
-        T* dst = &blocks_[std::size_t(blk[4 * a + b])];
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) dst[3 * j + i] += k[3 * i + j];
+        // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I), column-major
+        // (cg::multiply) in kc; K_ba = K_ab^T column-major is K_ab row-major, kr. Both
+        // are formed in storage order so that the adds are contiguous (vectorised).
+        T kc[9], kr[9];
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) {
+            kc[3 * j + i] = lra[i] * r[b][j] + r[b][i] * mra[j];
+            kr[3 * j + i] = lra[j] * r[b][i] + r[b][j] * mra[i];
+          }
+        kc[0] += mg;
+        kc[4] += mg;
+        kc[8] += mg;
+        T* __restrict dst = &blocks_[std::size_t(blk[4 * a + b])];
+        for (int i = 0; i < 9; ++i) dst[i] += kc[i];
         if (b == a) continue;
-        T* tr = &blocks_[std::size_t(blk[4 * b + a])];
-        for (int i = 0; i < 9; ++i) tr[i] += k[i];
+        kr[0] += mg;
+        kr[4] += mg;
+        kr[8] += mg;
+        T* __restrict tr = &blocks_[std::size_t(blk[4 * b + a])];
+        for (int i = 0; i < 9; ++i) tr[i] += kr[i];
       }
+    }
+  }
+
+  void element(int e, bool full, T tol) {
+    const auto& t = m_.tets[e];
+    const std::size_t es = std::size_t(e);
+    const T* ge = &eg_[12 * es];
+    int thread = 0;
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+#endif
+    const int trash_row = 3 * (m_.num_free() + thread), trash_blk = 9 * (m_.num_blocks() + thread);
+    V3 x[4], g[4];
+    for (int a = 0; a < 4; ++a) {
+      const T* xa = &x_[3 * std::size_t(t[a])];
+      x[a] = V3(xa[0], xa[1], xa[2]);
+      g[a] = V3(ge[3 * a], ge[3 * a + 1], ge[3 * a + 2]);
+    }
+    const M3 F = fem::deformation_gradient<T>(x, g);
+    T* Fref = &eF_[9 * es];
+    T* Rs = &erot_[9 * es];
+    bool update = full;
+    if (!update) {
+      T change = 0;
+      for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(F.data()[i] - Fref[i]));
+      update = !(change <= tol);  // NaN updates too
+    }
+    M3 R;
+    if (update) {
+      int blk[16];
+      for (int k = 0; k < 16; ++k) {
+        const int v = eblk_[16 * es + k];
+        blk[k] = v < 0 ? trash_blk : v;
+      }
+      V3 r[4];
+      if (!full) {  // take the element's old blocks out
+        const M3 Rold = Eigen::Map<const M3>(Rs);
+        for (int a = 0; a < 4; ++a) r[a] = Rold * g[a];
+        add_blocks(es, r, T(-1), blk);
+      }
+      fem::extract_rotation<T>(F, q_[e]);
+      R = q_[e].toRotationMatrix();
+      for (int a = 0; a < 4; ++a) r[a] = R * g[a];
+      add_blocks(es, r, T(1), blk);
+      for (int i = 0; i < 9; ++i) {
+        Rs[i] = R.data()[i];
+        Fref[i] = F.data()[i];
+      }
+    } else {
+      R = Eigen::Map<const M3>(Rs);
+    }
+    // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
+    // formed once).
+    const T vol = evol_[e];
+    const M3 RS = -vol * (R * fem::linear_stress<T>(R.transpose() * F - M3::Identity(), lambda_[e], mu_[e]));
+    for (int a = 0; a < 4; ++a) {
+      const int v = erow_[4 * es + a];
+      T* bb = &b_[std::size_t(v < 0 ? trash_row : v)];
+      const V3 f = RS * g[a];
+      for (int k = 0; k < 3; ++k) bb[k] += f[k];
     }
   }
 
@@ -315,11 +382,11 @@ class CpuBackend final : public Backend {
     return v;
   }
 
-  // Contact terms, lumped on the diagonal blocks: node k of a contact triangle gets
-  // w_k of the force and w_k (h^2 ks + h ke) n n^T. (The consistent Jacobian couples
-  // the three nodes by w_j w_k; lumping keeps the same response to a translation of the
-  // triangle and is stiffer, never softer, for the others: still stable, and the
-  // force itself is exact.)
+  // Contact terms, lumped on the diagonal D: node k of a contact triangle gets w_k of the
+  // force and w_k (h^2 ks + h ke) n n^T. (The consistent Jacobian couples the three
+  // nodes by w_j w_k; lumping keeps the same response to a translation of the triangle
+  // and is stiffer, never softer, for the others: still stable, and the force itself is
+  // exact.)
   void add_contacts(std::span<const FingerInput> fingers, T h) {
     const double ks = p_.contact.stiffness, ke = p_.contact.damping;
     for (const auto& c : contacts_) {
@@ -336,7 +403,7 @@ class CpuBackend final : public Backend {
         // Linearised: f(x + h v') ~ f - h ks n n^T v', damping ke n n^T on v'.
         const Eigen::Vector3d rhs = double(h) * c.w[k] * (mag * c.n - double(h) * cks * nn * vn);
         const Eigen::Matrix3d A = c.w[k] * (double(h) * double(h) * cks + double(h) * cke) * nn;
-        T* d = &blocks_[9 * std::size_t(m_.diag_block[i])];
+        T* d = &diag_[9 * std::size_t(i)];
         for (int r = 0; r < 3; ++r) {
           b_[3 * i + r] += T(rhs[r]);
           for (int s = 0; s < 3; ++s) d[3 * r + s] += T(A(r, s));
@@ -379,14 +446,18 @@ class CpuBackend final : public Backend {
   std::vector<T> lambda_, mu_;               // (ntet) materials in T
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
-  std::vector<T> blocks_;                    // (nblock x 9) system matrix, column-major blocks
-  std::vector<T> b_, dv_, kv_;               // (nfree x 3)
+  std::vector<T> erot_, eF_;                 // (ntet x 9) rotation and F at the element's last update
+  std::vector<T> blocks_;                    // (nblock x 9) rotated stiffness K, column-major blocks, kept
+  std::vector<T> diag_;                      // (nfree x 9) mass and contact diagonal D, per step
+  std::vector<T> b_, dv_, kv_, vfree_;       // (nfree x 3)
   std::vector<T> precond_;                   // (nfree x 9) inverse diagonal blocks
   cg::Workspace<T> cg_;
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;
   bool rested_ = true;
+  bool assembled_ = false;                   // blocks_ holds K for the current rotations
+  long steps_since_assembly_ = 0;
   int threads_ = 1;                          // trash slots (OpenMP threads)
 };
 

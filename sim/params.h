@@ -15,6 +15,11 @@ struct SolverParams {
   int cg_max_iterations = 200;
   Precision precision = Precision::Double;
   int threads = 0;                 // CPU threads, 0 = all cores where it pays
+  // CPU backend: an element keeps its rotation and stiffness blocks while no entry of its
+  // deformation gradient F moved more than this since its last update (0: every element
+  // every step, as the CUDA backend does). backend_cpu.cpp says why this is safe;
+  // docs/benchmarks.md has the step time against force error.
+  double corotation_tolerance = 1e-3;
 };
 
 /// Rayleigh damping C = alpha M + beta K.

@@ -277,7 +277,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
 
   if (j.contains("solver")) {
     const json& sv = j["solver"];
-    rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations", "threads"});
+    rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations", "threads",
+                             "corotation_tolerance"});
     if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
     if (sv.contains("dt")) {
       s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
@@ -293,6 +294,10 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (sv.contains("cg_max_iterations"))
       s.params.solver.cg_max_iterations = rd.integer(sv["cg_max_iterations"], "solver.cg_max_iterations", 1, 100000);
     if (sv.contains("threads")) s.params.solver.threads = rd.integer(sv["threads"], "solver.threads", 0, 256);
+    if (sv.contains("corotation_tolerance")) {
+      s.params.solver.corotation_tolerance = rd.non_negative(sv["corotation_tolerance"], "solver.corotation_tolerance");
+      if (s.params.solver.corotation_tolerance > 0.01) rd.fail("solver.corotation_tolerance", "must be <= 0.01");
+    }
   }
 
   if (j.contains("contact")) {
@@ -389,7 +394,8 @@ std::string scenario_to_json(const Scenario& s) {
                  {"dt", sv.dt},
                  {"precision", sv.precision == Precision::Float ? "float" : "double"},
                  {"cg_tolerance", sv.cg_tolerance},
-                 {"cg_max_iterations", sv.cg_max_iterations}};
+                 {"cg_max_iterations", sv.cg_max_iterations},
+                 {"corotation_tolerance", sv.corotation_tolerance}};
   j["contact"] = {{"stiffness", s.params.contact.stiffness},
                   {"damping", s.params.contact.damping},
                   {"force_filter_hz", s.params.contact.force_filter_hz}};

@@ -1,6 +1,10 @@
-// Preconditioned conjugate gradients on a symmetric 3x3-block CSR matrix.
-// Block-Jacobi preconditioner (inverse of each 3x3 diagonal block), warm start from the
-// initial content of x. OpenMP over rows when `parallel` (both cores, large systems).
+// Preconditioned conjugate gradients on a symmetric 3x3-block CSR matrix
+//   A = scale * B + D,
+// B the stored blocks, D an optional block diagonal kept apart (the CPU backend keeps the
+// rotated stiffness B from step to step and rebuilds only the mass and contact terms D
+// and the time-step factor). Block-Jacobi preconditioner (inverse of each 3x3 diagonal
+// block of A), warm start from the initial content of x. OpenMP over rows when
+// `parallel` (both cores, large systems).
 #pragma once
 
 #include <cmath>
@@ -17,6 +21,9 @@ struct BlockSystem {
   const int* col;        // (nblock)
   const T* blocks;       // (nblock x 9) column-major 3x3, plus one T of padding at the end
   T* precond;            // (n x 9) workspace for the inverse diagonal blocks
+  T scale = 1;           // A = scale * blocks + diag
+  const T* diag = nullptr;       // (n x 9) column-major extra diagonal blocks + 1 T padding, or none
+  const int* diag_index = nullptr;  // (n) block index of each row's diagonal, or none (searched)
 };
 
 template <class T>
@@ -61,6 +68,14 @@ void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, b
       const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
       acc += load4(b) * x0 + load4(b + 3) * x1 + load4(b + 6) * x2;
     }
+    if (A.diag) {
+      const T* __restrict d = A.diag + 9 * std::size_t(i);
+      const T* __restrict xx = x + 3 * i;
+      const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
+      acc = A.scale * acc + (load4(d) * x0 + load4(d + 3) * x1 + load4(d + 6) * x2);
+    } else if (A.scale != T(1)) {
+      acc *= A.scale;
+    }
     y[3 * i] = acc[0];
     y[3 * i + 1] = acc[1];
     y[3 * i + 2] = acc[2];
@@ -77,14 +92,21 @@ T dot(const T* a, const T* b, int n, bool parallel) {
   return s;
 }
 
-/// Inverts the diagonal blocks into A.precond.
+/// Inverts the diagonal blocks of A into A.precond.
 template <class T>
 void build_block_jacobi(const BlockSystem<T>& A) {
+  using M3 = Eigen::Matrix<T, 3, 3>;
   for (int i = 0; i < A.n; ++i) {
-    int k = A.row_ptr[i];
-    while (A.col[k] != i) ++k;
-    Eigen::Matrix<T, 3, 3> D = Eigen::Map<const Eigen::Matrix<T, 3, 3>>(A.blocks + 9 * std::size_t(k));
-    Eigen::Matrix<T, 3, 3> Dinv = D.inverse();
+    int k;
+    if (A.diag_index) {
+      k = A.diag_index[i];
+    } else {
+      k = A.row_ptr[i];
+      while (A.col[k] != i) ++k;
+    }
+    M3 D = A.scale * Eigen::Map<const M3>(A.blocks + 9 * std::size_t(k));
+    if (A.diag) D += Eigen::Map<const M3>(A.diag + 9 * std::size_t(i));
+    M3 Dinv = D.inverse();
     if (!Dinv.allFinite()) Dinv.setZero();
     Eigen::Map<Eigen::Matrix<T, 3, 3, Eigen::RowMajor>>(A.precond + 9 * std::size_t(i)) = Dinv;
   }

@@ -57,6 +57,7 @@ Scenario hertz_coarse() {
   s.patient.edge = *resolution_edge("box", "coarse");
   s.params.solver.precision = Precision::Double;
   s.params.solver.cg_tolerance = 1e-10;
+  s.params.solver.corotation_tolerance = 0;  // every element every step on the CPU, as on the GPU
   s.params.solver.cg_max_iterations = 5000;
   return s;
 }
