@@ -342,7 +342,10 @@ void Workstation::sim_main() {
   std::vector<sim::FingerInput> in(nf);
   std::vector<sim::FingerOutput> out(nf);
   std::array<dv::FingerContactModel, nf> last{};
-  std::array<Eigen::Vector3d, nf> prev_force{};  // previous step's simulated force (spike guard)
+  // Previous step's simulated force (spike guard). Eigen does not zero-initialise, and
+  // `{}` value-initialises the array but not the vectors in it: fill explicitly.
+  std::array<Eigen::Vector3d, nf> prev_force;
+  prev_force.fill(Eigen::Vector3d::Zero());
   const double dt = opt_.scenario.params.solver.dt;
   std::int64_t prev_start = 0, last_snapshot = 0;
   const auto snapshot_period = std::int64_t(1e9 / std::max(1.0, opt_.snapshot_hz));
@@ -383,7 +386,7 @@ void Workstation::sim_main() {
           dv::sleep_until_ns(dv::monotonic_ns() + 2000000);
         }
         last = {};
-        prev_force = {};
+        prev_force.fill(Eigen::Vector3d::Zero());
         good_ = held_ = {};
         recovering_.store(false);
         sim::Scenario s;
