@@ -170,6 +170,8 @@ double ImportDialog::edge() const {
   return e ? *e : 0.00515;
 }
 
+bool ImportDialog::importing() const { return job_.running() || (timer_ && timer_->isActive()); }
+
 void ImportDialog::start_import() {
   error->clear();
   report->clear();

@@ -44,7 +44,9 @@ class ImportDialog : public QDialog {
 
   /// Starts the import with the form's values (what the Import button does).
   void start_import();
-  bool importing() const { return job_.running(); }
+  /// True from start_import() until the dialog has shown the job's outcome (the job
+  /// ends on its thread before poll() puts its result or error on screen).
+  bool importing() const;
   /// The name saved last (empty before).
   QString saved_name() const { return saved_; }
 
