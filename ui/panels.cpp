@@ -287,10 +287,12 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   tolerance->setDecimals(6);
   tolerance->setRange(1e-6, 1e-1);
   tolerance->setSingleStep(1e-4);
-  tolerance->setValue(1e-4);
+  // The simulation's own defaults (params.h): the panel shows what runs until Apply.
+  const sim::SolverParams defaults;
+  tolerance->setValue(defaults.cg_tolerance);
   iterations = new QSpinBox;
   iterations->setRange(5, 2000);
-  iterations->setValue(200);
+  iterations->setValue(defaults.cg_max_iterations);
   apply = new QPushButton;
   step_ms = new QLabel;
   cg = new QLabel;
