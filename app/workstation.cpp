@@ -492,23 +492,35 @@ void Workstation::sim_main() {
       // undeformed body) are not the ones the hand felt. Hold the last good models while
       // the new body settles around the fingers, then blend over to the new ones.
       recover_start_ = now;
+      blend_start_ = 0;
+      settled_for_ = 0;
       if (!recovering_.load()) held_ = good_;
       recovering_.store(true);
     }
     dv::ContactFrame& cf = contacts_.write_slot();
     cf.fingers = {};
+    bool steady = ok;
     for (int d = 0; d < nf; ++d) {
       if (ok && in[d].active)
         cf.fingers[d] = contact_model(opt_.spike_guard ? guard_force_spike(out[d], prev_force[d]) : out[d], in[d].position, reg);
-      prev_force[d] = ok && in[d].active && out[d].contacts > 0 ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d now_f = ok && in[d].active && out[d].contacts > 0 ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
+      // Steady: changing by less than 100 % of itself + 0.5 N per second (at the 10 ms
+      // real-time dt, 1 % + 5 mN per step); judged per second so a small dt does not pass a
+      // body that is still moving.
+      steady = steady && (now_f - prev_force[d]).norm() <= h * (prev_force[d].norm() + 0.5);
+      prev_force[d] = now_f;
     }
     if (recovering_.load()) {
+      settled_for_ = steady && !fault ? settled_for_ + h : 0.0;
       const double t = double(now - recover_start_) * 1e-9;
       const double hold = std::max(opt_.recover_hold_s, 0.0), blend = std::max(opt_.recover_blend_s, 0.0);
-      if (t < hold) {
+      const double hold_max = std::max(opt_.recover_hold_max_s, hold);
+      if (blend_start_ == 0 && t >= hold && (settled_for_ >= 0.1 || t >= hold_max || hold_max == 0)) blend_start_ = now;
+      const double tb = blend_start_ == 0 ? -1.0 : double(now - blend_start_) * 1e-9;
+      if (tb < 0) {
         cf.fingers = held_;
-      } else if (t < hold + blend) {
-        const double g = (t - hold) / blend;
+      } else if (tb < blend) {
+        const double g = tb / blend;
         for (int d = 0; d < nf; ++d) cf.fingers[d] = blended(held_[d], cf.fingers[d], g);
       } else {
         recovering_.store(false);

@@ -194,10 +194,14 @@ struct WorkstationOptions {
   double snapshot_hz = 40;             // render snapshots per second (at most; the view draws one frame per snapshot)
   double sim_max_dt = 0.01;            // s, cap of the real-time dt
   /// After a backend error (CPU fallback) or a divergence reset the body restarts at
-  /// rest: the last good contact models are held for recover_hold_s while the new body
-  /// settles around the fingers, then blended linearly into the new ones over
-  /// recover_blend_s (0 and 0: the new forces at once, as before).
+  /// rest: the last good contact models are held while the new body settles around the
+  /// fingers (at least recover_hold_s, and until the new forces have changed by less than
+  /// 100 % + 0.5 N per second for 0.1 s of simulated time, at most recover_hold_max_s), then
+  /// blended linearly into the new ones over recover_blend_s (0, 0 and 0: the new forces
+  /// at once). Settling is judged on the forces, not the clock: a slow or loaded machine
+  /// steps fewer times per second and needs longer to settle the new body.
   double recover_hold_s = 0.3;
+  double recover_hold_max_s = 3.0;
   double recover_blend_s = 0.5;
   /// The two-step minimum on the force sent to the haptic loop (app/sim_fingers.h,
   /// guard_force_spike): no release chatter or contact-onset overshoot at real-time dt.
@@ -313,6 +317,8 @@ class Workstation {
   std::atomic<bool> stress_enabled_{false};
   // Simulation thread only: the recovery after a fallback or reset (sim_main).
   std::int64_t recover_start_ = 0;
+  std::int64_t blend_start_ = 0;  // 0: still holding
+  double settled_for_ = 0;        // simulated seconds the new forces have been steady
   std::array<dv::FingerContactModel, dv::kMaxFingers> good_{}, held_{};
   void publish_empty(std::uint64_t& seq, double sim_time);
 

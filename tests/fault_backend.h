@@ -3,10 +3,12 @@
 // reports a blown-up state (node velocities scaled up).
 #pragma once
 
+#include <chrono>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "backend.h"
 
@@ -15,8 +17,10 @@ namespace palpation::test {
 class FaultBackend : public sim::Backend {
  public:
   enum class Fault { None, Throw, NaN, BlowUp };
-  FaultBackend(std::unique_ptr<sim::Backend> inner, Fault fault, int at_step, std::string name = "cuda")
-      : inner_(std::move(inner)), fault_(fault), at_(at_step), name_(std::move(name)) {}
+  /// slow_s: every step from the faulty one on first sleeps that long (a loaded machine
+  /// that deschedules the simulation thread).
+  FaultBackend(std::unique_ptr<sim::Backend> inner, Fault fault, int at_step, std::string name = "cuda", double slow_s = 0)
+      : inner_(std::move(inner)), fault_(fault), at_(at_step), name_(std::move(name)), slow_s_(slow_s) {}
 
   std::string name() const override { return name_; }
   std::string device_name() const override { return "fault-injected " + inner_->device_name(); }
@@ -27,6 +31,7 @@ class FaultBackend : public sim::Backend {
   }
   sim::StepStats step(std::span<const sim::FingerInput> f, std::span<sim::FingerOutput> out) override {
     const int k = steps_++;
+    if (k >= at_ && slow_s_ > 0) std::this_thread::sleep_for(std::chrono::duration<double>(slow_s_));
     if (k == at_ || (fault_ == Fault::Throw && k > at_)) {
       if (fault_ == Fault::Throw) throw std::runtime_error("injected CUDA error: an illegal memory access was encountered");
       sim::StepStats st = inner_->step(f, out);
@@ -55,6 +60,7 @@ class FaultBackend : public sim::Backend {
   Fault fault_;
   int at_;
   std::string name_;
+  double slow_s_ = 0;
   int steps_ = 0;
   bool blown_ = false;
 };
