@@ -5,11 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include <unistd.h>
-
 #include <QCoreApplication>
 
 #include "cli.h"
+#include "imported_patient.h"
 #include "model_cache.h"
 #include "patient_library.h"
 #include "scan_import.h"
@@ -28,11 +27,6 @@ struct QtCore {
     if (!QCoreApplication::instance()) app = std::make_unique<QCoreApplication>(argc, argv);
   }
 };
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 // Library errors are bad input (a locked, corrupt or newer database, an unknown name).
 template <class F>
@@ -124,32 +118,7 @@ CommandAction add_patient_command(CLI::App& app) {
           if (lib.find(o->name)) throw LibraryError(lib.location() + ": patient \"" + o->name + "\" already exists (choose another --name)");
         }
         ImportResult r = import_scan(o->file, io);
-        const std::string tmp = (std::filesystem::temp_directory_path() / ("palpation-import-" + std::to_string(::getpid()) + ".pmesh")).string();
-        sim::save_mesh_cache(tmp, r.mesh, "import " + o->file);
-        PatientRecord p;
-        p.name = o->name;
-        p.category = "imported";
-        p.source = std::filesystem::absolute(o->file).string();
-        p.mesh = read_bytes(tmp);
-        std::filesystem::remove(tmp);
-        char desc[300];
-        std::snprintf(desc, sizeof desc, "Imported scan %s: %d nodes, %d tetrahedra, edge %.4g m; base plane %s (%.1f cm^2)",
-                      std::filesystem::path(o->file).filename().string().c_str(), r.mesh.num_nodes(), r.mesh.num_tets(),
-                      io.edge, r.base.automatic ? "found" : "given", r.base.area * 1e4);
-        p.description = desc;
-        p.body = {{"patient", {{"mesh", o->name + ".pmesh"}}},
-                  {"tissue", {{"young_modulus", 19000}, {"poisson_ratio", 0.45}, {"density", 1000}}},
-                  {"inclusions", nlohmann::json::array()}};
-        {
-          // The default press of `patient export`: straight down over the highest point.
-          Eigen::Vector3d top = r.mesh.nodes.front();
-          for (const auto& n : r.mesh.nodes)
-            if (n.z() > top.z()) top = n;
-          const double rad = 0.008, z0 = top.z() + rad + 0.005, z1 = top.z() + rad - 0.01;
-          p.body["fingers"] = nlohmann::json::array(
-              {{{"radius", rad}, {"path", {{0.0, top.x(), top.y(), z0}, {1.0, top.x(), top.y(), z1}, {2.0, top.x(), top.y(), z0}}}}});
-          p.body["duration"] = 2.0;
-        }
+        const PatientRecord p = imported_patient_record(r, o->name, o->file, io.edge);
         PatientLibrary lib(lo);
         lib.add(p);
         std::printf("imported %s as \"%s\": %s; %s; base plane n = (%.3f, %.3f, %.3f) %s, %.1f cm^2; %d nodes, %d "

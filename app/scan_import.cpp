@@ -252,7 +252,10 @@ ImportResult import_scan(const std::string& path, const ImportOptions& opt) {
   if (!(opt.scale > 0) || !std::isfinite(opt.scale)) throw ImportError("--scale: must be > 0");
   ImportResult res;
   step(0.0, "reading");
-  SurfaceMesh s = read_surface(path);
+  // The reader's child is polled for a cancel (the GUI's Cancel stops it at once).
+  std::function<bool()> reading_cancelled;
+  if (opt.progress) reading_cancelled = [&]() { return !opt.progress(0.0, "reading"); };
+  SurfaceMesh s = read_surface(path, reading_cancelled);
   for (auto& v : s.vertices) v *= opt.scale;
   step(0.1, "checking and repairing");
   res.report = repair_surface(s);

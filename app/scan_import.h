@@ -32,8 +32,12 @@ struct SurfaceMesh {
 /// True when this build reads STL/OBJ/PLY (assimp).
 bool scan_reader_available();
 /// Reads all triangles of the file (no repair). Throws ImportError (empty file, garbage
-/// bytes, unsupported format, no triangles).
-SurfaceMesh read_surface(const std::string& path);
+/// bytes, unsupported format, no triangles; and a file that makes the reader exceed its
+/// memory or CPU-time limit, crash or hang: assimp runs in a child process with limits,
+/// app/scan_read_child.h). `cancelled` (may be empty) is polled while the child reads:
+/// true stops it and throws std::runtime_error("cancelled"). Throws std::runtime_error
+/// when the child process cannot be started.
+SurfaceMesh read_surface(const std::string& path, const std::function<bool()>& cancelled = {});
 
 /// What checking and repairing found.
 struct SurfaceReport {

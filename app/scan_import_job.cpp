@@ -1,11 +1,8 @@
 #include "scan_import_job.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "model_cache.h"
 #include "scenario.h"
@@ -74,45 +71,6 @@ std::string ScanImportJob::error() const {
 }  // namespace palpation::app
 
 namespace palpation::app {
-
-namespace {
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (!in.good() && !in.eof()) throw std::runtime_error(path + ": cannot read");
-  return ss.str();
-}
-}  // namespace
-
-PatientRecord imported_patient_record(const ImportResult& r, const std::string& name, const std::string& scan_file, double edge) {
-  namespace fs = std::filesystem;
-  const std::string tmp = (fs::temp_directory_path() / ("palpation-gui-import-" + std::to_string(::getpid()) + ".pmesh")).string();
-  sim::save_mesh_cache(tmp, r.mesh, "import " + scan_file);
-  PatientRecord p;
-  p.name = name;
-  p.category = "imported";
-  p.source = fs::absolute(scan_file).string();
-  p.mesh = slurp(tmp);
-  fs::remove(tmp);
-  if (p.mesh.empty()) throw std::runtime_error(tmp + ": the mesh could not be written");
-  char desc[300];
-  std::snprintf(desc, sizeof desc, "Imported scan %s: %d nodes, %d tetrahedra, edge %.4g m; base plane %s (%.1f cm^2)",
-                fs::path(scan_file).filename().string().c_str(), r.mesh.num_nodes(), r.mesh.num_tets(), edge,
-                r.base.automatic ? "found" : "given", r.base.area * 1e4);
-  p.description = desc;
-  p.body = {{"patient", {{"mesh", name + ".pmesh"}}},
-            {"tissue", {{"young_modulus", 19000}, {"poisson_ratio", 0.45}, {"density", 1000}}},
-            {"inclusions", nlohmann::json::array()}};
-  Eigen::Vector3d top = r.mesh.nodes.empty() ? Eigen::Vector3d::Zero() : r.mesh.nodes.front();
-  for (const auto& n : r.mesh.nodes)
-    if (n.z() > top.z()) top = n;
-  const double rad = 0.008, z0 = top.z() + rad + 0.005, z1 = top.z() + rad - 0.01;
-  p.body["fingers"] = nlohmann::json::array(
-      {{{"radius", rad}, {"path", {{0.0, top.x(), top.y(), z0}, {1.0, top.x(), top.y(), z1}, {2.0, top.x(), top.y(), z0}}}}});
-  p.body["duration"] = 2.0;
-  return p;
-}
 
 std::shared_ptr<PatientGeometry> preview_geometry(const sim::TetMesh& mesh, std::uint64_t generation) {
   auto g = std::make_shared<PatientGeometry>();

@@ -1,6 +1,6 @@
 // A scan import (app/scan_import.h) on a worker thread, for the GUI's "Import scan..."
-// dialog: progress and stage readable from any thread, cancel from any thread (the Gmsh
-// child is killed through the progress callback). Qt-free.
+// dialog: progress and stage readable from any thread, cancel from any thread (the scan
+// reader's and Gmsh's child processes are killed through the progress callback). Qt-free.
 #pragma once
 
 #include <atomic>
@@ -10,6 +10,7 @@
 #include <string>
 #include <thread>
 
+#include "imported_patient.h"  // imported_patient_record: what the dialog saves
 #include "patient_library.h"
 #include "scan_import.h"
 #include "workstation.h"
@@ -45,11 +46,6 @@ class ScanImportJob {
   std::string stage_, error_;
   std::shared_ptr<const ImportResult> result_;
 };
-
-/// The library record of an imported scan (as `palpation patient import` saves it): the
-/// mesh as .pmesh bytes, bulk tissue 19 kPa, a press over the highest point as its default
-/// finger path. Throws std::runtime_error when the mesh cannot be serialised.
-PatientRecord imported_patient_record(const ImportResult& r, const std::string& name, const std::string& scan_file, double edge);
 
 /// What the 3-D view needs to preview an imported mesh (rest shape, bulk tissue).
 std::shared_ptr<PatientGeometry> preview_geometry(const sim::TetMesh& mesh, std::uint64_t generation);

@@ -1,19 +1,31 @@
-// assimp, behind this one file: reads the triangles of an STL, OBJ or PLY scan.
+// assimp, behind this one file: reads the triangles of an STL, OBJ or PLY scan. The
+// cheap checks of the file run in the calling process; assimp itself runs only in the
+// scan reader's child process (app/scan_read_child.cpp: memory and CPU-time limits), so
+// that whatever a malformed file makes assimp do costs an error message, not the session.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <new>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include "scan_import.h"
+#include "scan_read_child.h"
 
 namespace palpation::app {
 
 bool scan_reader_available() { return true; }
 
-SurfaceMesh read_surface(const std::string& path) {
+SurfaceMesh read_surface(const std::string& path, const std::function<bool()>& cancelled) {
+  scan_reader::check_file(path);
+  return scan_reader::read_in_child(path, scan_reader::limits_for(path), cancelled);
+}
+
+namespace scan_reader {
+
+void check_file(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) throw ImportError(path + ": no such file");
@@ -49,6 +61,9 @@ SurfaceMesh read_surface(const std::string& path) {
       }
     }
   }
+}
+
+SurfaceMesh read_here(const std::string& path) {
   Assimp::Importer imp;
   // Normals dropped so that STL corners merge (each STL facet carries its own normal).
   imp.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_TEXCOORDS | aiComponent_COLORS);
@@ -61,6 +76,9 @@ SurfaceMesh read_surface(const std::string& path) {
                                              aiProcess_PreTransformVertices);
   if (!sc) {
     std::string why = imp.GetErrorString();
+    // assimp's importers catch a failed allocation's std::bad_alloc and return its text as
+    // the error: out of memory, not a verdict on the file (the child reports its limit).
+    if (why.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
     for (char& c : why)
       if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
     if (why.size() > 200) why = why.substr(0, 200) + "...";
@@ -92,5 +110,7 @@ SurfaceMesh read_surface(const std::string& path) {
   if (s.triangles.empty()) throw ImportError(path + ": empty: no triangles in the file");
   return s;
 }
+
+}  // namespace scan_reader
 
 }  // namespace palpation::app

@@ -5,7 +5,7 @@ namespace palpation::app {
 
 bool scan_reader_available() { return false; }
 
-SurfaceMesh read_surface(const std::string& path) {
+SurfaceMesh read_surface(const std::string& path, const std::function<bool()>&) {
   throw ImportError(path + ": this build has no assimp to read STL/OBJ/PLY scans (Debian: libassimp-dev)");
 }
 

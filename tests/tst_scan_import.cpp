@@ -1,15 +1,24 @@
 // Scan import: good meshes (STL, OBJ, PLY; a dome tipped on its side: the base plane is
 // found) become tetrahedral meshes with the base on z = 0; broken ones (open,
 // non-manifold, empty, garbage bytes) are refused saying exactly what is wrong;
-// the import can be cancelled.
+// the import can be cancelled. The reader runs in a child process with memory and
+// CPU-time limits (app/scan_read_child.h): a hostile file (docs/fuzzing.md finding 7) is
+// refused with a clean message while this process lives on; good files read identically.
 #include <QtTest>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 #include "mesh_gmsh.h"
 #include "scan_import.h"
+#include "scan_read_child.h"
 #include "scenario.h"
 #include "simulation.h"
 
@@ -26,6 +35,30 @@ std::string tmp(const std::string& name) {
 }
 
 std::string data(const std::string& name) { return std::string(PALPATION_TEST_DATA) + "/" + name; }
+
+/// Finding 7 of docs/fuzzing.md as a .ply file: the corpus file's first byte picks the
+/// extension (2: .ply), the rest is the file.
+std::string hostile_ply() {
+  const std::string corpus = std::string(PALPATION_TEST_DATA) + "/../fuzz/corpus/scan_import/regress-ply-3gb-allocation";
+  std::ifstream in(corpus, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < 2 || bytes[0] != 2) return {};
+  const std::string path = tmp("hostile.ply");
+  std::ofstream(path, std::ios::binary) << bytes.substr(1);
+  return path;
+}
+
+/// No child of this process is left (running or a zombie).
+bool no_children() {
+  int st = 0;
+  return ::waitpid(-1, &st, WNOHANG) < 0 && errno == ECHILD;
+}
+
+long max_rss_mb() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024;
+}
 
 QString import_error(const std::string& path, ImportOptions opt = {}) {
   opt.edge = 0.012;
@@ -107,6 +140,98 @@ class TestScanImport : public QObject {
     const std::string path = data(file.toStdString());
     const QString e = import_error(path);
     QVERIFY2(e.startsWith(QString::fromStdString(path) + ": ") && e.contains(expected), qPrintable(e));
+  }
+
+  // Finding 7: a 3.9 kB PLY whose face list makes assimp allocate 3.1 GB at once (and keep
+  // growing: 12 GB after 2 minutes before the fix). The child meets its memory limit;
+  // this process gets a one-line ImportError naming the file and stays small.
+  void hostileFileHitsTheMemoryLimit() {
+    const std::string path = hostile_ply();
+    QVERIFY2(!path.empty(), "tests/fuzz/corpus/scan_import/regress-ply-3gb-allocation is missing");
+    const auto t0 = std::chrono::steady_clock::now();
+    const QString e = import_error(path);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    qInfo("refused in %.2f s: %s", s, qPrintable(e));
+    QVERIFY2(e.startsWith(QString::fromStdString(path) + ": the scan reader "), qPrintable(e));
+    QVERIFY2(!e.contains('\n'), qPrintable(e));
+#if defined(__SANITIZE_ADDRESS__)
+    // No address-space limit under AddressSanitizer (scan_read_child.cpp): its own
+    // allocation limit ends the child, without a message.
+    QVERIFY2(e.contains("a malformed or hostile file"), qPrintable(e));
+#else
+    const std::string limit = scan_reader::memory_words(scan_reader::limits_for(path).memory_bytes);
+    QVERIFY2(e == QString::fromStdString(path + ": the scan reader exceeded its " + limit +
+                                         " memory limit (a malformed or hostile file)"),
+             qPrintable(e));
+#endif
+    QVERIFY(s < 30);
+    QVERIFY2(max_rss_mb() < 1024, qPrintable(QString("this process peaked at %1 MB").arg(max_rss_mb())));
+    QVERIFY(no_children());
+    // The process lives on and still reads good scans.
+    QVERIFY(!read_surface(data("dome.ply")).triangles.empty());
+  }
+
+  // The child sends exactly what assimp read in process: the same doubles, the same
+  // triangles (a well-formed scan imports identically through the child).
+  void childReadsIdentically_data() {
+    QTest::addColumn<QString>("file");
+    for (const char* f : {"dome.stl", "dome.obj", "dome.ply", "dome-side.stl"}) QTest::newRow(f) << QString(f);
+  }
+  void childReadsIdentically() {
+    QFETCH(QString, file);
+    const std::string path = data(file.toStdString());
+    const SurfaceMesh child = read_surface(path);
+    const SurfaceMesh here = scan_reader::read_here(path);
+    QVERIFY(!here.triangles.empty());
+    QCOMPARE(child.vertices.size(), here.vertices.size());
+    QCOMPARE(child.triangles.size(), here.triangles.size());
+    for (std::size_t i = 0; i < here.vertices.size(); ++i) QVERIFY(child.vertices[i] == here.vertices[i]);
+    QVERIFY(child.triangles == here.triangles);
+    QVERIFY(no_children());
+  }
+
+  // The child is stopped (and reaped) on a cancel and at its deadline.
+  void readerCancelAndDeadline() {
+    const std::string path = data("dome.stl");
+    QString e;
+    try {
+      scan_reader::read_in_child(path, scan_reader::limits_for(path), [] { return true; });
+    } catch (const std::runtime_error& ex) {
+      e = ex.what();
+    }
+    QCOMPARE(e, QString("cancelled"));
+    QVERIFY(no_children());
+    scan_reader::Limits lim = scan_reader::limits_for(path);
+    lim.wall_seconds = 0.001;
+    e.clear();
+    try {
+      scan_reader::read_in_child(path, lim);
+    } catch (const ImportError& ex) {
+      e = ex.what();
+    }
+    QVERIFY2(e.startsWith(QString::fromStdString(path) + ": the scan reader did not finish within 0 s (stopped)"), qPrintable(e));
+    QVERIFY(no_children());
+  }
+
+  // The command line: exit status 2 (bad input) and the one-line message.
+  void commandLineRefusesTheHostileFile() {
+#ifndef PALPATION_EXE
+    QSKIP("no palpation executable in this build (no QtSql)");
+#else
+    const std::string path = hostile_ply();
+    QProcess p;
+    p.start(PALPATION_EXE, {"patient", "import", QString::fromStdString(path), "--name", "hostile", "--quiet", "--db",
+                            QString::fromStdString(tmp("cli.db"))});
+    QVERIFY(p.waitForFinished(120000));
+    const QString err = QString::fromUtf8(p.readAllStandardError());
+    QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+    QVERIFY2(p.exitCode() == 2, qPrintable(err));
+    // The message is the first line and a whole one (the file, the reader, the reason).
+    const QString line = err.section('\n', 0, 0);
+    QVERIFY2(line.startsWith("palpation: " + QString::fromStdString(path) + ": the scan reader ") &&
+                 line.endsWith("(a malformed or hostile file)"),
+             qPrintable(err));
+#endif
   }
 
   void wrongUnitsAndBasePlaneOverride() {
