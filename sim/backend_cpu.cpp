@@ -1,9 +1,10 @@
 // One step (design.md section 4), per time step h:
 //   1. per element: F and the elastic force f = -V R sigma(R^T F - I) g; the rotation R
-//      (warm-started) and the element's rotated stiffness blocks are updated only for
-//      elements whose F changed by more than `solver.corotation_tolerance` since their
-//      last update (below). The rotated stiffness K is kept assembled from step to
-//      step; an update adds the element's new blocks minus its old ones;
+//      (warm-started) is re-extracted only for elements whose F changed by more than
+//      `solver.corotation_tolerance` since the last extraction, and the element's
+//      rotated stiffness blocks only when that R moved by more than the tolerance from
+//      the one they were built with (below). The rotated stiffness K is kept assembled
+//      from step to step; an update adds the element's new blocks minus its old ones;
 //   2. K v by one product with the kept K;
 //   3. penalty contact on surface triangles inside finger spheres: k_s n n^T and
 //      k_e n n^T go to a separate diagonal D with the mass terms;
@@ -76,6 +77,7 @@ class CpuBackend final : public Backend {
     v_.resize(3 * nn);
     q_.resize(ne);
     erot_.resize(9 * std::size_t(ne));
+    ekrot_.resize(9 * std::size_t(ne));
     eF_.resize(9 * std::size_t(ne));
     // Extra blocks and rows at the end (one per thread) take the contributions of fixed
     // nodes, so that the element loop has no branches (see element()).
@@ -317,15 +319,37 @@ class CpuBackend final : public Backend {
       g[a] = V3(ge[3 * a], ge[3 * a + 1], ge[3 * a + 2]);
     }
     const M3 F = fem::deformation_gradient<T>(x, g);
+    // Two tolerances, both `tol` (max abs entry): the rotation is re-extracted (warm
+    // started) when F has moved more than tol since the last extraction, and the
+    // element's stiffness blocks in K are re-rotated only when that R has moved more than
+    // tol from the rotation they were built with (a push strains far more than it
+    // rotates: at 1e-3 about a quarter of the extractions re-rotate K).
     T* Fref = &eF_[9 * es];
     T* Rs = &erot_[9 * es];
-    bool update = full;
-    if (!update) {
+    T* Rk = &ekrot_[9 * es];
+    bool extract = full;
+    if (!extract) {
       T change = 0;
       for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(F.data()[i] - Fref[i]));
-      update = !(change <= tol);  // NaN updates too
+      extract = !(change <= tol);  // NaN too
     }
     M3 R;
+    bool update = full;
+    if (extract) {
+      fem::extract_rotation<T>(F, q_[e]);
+      R = q_[e].toRotationMatrix();
+      for (int i = 0; i < 9; ++i) {
+        Rs[i] = R.data()[i];
+        Fref[i] = F.data()[i];
+      }
+      if (!update) {
+        T change = 0;
+        for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(R.data()[i] - Rk[i]));
+        update = !(change <= tol);
+      }
+    } else {
+      R = Eigen::Map<const M3>(Rs);
+    }
     if (update) {
       int blk[16];
       for (int k = 0; k < 16; ++k) {
@@ -334,20 +358,13 @@ class CpuBackend final : public Backend {
       }
       V3 r[4];
       if (!full) {  // take the element's old blocks out
-        const M3 Rold = Eigen::Map<const M3>(Rs);
+        const M3 Rold = Eigen::Map<const M3>(Rk);
         for (int a = 0; a < 4; ++a) r[a] = Rold * g[a];
         add_blocks(es, r, T(-1), blk);
       }
-      fem::extract_rotation<T>(F, q_[e]);
-      R = q_[e].toRotationMatrix();
       for (int a = 0; a < 4; ++a) r[a] = R * g[a];
       add_blocks(es, r, T(1), blk);
-      for (int i = 0; i < 9; ++i) {
-        Rs[i] = R.data()[i];
-        Fref[i] = F.data()[i];
-      }
-    } else {
-      R = Eigen::Map<const M3>(Rs);
+      for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
     }
     // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
     // formed once).
@@ -446,7 +463,8 @@ class CpuBackend final : public Backend {
   std::vector<T> lambda_, mu_;               // (ntet) materials in T
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
-  std::vector<T> erot_, eF_;                 // (ntet x 9) rotation and F at the element's last update
+  std::vector<T> erot_, eF_;                 // (ntet x 9) rotation and F at the element's last extraction
+  std::vector<T> ekrot_;                     // (ntet x 9) the rotation its blocks in K were built with
   std::vector<T> blocks_;                    // (nblock x 9) rotated stiffness K, column-major blocks, kept
   std::vector<T> diag_;                      // (nfree x 9) mass and contact diagonal D, per step
   std::vector<T> b_, dv_, kv_, vfree_;       // (nfree x 3)
