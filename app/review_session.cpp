@@ -12,28 +12,6 @@ namespace palpation::app {
 
 using nlohmann::json;
 
-std::shared_ptr<PatientGeometry> make_patient_geometry(const sim::Simulation& simulation, std::uint64_t generation) {
-  auto g = std::make_shared<PatientGeometry>();
-  const sim::Model& m = simulation.model();
-  g->generation = generation;
-  g->rest = m.rest;
-  g->tets = m.tets;
-  g->surface = m.surface;
-  g->young = m.young;
-  g->centroid.resize(m.tets.size());
-  for (std::size_t e = 0; e < m.tets.size(); ++e) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int a = 0; a < 4; ++a) c += m.rest[std::size_t(m.tets[e][a])];
-    g->centroid[e] = c / 4.0;
-  }
-  g->tissue_young = simulation.scenario().young_modulus;
-  g->tissue_poisson = simulation.scenario().poisson_ratio;
-  auto& be = const_cast<sim::Simulation&>(simulation).backend();
-  g->backend = be.name();
-  g->device_name = be.device_name();
-  return g;
-}
-
 namespace {
 
 std::string one_line(const json& e) {

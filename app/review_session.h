@@ -141,7 +141,4 @@ class ReviewSession {
   bool playing_ = false;
 };
 
-/// A PatientGeometry of a built simulation (what the 3-D view needs).
-std::shared_ptr<PatientGeometry> make_patient_geometry(const sim::Simulation& s, std::uint64_t generation);
-
 }  // namespace palpation::app

@@ -117,6 +117,28 @@ dv::FingerContactModel blended(const dv::FingerContactModel& a, const dv::Finger
 }
 }  // namespace
 
+std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulation, std::uint64_t generation) {
+  auto g = std::make_shared<PatientGeometry>();
+  const sim::Model& m = simulation.model();
+  g->generation = generation;
+  g->rest = m.rest;
+  g->tets = m.tets;
+  g->surface = m.surface;
+  g->young = m.young;
+  g->centroid.resize(m.tets.size());
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 4; ++a) c += m.rest[std::size_t(m.tets[e][a])];
+    g->centroid[e] = c / 4.0;
+  }
+  g->tissue_young = simulation.scenario().young_modulus;
+  g->tissue_poisson = simulation.scenario().poisson_ratio;
+  auto& be = simulation.backend();
+  g->backend = be.name();
+  g->device_name = be.device_name();
+  return g;
+}
+
 void Workstation::publish_empty(std::uint64_t& seq, double sim_time) {
   dv::ContactFrame& cf = contacts_.write_slot();
   cf.fingers = {};
@@ -297,24 +319,10 @@ void Workstation::build(const sim::Scenario& s) {
   auto simulation = std::make_unique<sim::Simulation>(s);
   simulation->reset();
   configure_workstation_threads(*simulation);
-  auto g = std::make_shared<PatientGeometry>();
   const sim::Model& m = simulation->model();
-  g->generation = generation_.load() + 1;
-  generation_.store(g->generation);
-  g->rest = m.rest;
-  g->tets = m.tets;
-  g->surface = m.surface;
-  g->young = m.young;
-  g->centroid.resize(m.tets.size());
-  for (std::size_t e = 0; e < m.tets.size(); ++e) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (int a = 0; a < 4; ++a) c += m.rest[m.tets[e][a]];
-    g->centroid[e] = c / 4.0;
-  }
-  g->tissue_young = s.young_modulus;
-  g->tissue_poisson = s.poisson_ratio;
-  g->backend = simulation->backend().name();
-  g->device_name = simulation->backend().device_name();
+  const std::uint64_t generation = generation_.load() + 1;
+  generation_.store(generation);
+  auto g = make_patient_geometry(*simulation, generation);
   {
     std::lock_guard<std::mutex> lk(mu_);
     geometry_ = g;
@@ -377,12 +385,7 @@ void Workstation::sim_main() {
         sim_state_.store(3);
         const std::int64_t fade_end = dv::monotonic_ns() + 100000000;  // 100 ms
         while (dv::monotonic_ns() < fade_end) {
-          dv::ContactFrame& cf = contacts_.write_slot();
-          cf.fingers = {};
-          cf.sequence = ++seq;
-          cf.sim_time = sim_time;
-          cf.published_ns = dv::monotonic_ns();
-          contacts_.publish();
+          publish_empty(seq, sim_time);
           dv::sleep_until_ns(dv::monotonic_ns() + 2000000);
         }
         last = {};

@@ -165,6 +165,11 @@ struct PatientGeometry {
   std::string backend, device_name;
 };
 
+/// The PatientGeometry of a built simulation (its model, scenario tissue and backend): the
+/// live workstation's and the review's 3-D view read the same. Non-const: the backend's
+/// name is read through sim::Simulation::backend().
+std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulation, std::uint64_t generation);
+
 /// Live figures (GUI thread, updated by poll()).
 struct LiveStats {
   double step_rate_hz = 0, haptic_rate_hz = 0, step_ms = 0, jitter_us = 0;
