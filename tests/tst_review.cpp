@@ -8,6 +8,7 @@
 //     count: the same floating-point operations; asserted to 1e-9 N, the measured
 //     difference is printed), play / scrub / speed move the displayed time, the view's
 //     frame and the plots' cursor; markers are on the timeline; CSV and PNG frames export;
+//     in Japanese its buttons and title are translated;
 //   - a corrupted recording gives an error naming the file, the chunk and the reason, and
 //     leaves the recording and the patient library byte for byte as they were;
 //   - the chooser lists the built-in patients, and choosing one reaches the simulation.
@@ -22,7 +23,9 @@
 #include <QPushButton>
 #include <QStandardPaths>
 #include <QTemporaryDir>
+#include <QTranslator>
 
+#include "gui_test_support.h"
 #include "import_dialog.h"
 #include "main_window.h"
 #include "panels.h"
@@ -66,13 +69,7 @@ class TstReview : public QObject {
     QStandardPaths::setTestModeEnabled(true);
     qputenv("PALPATION_DB", dir_.filePath(QStringLiteral("patients.sqlite")).toUtf8());
     qputenv("PALPATION_RECORDINGS", dir_.filePath(QStringLiteral("recordings")).toUtf8());
-    QSurfaceFormat fmt;
-    fmt.setRenderableType(QSurfaceFormat::OpenGL);
-    fmt.setVersion(3, 2);
-    fmt.setProfile(QSurfaceFormat::CoreProfile);
-    fmt.setDepthBufferSize(24);
-    fmt.setStencilBufferSize(8);
-    QSurfaceFormat::setDefaultFormat(fmt);
+    test::use_vtk_surface_format();
     rec_path_ = dir_.filePath(QStringLiteral("scripted.palrec"));
   }
 
@@ -164,6 +161,21 @@ class TstReview : public QObject {
     QVERIFY2(c.max_diff <= 1e-9, qPrintable(QString::number(c.max_diff)));
     QVERIFY(std::isfinite(c.max_sent_diff));
     QVERIFY(rw.difference_label()->text().contains(QLatin1String("Reproduced")));
+    // In Japanese (the .qm compiled from translations/palpation_ja.ts): the review's own
+    // strings follow a language change; a missing or stale catalogue leaves them English.
+    {
+      QTranslator ja;
+      QVERIFY(ja.load(QStringLiteral(":/i18n/palpation_ja.qm")));
+      QCoreApplication::installTranslator(&ja);
+      QTRY_COMPARE(rw.play_button()->text(), QStringLiteral("再生"));
+      QCOMPARE(rw.windowTitle(), QStringLiteral("レビュー: scripted.palrec"));
+      QStringList buttons;
+      for (auto* b : rw.findChildren<QPushButton*>()) buttons << b->text();
+      QVERIFY2(buttons.contains(QStringLiteral("CSV 出力...")) && buttons.contains(QStringLiteral("PNG フレーム出力...")),
+               qPrintable(buttons.join(QStringLiteral(" | "))));
+      QCoreApplication::removeTranslator(&ja);
+      QTRY_COMPARE(rw.play_button()->text(), QStringLiteral("Play"));
+    }
 
     // Scrub: the time, the plots' cursor and the 3-D frame follow.
     rw.tick();

@@ -2,17 +2,25 @@
 // HandHIRO: panels present; adding and painting a tumour changes the stiffness of the
 // right elements in the running simulation and undo restores them; the force plots
 // receive data; trainee mode hides tumours and locks the instructor panels; the 3-D view
-// shows the breast in mono and anaglyph; switching language changes visible strings.
+// shows the breast in mono and anaglyph; in Japanese every menu, panel title and button
+// the user sees is translated.
 // Runs under Xvfb (the view needs an OpenGL context). No timing assertions.
 #include <QtTest>
 
+#include <functional>
+
+#include <QAbstractButton>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
+#include <QLabel>
+#include <QMenu>
 #include <QMenuBar>
+#include <QSettings>
 #include <QStandardPaths>
 #include <QUndoStack>
 
 #include "force_plots.h"
+#include "gui_test_support.h"
 #include "main_window.h"
 #include "panels.h"
 #include "tumour_editor.h"
@@ -73,17 +81,44 @@ class TstUiMainWindow : public QObject {
     while (w_->workstation().commands_applied() < want && !deadline.hasExpired()) QTest::qWait(10);
     return w_->workstation().commands_applied() >= want;
   }
+  // The window retranslates its own strings at once; the panels follow on the LanguageChange
+  // event that installing the translator posts to the window: delivered here.
+  bool set_language(const QString& code) {
+    const bool ok = w_->set_language(code);
+    QCoreApplication::sendPostedEvents(nullptr, QEvent::LanguageChange);
+    return ok;
+  }
+  // What the user reads in the menus (titles and actions, recursively), on the dock
+  // titles and on the panels' buttons, in a fixed order. The Language menu is left out: it
+  // names each language in itself.
+  QStringList visible_strings() const {
+    QStringList out;
+    std::function<void(const QList<QAction*>&)> walk = [&](const QList<QAction*>& actions) {
+      for (QAction* a : actions) {
+        if (a->isSeparator()) continue;
+        if (QMenu* m = a->menu()) {
+          if (m->title().startsWith(QLatin1String("Language"))) continue;
+          out << m->title();
+          walk(m->actions());
+        } else if (!a->text().isEmpty()) {
+          out << a->text();
+        }
+      }
+    };
+    walk(w_->menuBar()->actions());
+    for (auto* d : w_->findChildren<QDockWidget*>()) {
+      out << d->windowTitle();
+      for (auto* b : d->findChildren<QAbstractButton*>())
+        if (!b->text().isEmpty()) out << b->text();
+    }
+    return out;
+  }
 
  private slots:
   void initTestCase() {
     QStandardPaths::setTestModeEnabled(true);
-    QSurfaceFormat fmt;
-    fmt.setRenderableType(QSurfaceFormat::OpenGL);
-    fmt.setVersion(3, 2);
-    fmt.setProfile(QSurfaceFormat::CoreProfile);
-    fmt.setDepthBufferSize(24);
-    fmt.setStencilBufferSize(8);
-    QSurfaceFormat::setDefaultFormat(fmt);
+    QSettings().remove(QStringLiteral("language"));  // a failed run leaves Japanese stored
+    test::use_vtk_surface_format();
     app::WorkstationOptions opt;
     opt.scenario = app::default_workstation_scenario();
     opt.haptic_priority = 0;
@@ -303,15 +338,42 @@ class TstUiMainWindow : public QObject {
     for (auto* d : w_->instructor_docks()) QVERIFY(d->widget()->isEnabled());
   }
 
+  // The Japanese catalogue (translations/palpation_ja.ts, compiled into :/i18n/palpation_ja.qm
+  // at build time) is there and current: the window title, the File menu, and every menu,
+  // action, panel title and panel button the user sees differ between Japanese and English
+  // (the Language menu, bilingual on purpose, aside). A missing .qm fails set_language; one
+  // left stale (a string added to the code, not translated) reads the same in both.
   void language_switch() {
     QCOMPARE(w_->windowTitle(), QStringLiteral("Palpation Trainer"));
-    QVERIFY(w_->set_language(QStringLiteral("ja")));
+    QCOMPARE(w_->menuBar()->actions().front()->menu()->title(), QStringLiteral("&File"));
+    QVERIFY(set_language(QStringLiteral("ja")));
     QCOMPARE(w_->windowTitle(), QStringLiteral("触診トレーナー"));
-    QStringList titles;
-    for (auto* d : w_->findChildren<QDockWidget*>()) titles << d->windowTitle();
-    QVERIFY(titles.contains(QStringLiteral("腫瘍")));
-    QVERIFY(w_->set_language(QStringLiteral("en")));
+    QCOMPARE(w_->menuBar()->actions().front()->menu()->title(), QStringLiteral("ファイル(&F)"));
+    const QStringList ja = visible_strings();
+    const QString all = ja.join(QStringLiteral(" | "));
+    QVERIFY2(ja.contains(QStringLiteral("腫瘍")), qPrintable(all));                  // a panel title
+    QVERIFY2(ja.contains(QStringLiteral("記録を開く(&O)...")), qPrintable(all));     // File > Open recording
+    QVERIFY2(ja.contains(QStringLiteral("しこりをマーク (M)")), qPrintable(all));    // the trainee's mark
+    QVERIFY2(ja.contains(QStringLiteral("スキャンを取り込む...")), qPrintable(all));  // Patient panel
+    // Labels the panels fill: the chosen phantom's description (set when it was chosen, in
+    // English) and the simulation's state (app::LiveStats, English).
+    QCOMPARE(w_->patient_panel()->chosen(), QStringLiteral("phantom:breast"));
+    QCOMPARE(w_->patient_panel()->description->text(), QStringLiteral("論文の乳房と腫瘍（x = 12.5 cm、107 kPa）。"));
+    auto* sim_panel = w_->findChild<ui::SimulationPanel*>();
+    QVERIFY(sim_panel);
+    QTRY_VERIFY2(sim_panel->state->text().startsWith(QStringLiteral("実行中")), qPrintable(sim_panel->state->text()));
+    // Back to English. Compared after the switch: retranslate() names the undo actions
+    // "Undo" and "Redo", without the command that the undo stack appended before.
+    QVERIFY(set_language(QStringLiteral("en")));
     QCOMPARE(w_->windowTitle(), QStringLiteral("Palpation Trainer"));
+    QTRY_VERIFY2(sim_panel->state->text().startsWith(QStringLiteral("running")), qPrintable(sim_panel->state->text()));
+    const QStringList en = visible_strings();
+    QVERIFY2(en.size() > 40 && en.contains(QStringLiteral("&Open recording...")), qPrintable(en.join(QStringLiteral(" | "))));
+    QCOMPARE(ja.size(), en.size());
+    QStringList untranslated;
+    for (qsizetype i = 0; i < en.size(); ++i)
+      if (ja[i] == en[i]) untranslated << en[i];
+    QVERIFY2(untranslated.isEmpty(), qPrintable(QStringLiteral("still English in Japanese: ") + untranslated.join(QStringLiteral(" | "))));
   }
 
   void cleanupTestCase() { w_.reset(); }

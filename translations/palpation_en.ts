@@ -96,47 +96,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="384"/>
+        <location filename="../ui/panels.cpp" line="396"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="385"/>
+        <location filename="../ui/panels.cpp" line="397"/>
         <source>Mouse palpation (no robot)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="386"/>
+        <location filename="../ui/panels.cpp" line="398"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="387"/>
+        <location filename="../ui/panels.cpp" line="399"/>
         <source>HandHIRO address</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="388"/>
+        <location filename="../ui/panels.cpp" line="400"/>
         <source>Loop jitter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="389"/>
+        <location filename="../ui/panels.cpp" line="401"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="402"/>
+        <location filename="../ui/panels.cpp" line="414"/>
         <source>attached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="402"/>
+        <location filename="../ui/panels.cpp" line="414"/>
         <source>released</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="404"/>
+        <location filename="../ui/panels.cpp" line="416"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -348,72 +348,72 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="179"/>
+        <location filename="../ui/import_dialog.cpp" line="181"/>
         <source>Choose a scan file (STL, OBJ or PLY) first.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="188"/>
+        <location filename="../ui/import_dialog.cpp" line="190"/>
         <source>The base plane&apos;s normal must not be zero.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="203"/>
+        <location filename="../ui/import_dialog.cpp" line="205"/>
         <source>Reading %1...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="218"/>
+        <location filename="../ui/import_dialog.cpp" line="220"/>
         <source>Cancelled: nothing was saved.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="224"/>
+        <location filename="../ui/import_dialog.cpp" line="226"/>
         <source>Import failed: nothing was saved.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="229"/>
+        <location filename="../ui/import_dialog.cpp" line="231"/>
         <source>Done in %1 s (meshing %2 s).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="231"/>
+        <location filename="../ui/import_dialog.cpp" line="233"/>
         <source>%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="234"/>
+        <location filename="../ui/import_dialog.cpp" line="236"/>
         <source>none</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <location filename="../ui/import_dialog.cpp" line="237"/>
         <source>found</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <location filename="../ui/import_dialog.cpp" line="237"/>
         <source>given</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="244"/>
+        <location filename="../ui/import_dialog.cpp" line="246"/>
         <source>No patient library is open.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="252"/>
+        <location filename="../ui/import_dialog.cpp" line="254"/>
         <source>Give the patient a name.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="257"/>
+        <location filename="../ui/import_dialog.cpp" line="259"/>
         <source>A patient named &quot;%1&quot; exists already in %2: choose another name.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="268"/>
+        <location filename="../ui/import_dialog.cpp" line="270"/>
         <source>Saved as &quot;%1&quot; in the patient library.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -796,57 +796,57 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="114"/>
+        <location filename="../ui/panels.cpp" line="115"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="115"/>
+        <location filename="../ui/panels.cpp" line="116"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="116"/>
+        <location filename="../ui/panels.cpp" line="117"/>
         <source>Fine (GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="117"/>
+        <location filename="../ui/panels.cpp" line="118"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="118"/>
+        <location filename="../ui/panels.cpp" line="119"/>
         <source>Resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="119"/>
+        <location filename="../ui/panels.cpp" line="120"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="120"/>
+        <location filename="../ui/panels.cpp" line="121"/>
         <source>Poisson ratio</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="121"/>
+        <location filename="../ui/panels.cpp" line="122"/>
         <source>Load patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>Import scan...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="124"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="124"/>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -876,9 +876,9 @@
     <message numerus="yes">
         <location filename="../ui/review_window.cpp" line="201"/>
         <source>%n frame(s) written to %1</source>
-        <translation type="unfinished">
-            <numerusform></numerusform>
-            <numerusform></numerusform>
+        <translation>
+            <numerusform>%n frame written to %1</numerusform>
+            <numerusform>%n frames written to %1</numerusform>
         </translation>
     </message>
     <message>
@@ -998,67 +998,92 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="317"/>
+        <location filename="../ui/panels.cpp" line="320"/>
         <source>Backend</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="318"/>
+        <location filename="../ui/panels.cpp" line="321"/>
         <source>CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="319"/>
+        <location filename="../ui/panels.cpp" line="322"/>
         <source>CG max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="320"/>
+        <location filename="../ui/panels.cpp" line="323"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="321"/>
+        <location filename="../ui/panels.cpp" line="324"/>
         <source>Safety</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="322"/>
+        <location filename="../ui/panels.cpp" line="325"/>
         <source>Step time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="323"/>
+        <location filename="../ui/panels.cpp" line="326"/>
         <source>CG iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="324"/>
+        <location filename="../ui/panels.cpp" line="327"/>
         <source>Simulation rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="325"/>
+        <location filename="../ui/panels.cpp" line="328"/>
         <source>Haptic rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="326"/>
+        <location filename="../ui/panels.cpp" line="329"/>
         <source>Apply solver settings</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="327"/>
+        <location filename="../ui/panels.cpp" line="330"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="339"/>
+        <location filename="../ui/panels.cpp" line="342"/>
+        <source>stopped</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="343"/>
+        <source>loading</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="344"/>
+        <source>running</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="345"/>
+        <source>swapping</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="346"/>
+        <source>error: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>no fault</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="340"/>
+        <location filename="../ui/panels.cpp" line="352"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>%n backend fallback</numerusform>
@@ -1066,7 +1091,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="341"/>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>%n divergence reset</numerusform>
@@ -1074,18 +1099,18 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="342"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>forces held and blended</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>%1 ms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="348"/>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="361"/>
         <source>%1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1245,103 +1270,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="228"/>
-        <location filename="../ui/panels.cpp" line="254"/>
+        <location filename="../ui/panels.cpp" line="229"/>
+        <location filename="../ui/panels.cpp" line="255"/>
         <source>Source: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="255"/>
+        <location filename="../ui/panels.cpp" line="256"/>
         <source>Preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="256"/>
+        <location filename="../ui/panels.cpp" line="257"/>
         <source>Stiffness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="257"/>
+        <location filename="../ui/panels.cpp" line="258"/>
         <source>Add by shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="258"/>
+        <location filename="../ui/panels.cpp" line="259"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="259"/>
+        <location filename="../ui/panels.cpp" line="260"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="260"/>
+        <location filename="../ui/panels.cpp" line="261"/>
         <source>Shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="261"/>
+        <location filename="../ui/panels.cpp" line="262"/>
         <source>Centre x, y, z</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="262"/>
+        <location filename="../ui/panels.cpp" line="263"/>
         <source>Radius (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="263"/>
+        <location filename="../ui/panels.cpp" line="264"/>
         <source>Add tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="264"/>
+        <location filename="../ui/panels.cpp" line="265"/>
         <source>Remove selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="265"/>
+        <location filename="../ui/panels.cpp" line="266"/>
         <source>Brush</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="266"/>
+        <location filename="../ui/panels.cpp" line="267"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="267"/>
+        <location filename="../ui/panels.cpp" line="268"/>
         <source>Depth below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="268"/>
+        <location filename="../ui/panels.cpp" line="269"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="269"/>
+        <location filename="../ui/panels.cpp" line="270"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="270"/>
+        <location filename="../ui/panels.cpp" line="271"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="271"/>
+        <location filename="../ui/panels.cpp" line="272"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="273"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="274"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>

@@ -70,73 +70,73 @@
     <message>
         <location filename="../ui/review_window.cpp" line="31"/>
         <source>thumb</source>
-        <translation type="unfinished">親指</translation>
+        <translation>親指</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="31"/>
         <source>index</source>
-        <translation type="unfinished">人差し指</translation>
+        <translation>人差し指</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="32"/>
         <source>middle</source>
-        <translation type="unfinished">中指</translation>
+        <translation>中指</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="32"/>
         <source>ring</source>
-        <translation type="unfinished">薬指</translation>
+        <translation>薬指</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="33"/>
         <source>little</source>
-        <translation type="unfinished">小指</translation>
+        <translation>小指</translation>
     </message>
 </context>
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="384"/>
+        <location filename="../ui/panels.cpp" line="396"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation>シミュレーションの HandHIRO（自動触診）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="385"/>
+        <location filename="../ui/panels.cpp" line="397"/>
         <source>Mouse palpation (no robot)</source>
         <translation>マウス触診（ロボットなし）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="386"/>
+        <location filename="../ui/panels.cpp" line="398"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="387"/>
+        <location filename="../ui/panels.cpp" line="399"/>
         <source>HandHIRO address</source>
         <translation>HandHIRO アドレス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="388"/>
+        <location filename="../ui/panels.cpp" line="400"/>
         <source>Loop jitter</source>
         <translation>ループのジッタ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="389"/>
+        <location filename="../ui/panels.cpp" line="401"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation>HandHIRO のネットワーク接続は起動時に選びます: palpation-trainer --device emulator、または --device handhiro --robot アドレス:ポート</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="402"/>
+        <location filename="../ui/panels.cpp" line="414"/>
         <source>attached</source>
         <translation>装着</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="402"/>
+        <location filename="../ui/panels.cpp" line="414"/>
         <source>released</source>
         <translation>解放</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="404"/>
+        <location filename="../ui/panels.cpp" line="416"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation>%1 µs（0.5 秒間の最大）</translation>
     </message>
@@ -235,187 +235,187 @@
     <message>
         <location filename="../ui/import_dialog.cpp" line="98"/>
         <source>Scanned breast surface</source>
-        <translation type="unfinished"></translation>
+        <translation>スキャンした乳房表面</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="99"/>
         <source>Surface meshes (*.stl *.obj *.ply);;All files (*)</source>
-        <translation type="unfinished"></translation>
+        <translation>表面メッシュ (*.stl *.obj *.ply);;すべてのファイル (*)</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="109"/>
         <source>Cancelling...</source>
-        <translation type="unfinished"></translation>
+        <translation>中止しています...</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="124"/>
         <source>Import a scanned breast</source>
-        <translation type="unfinished"></translation>
+        <translation>スキャンした乳房の取り込み</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="130"/>
         <source>Patient name</source>
-        <translation type="unfinished"></translation>
+        <translation>患者名</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="131"/>
         <source>Resolution</source>
-        <translation type="unfinished">解像度</translation>
+        <translation>解像度</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="132"/>
         <source>File units</source>
-        <translation type="unfinished"></translation>
+        <translation>ファイルの単位</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="133"/>
         <source>Chest-wall plane</source>
-        <translation type="unfinished"></translation>
+        <translation>胸壁平面</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="137"/>
         <source>Scan file</source>
-        <translation type="unfinished"></translation>
+        <translation>スキャンファイル</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="138"/>
         <source>n (into the chest), d (m)</source>
-        <translation type="unfinished"></translation>
+        <translation>n（胸の内側向き）、d (m)</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="143"/>
         <source>Browse...</source>
-        <translation type="unfinished"></translation>
+        <translation>参照...</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="144"/>
         <source>Coarse (real time on a CPU)</source>
-        <translation type="unfinished"></translation>
+        <translation>粗い（CPU でリアルタイム）</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="145"/>
         <source>Paper (GPU)</source>
-        <translation type="unfinished"></translation>
+        <translation>論文（GPU）</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="146"/>
         <source>Fine (GPU)</source>
-        <translation type="unfinished">細かい（GPU）</translation>
+        <translation>細かい（GPU）</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="147"/>
         <source>metres</source>
-        <translation type="unfinished"></translation>
+        <translation>メートル</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="148"/>
         <source>centimetres</source>
-        <translation type="unfinished"></translation>
+        <translation>センチメートル</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="149"/>
         <source>millimetres</source>
-        <translation type="unfinished"></translation>
+        <translation>ミリメートル</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="150"/>
         <source>Find automatically (the largest flat region)</source>
-        <translation type="unfinished"></translation>
+        <translation>自動で検出（最も広い平坦な領域）</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="151"/>
         <source>Untick to give the plane n . x = d by hand: n points out of the body into the chest.</source>
-        <translation type="unfinished"></translation>
+        <translation>チェックを外すと平面 n . x = d を手で指定できます。n は乳房から胸の内側へ向く法線です。</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="152"/>
         <source>Import</source>
-        <translation type="unfinished"></translation>
+        <translation>取り込み</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="153"/>
         <source>Cancel import</source>
-        <translation type="unfinished"></translation>
+        <translation>取り込みを中止</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="154"/>
         <source>Save as patient</source>
-        <translation type="unfinished"></translation>
+        <translation>患者として保存</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="155"/>
         <source>Close</source>
-        <translation type="unfinished"></translation>
+        <translation>閉じる</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="179"/>
+        <location filename="../ui/import_dialog.cpp" line="181"/>
         <source>Choose a scan file (STL, OBJ or PLY) first.</source>
-        <translation type="unfinished"></translation>
+        <translation>先にスキャンファイル（STL、OBJ、PLY）を選んでください。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="188"/>
+        <location filename="../ui/import_dialog.cpp" line="190"/>
         <source>The base plane&apos;s normal must not be zero.</source>
-        <translation type="unfinished"></translation>
+        <translation>胸壁平面の法線をゼロにすることはできません。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="203"/>
+        <location filename="../ui/import_dialog.cpp" line="205"/>
         <source>Reading %1...</source>
-        <translation type="unfinished"></translation>
+        <translation>%1 を読み込んでいます...</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="218"/>
+        <location filename="../ui/import_dialog.cpp" line="220"/>
         <source>Cancelled: nothing was saved.</source>
-        <translation type="unfinished"></translation>
+        <translation>中止しました。何も保存されていません。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="224"/>
+        <location filename="../ui/import_dialog.cpp" line="226"/>
         <source>Import failed: nothing was saved.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/import_dialog.cpp" line="229"/>
-        <source>Done in %1 s (meshing %2 s).</source>
-        <translation type="unfinished"></translation>
+        <translation>取り込みに失敗しました。何も保存されていません。</translation>
     </message>
     <message>
         <location filename="../ui/import_dialog.cpp" line="231"/>
+        <source>Done in %1 s (meshing %2 s).</source>
+        <translation>完了: %1 秒（メッシュ生成 %2 秒）。</translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="233"/>
         <source>%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².</source>
-        <translation type="unfinished"></translation>
+        <translation>節点 %1、四面体 %2。修復: %3。胸壁平面（%4）: n = (%5, %6, %7)、%8 cm²。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="234"/>
+        <location filename="../ui/import_dialog.cpp" line="236"/>
         <source>none</source>
-        <translation type="unfinished"></translation>
+        <translation>なし</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <location filename="../ui/import_dialog.cpp" line="237"/>
         <source>found</source>
-        <translation type="unfinished"></translation>
+        <translation>自動検出</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <location filename="../ui/import_dialog.cpp" line="237"/>
         <source>given</source>
-        <translation type="unfinished"></translation>
+        <translation>手動指定</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="244"/>
+        <location filename="../ui/import_dialog.cpp" line="246"/>
         <source>No patient library is open.</source>
-        <translation type="unfinished"></translation>
+        <translation>患者ライブラリが開かれていません。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="252"/>
+        <location filename="../ui/import_dialog.cpp" line="254"/>
         <source>Give the patient a name.</source>
-        <translation type="unfinished"></translation>
+        <translation>患者名を入力してください。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="257"/>
+        <location filename="../ui/import_dialog.cpp" line="259"/>
         <source>A patient named &quot;%1&quot; exists already in %2: choose another name.</source>
-        <translation type="unfinished"></translation>
+        <translation>患者「%1」は %2 にすでにあります。別の名前を選んでください。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="268"/>
+        <location filename="../ui/import_dialog.cpp" line="270"/>
         <source>Saved as &quot;%1&quot; in the patient library.</source>
-        <translation type="unfinished"></translation>
+        <translation>患者ライブラリに「%1」として保存しました。</translation>
     </message>
 </context>
 <context>
@@ -433,57 +433,57 @@
     <message>
         <location filename="../ui/main_window.cpp" line="191"/>
         <source>This session is not recorded: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>このセッションは記録されていません: %1</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="193"/>
         <source>Recovered interrupted recordings: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>中断された記録を復元しました: %1</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="195"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
-        <translation type="unfinished"></translation>
+        <translation>患者ライブラリを使えません（内蔵ファントムのみ）: %1</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="241"/>
         <source>no patient library is open: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>患者ライブラリが開かれていません: %1</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="274"/>
         <source>No fingertip on the breast: nothing marked.</source>
-        <translation type="unfinished"></translation>
+        <translation>乳房に触れている指先がありません。マークしませんでした。</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="274"/>
         <source>This session is not recorded: nothing marked.</source>
-        <translation type="unfinished"></translation>
+        <translation>このセッションは記録されていません。マークしませんでした。</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="280"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, recorded.</source>
-        <translation type="unfinished"></translation>
+        <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm を記録しました。</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="312"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
-        <translation type="unfinished"></translation>
+        <translation>患者「%1」を保存しました。選んで「患者を読み込む」を押すと触診できます。</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="325"/>
         <source>Open a session recording</source>
-        <translation type="unfinished"></translation>
+        <translation>セッションの記録を開く</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="326"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
-        <translation type="unfinished"></translation>
+        <translation>セッションの記録 (*.palrec *.prec);;すべてのファイル (*)</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="329"/>
         <source>Cannot open the recording</source>
-        <translation type="unfinished"></translation>
+        <translation>記録を開けません</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="333"/>
@@ -524,17 +524,17 @@
     <message>
         <location filename="../ui/main_window.cpp" line="446"/>
         <source>&amp;Open recording...</source>
-        <translation type="unfinished"></translation>
+        <translation>記録を開く(&amp;O)...</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="447"/>
         <source>Mark lump here (M)</source>
-        <translation type="unfinished"></translation>
+        <translation>しこりをマーク (M)</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="448"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
-        <translation type="unfinished"></translation>
+        <translation>研修生:「ここにしこりがある」― 人差し指の指先の位置を記録にマークします</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="449"/>
@@ -679,17 +679,17 @@
     <message>
         <location filename="../ui/main_window.cpp" line="589"/>
         <source>Not recording</source>
-        <translation type="unfinished"></translation>
+        <translation>記録していません</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="590"/>
         <source>Recording stopped: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>記録が停止しました: %1</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="591"/>
         <source>Recording (%1 marks)</source>
-        <translation type="unfinished"></translation>
+        <translation>記録中（マーク %1 件）</translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="113"/>
@@ -778,7 +778,7 @@
     <message>
         <location filename="../ui/panels.cpp" line="110"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
-        <translation type="unfinished"></translation>
+        <translation>乳房ファントム（論文の腫瘍）</translation>
     </message>
     <message>
         <location filename="../ui/panels.cpp" line="111"/>
@@ -788,67 +788,67 @@
     <message>
         <location filename="../ui/panels.cpp" line="112"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
-        <translation type="unfinished"></translation>
+        <translation>論文の乳房と腫瘍（x = 12.5 cm、107 kPa）。</translation>
     </message>
     <message>
         <location filename="../ui/panels.cpp" line="113"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
-        <translation type="unfinished"></translation>
+        <translation>10 x 10 x 5 cm の組織ブロック、腫瘍なし。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="114"/>
+        <location filename="../ui/panels.cpp" line="115"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation>粗い（約 1,000 節点、CPU でリアルタイム）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="115"/>
+        <location filename="../ui/panels.cpp" line="116"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation>論文（約 9,100 節点、GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="116"/>
+        <location filename="../ui/panels.cpp" line="117"/>
         <source>Fine (GPU)</source>
         <translation>細かい（GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="117"/>
+        <location filename="../ui/panels.cpp" line="118"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="118"/>
+        <location filename="../ui/panels.cpp" line="119"/>
         <source>Resolution</source>
         <translation>解像度</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="119"/>
+        <location filename="../ui/panels.cpp" line="120"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation>組織のヤング率</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="120"/>
+        <location filename="../ui/panels.cpp" line="121"/>
         <source>Poisson ratio</source>
         <translation>ポアソン比</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="121"/>
+        <location filename="../ui/panels.cpp" line="122"/>
         <source>Load patient</source>
         <translation>患者を読み込む</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
-        <source>Import scan...</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../ui/panels.cpp" line="123"/>
-        <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
-        <translation type="unfinished"></translation>
+        <source>Import scan...</source>
+        <translation>スキャンを取り込む...</translation>
     </message>
     <message>
         <location filename="../ui/panels.cpp" line="124"/>
+        <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
+        <translation>ライブラリの患者（内蔵の乳房形状、大きさ・深さ・硬さ別の腫瘍症例、取り込んだスキャン）と内蔵ファントム。</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
-        <translation type="unfinished"></translation>
+        <translation>ファントム患者のみ。取り込んだスキャンはメッシュ生成時の解像度のままです。</translation>
     </message>
 </context>
 <context>
@@ -856,233 +856,258 @@
     <message>
         <location filename="../ui/review_window.cpp" line="193"/>
         <source>Export the session as CSV</source>
-        <translation type="unfinished"></translation>
+        <translation>セッションを CSV で出力</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="193"/>
         <source>CSV files (*.csv)</source>
-        <translation type="unfinished">CSV ファイル (*.csv)</translation>
+        <translation>CSV ファイル (*.csv)</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="195"/>
         <source>Export CSV</source>
-        <translation type="unfinished"></translation>
+        <translation>CSV 出力</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="198"/>
         <source>Folder for the PNG frames</source>
-        <translation type="unfinished"></translation>
+        <translation>PNG フレームの保存先フォルダ</translation>
     </message>
     <message numerus="yes">
         <location filename="../ui/review_window.cpp" line="201"/>
         <source>%n frame(s) written to %1</source>
-        <translation type="unfinished">
-            <numerusform></numerusform>
+        <translation>
+            <numerusform>%1 に %n フレームを書き出しました</numerusform>
         </translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="246"/>
         <source>Review: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>レビュー: %1</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="247"/>
         <location filename="../ui/review_window.cpp" line="292"/>
         <source>Pause</source>
-        <translation type="unfinished">一時停止</translation>
+        <translation>一時停止</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="247"/>
         <location filename="../ui/review_window.cpp" line="292"/>
         <location filename="../ui/review_window.cpp" line="301"/>
         <source>Play</source>
-        <translation type="unfinished"></translation>
+        <translation>再生</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="248"/>
         <source>Speed</source>
-        <translation type="unfinished"></translation>
+        <translation>速度</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="249"/>
         <source>Export CSV...</source>
-        <translation type="unfinished">CSV 出力...</translation>
+        <translation>CSV 出力...</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="250"/>
         <source>Export PNG frames...</source>
-        <translation type="unfinished"></translation>
+        <translation>PNG フレーム出力...</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="251"/>
         <source>Instructor events and trainee marks (click to go there)</source>
-        <translation type="unfinished"></translation>
+        <translation>指導者のイベントと研修生のマーク（クリックでその時刻へ移動）</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="253"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
-        <translation type="unfinished"></translation>
+        <translation>各指先の力 (N): デバイスへ送った力（実線）、再シミュレーションの力（破線）</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="254"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
-        <translation type="unfinished"></translation>
+        <translation>各指先の力 (N): 記録（実線）、再シミュレーション（破線）</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="258"/>
         <source>%1 (re-sim.)</source>
-        <translation type="unfinished"></translation>
+        <translation>%1（再計算）</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="260"/>
         <source>now</source>
-        <translation type="unfinished"></translation>
+        <translation>現在</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="261"/>
         <source>Events</source>
-        <translation type="unfinished"></translation>
+        <translation>イベント</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="356"/>
         <source>Re-simulation stopped: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>再シミュレーションが停止しました: %1</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="359"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
-        <translation type="unfinished"></translation>
+        <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: %4 N（%6 秒の%5、記録された最大の力 %7 N）。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="368"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
-        <translation type="unfinished"></translation>
+        <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: 0 N（記録された最大の力 %4 N）。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="375"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
-        <translation type="unfinished"></translation>
+        <translation>再現しました: 同じバックエンドと設定で同じ力になります。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="376"/>
         <source>Not reproduced exactly (another backend or settings).</source>
-        <translation type="unfinished"></translation>
+        <translation>完全には再現されていません（バックエンドまたは設定が異なります）。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="378"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
-        <translation type="unfinished"></translation>
+        <translation>1 kHz で送った力はシミュレーションの力と最大 %1 N 異なります（力覚ループの局所接触モデル、カップリング、安全フィルタによる）。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="382"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
-        <translation type="unfinished"></translation>
+        <translation>記録されたデバイス入力から、シナリオの時間刻みで %2 ティック中 %1 ティックを再シミュレーションしました（バックエンド %3）。記録された力との最大差: %4 N（記録された最大の力 %5 N）。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="391"/>
         <source>The recording was interrupted: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>記録は途中で中断されています: %1</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="392"/>
         <source>The recording was recovered after an interruption.</source>
-        <translation type="unfinished"></translation>
+        <translation>この記録は中断の後に復元されたものです。</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="399"/>
         <source>Written: %1</source>
-        <translation type="unfinished"></translation>
+        <translation>書き出しました: %1</translation>
     </message>
 </context>
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="317"/>
+        <location filename="../ui/panels.cpp" line="320"/>
         <source>Backend</source>
         <translation>バックエンド</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="318"/>
+        <location filename="../ui/panels.cpp" line="321"/>
         <source>CG tolerance</source>
         <translation>CG 許容誤差</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="319"/>
+        <location filename="../ui/panels.cpp" line="322"/>
         <source>CG max. iterations</source>
         <translation>CG 最大反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="320"/>
+        <location filename="../ui/panels.cpp" line="323"/>
         <source>State</source>
         <translation>状態</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="321"/>
+        <location filename="../ui/panels.cpp" line="324"/>
         <source>Safety</source>
         <translation>安全</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="322"/>
+        <location filename="../ui/panels.cpp" line="325"/>
         <source>Step time</source>
         <translation>ステップ時間</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="323"/>
+        <location filename="../ui/panels.cpp" line="326"/>
         <source>CG iterations</source>
         <translation>CG 反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="324"/>
+        <location filename="../ui/panels.cpp" line="327"/>
         <source>Simulation rate</source>
         <translation>シミュレーション周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="325"/>
+        <location filename="../ui/panels.cpp" line="328"/>
         <source>Haptic rate</source>
         <translation>力覚ループ周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="326"/>
+        <location filename="../ui/panels.cpp" line="329"/>
         <source>Apply solver settings</source>
         <translation>ソルバー設定を適用</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="327"/>
+        <location filename="../ui/panels.cpp" line="330"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation>バックエンドの変更は患者の（再）読み込み時に反映されます。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="339"/>
+        <location filename="../ui/panels.cpp" line="342"/>
+        <source>stopped</source>
+        <translation>停止</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="343"/>
+        <source>loading</source>
+        <translation>読み込み中</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="344"/>
+        <source>running</source>
+        <translation>実行中</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="345"/>
+        <source>swapping</source>
+        <translation>患者を切り替え中</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="346"/>
+        <source>error: %1</source>
+        <translation>エラー: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>no fault</source>
         <translation>異常なし</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="340"/>
+        <location filename="../ui/panels.cpp" line="352"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>バックエンドのフォールバック %n 回</numerusform>
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="341"/>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>発散リセット %n 回</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="342"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>forces held and blended</source>
         <translation>力を保持して切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>%1 ms</source>
         <translation>%1 ms</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="348"/>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="361"/>
         <source>%1 Hz</source>
         <translation>%1 Hz</translation>
     </message>
@@ -1239,103 +1264,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="228"/>
-        <location filename="../ui/panels.cpp" line="254"/>
+        <location filename="../ui/panels.cpp" line="229"/>
+        <location filename="../ui/panels.cpp" line="255"/>
         <source>Source: %1</source>
         <translation>出典: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="255"/>
+        <location filename="../ui/panels.cpp" line="256"/>
         <source>Preset</source>
         <translation>プリセット</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="256"/>
+        <location filename="../ui/panels.cpp" line="257"/>
         <source>Stiffness</source>
         <translation>硬さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="257"/>
+        <location filename="../ui/panels.cpp" line="258"/>
         <source>Add by shape</source>
         <translation>形状で追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="258"/>
+        <location filename="../ui/panels.cpp" line="259"/>
         <source>Sphere</source>
         <translation>球</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="259"/>
+        <location filename="../ui/panels.cpp" line="260"/>
         <source>Ellipsoid</source>
         <translation>楕円体</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="260"/>
+        <location filename="../ui/panels.cpp" line="261"/>
         <source>Shape</source>
         <translation>形状</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="261"/>
+        <location filename="../ui/panels.cpp" line="262"/>
         <source>Centre x, y, z</source>
         <translation>中心 x, y, z</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="262"/>
+        <location filename="../ui/panels.cpp" line="263"/>
         <source>Radius (x, y, z)</source>
         <translation>半径 (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="263"/>
+        <location filename="../ui/panels.cpp" line="264"/>
         <source>Add tumour</source>
         <translation>腫瘍を追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="264"/>
+        <location filename="../ui/panels.cpp" line="265"/>
         <source>Remove selected</source>
         <translation>選択を削除</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="265"/>
+        <location filename="../ui/panels.cpp" line="266"/>
         <source>Brush</source>
         <translation>ブラシ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="266"/>
+        <location filename="../ui/panels.cpp" line="267"/>
         <source>Radius</source>
         <translation>半径</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="267"/>
+        <location filename="../ui/panels.cpp" line="268"/>
         <source>Depth below the skin</source>
         <translation>皮膚からの深さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="268"/>
+        <location filename="../ui/panels.cpp" line="269"/>
         <source>Paint</source>
         <translation>描画</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="269"/>
+        <location filename="../ui/panels.cpp" line="270"/>
         <source>Erase</source>
         <translation>消去</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="270"/>
+        <location filename="../ui/panels.cpp" line="271"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation>乳房上をドラッグして腫瘍組織を描画（1 ストロークで 1 回の取り消し）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="271"/>
+        <location filename="../ui/panels.cpp" line="272"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation>乳房上をドラッグして正常組織に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="273"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="274"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>

@@ -12,6 +12,7 @@
 #include <QSettings>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <QTranslator>
 
 #include "main_window.h"
 #include "review_window.h"
@@ -73,6 +74,16 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
       return 2;
+    }
+    // The language as the workstation chooses it: --language, else the stored choice
+    // (MainWindow::set_language's setting); screenshots English unless asked.
+    QTranslator translator;
+    const QString code = cli.isSet(lang)   ? cli.value(lang)
+                         : cli.isSet(shot) ? QStringLiteral("en")
+                                           : QSettings().value(QStringLiteral("language"), QStringLiteral("en")).toString();
+    if (code != QLatin1String("en")) {
+      if (translator.load(QStringLiteral(":/i18n/palpation_%1.qm").arg(code))) QCoreApplication::installTranslator(&translator);
+      else std::fprintf(stderr, "palpation-trainer: no \"%s\" translation: English\n", qPrintable(code));
     }
     palpation::ui::ReviewWindow rw(std::move(session));
     rw.show();

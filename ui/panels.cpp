@@ -111,6 +111,7 @@ void PatientPanel::retranslate() {
   phantom->setItemText(n - 1, tr("Box phantom"));
   phantom->setItemData(n - 2, tr("The paper's breast with its tumour (107 kPa at x = 12.5 cm)."), Qt::ToolTipRole);
   phantom->setItemData(n - 1, tr("A 10 x 10 x 5 cm block of tissue, no tumour."), Qt::ToolTipRole);
+  if (description) description->setText(phantom->currentData(Qt::ToolTipRole).toString());  // the chosen one's, in the new language
   resolution->setItemText(0, tr("Coarse (about 1,000 nodes, real time on a CPU)"));
   resolution->setItemText(1, tr("Paper (about 9,100 nodes, GPU)"));
   resolution->setItemText(2, tr("Fine (GPU)"));
@@ -335,7 +336,16 @@ void SimulationPanel::changeEvent(QEvent* e) {
 }
 
 void SimulationPanel::show_stats(const app::LiveStats& s, const QString& be) {
-  state->setText(QString::fromStdString(s.state) + (be.isEmpty() ? QString() : QStringLiteral(" (") + be + QStringLiteral(")")));
+  // The state word translated (app::LiveStats::state is English); an error's reason stays as
+  // the simulation wrote it.
+  const std::string& st = s.state;
+  const QString word = st == "stopped"                ? tr("stopped")
+                       : st == "loading"              ? tr("loading")
+                       : st == "running"              ? tr("running")
+                       : st == "swapping"             ? tr("swapping")
+                       : st.rfind("error: ", 0) == 0 ? tr("error: %1").arg(QString::fromStdString(st.substr(7)))
+                                                      : QString::fromStdString(st);
+  state->setText(word + (be.isEmpty() ? QString() : QStringLiteral(" (") + be + QStringLiteral(")")));
   // Backend fallbacks and divergence resets (design.md section 7), with the newest reason.
   QString text = s.fallbacks == 0 && s.divergences == 0
                      ? tr("no fault")
