@@ -1,26 +1,29 @@
 // One step (design.md section 4), per time step h:
-//   1. per element: F and the elastic force f = -V R sigma(R^T F - I) g; the rotation R
-//      (warm-started) is re-extracted only for elements whose F changed by more than
-//      `solver.corotation_tolerance` since the last extraction, and the element's
-//      rotated stiffness blocks only when that R moved by more than the tolerance from
-//      the one they were built with (below). The rotated stiffness K is kept assembled
-//      from step to step; an update adds the element's new blocks minus its old ones;
-//   2. K v by one product with the kept K;
+//   1. per element: F; the rotation R (warm-started) is re-extracted only for elements
+//      whose F changed by more than `solver.corotation_tolerance` since the last
+//      extraction, and the element's rotated stiffness blocks only when that R moved by
+//      more than the tolerance from the one they were built with (below). The rotated
+//      stiffness K and b0 = sum_e K_e (R_e - I) X_e are kept from step to step; an update
+//      adds the element's new part minus its old one;
+//   2. the elastic force minus the stiffness damping, f - (h + beta) K v, as
+//      b0 - K (u + (h + beta) v) (u = x - X): one product with the kept K (at tolerance
+//      0, element by element, f = -V R sigma(R^T F - I) g, then K v);
 //   3. penalty contact on surface triangles inside finger spheres: k_s n n^T and
 //      k_e n n^T go to a separate diagonal D with the mass terms;
 //   4. solve ((h^2 + h beta) K + D) dv = h (f - (h + beta) K v + ...), D = (1 + h alpha) M
-//      + contact, by block-Jacobi preconditioned CG, warm-started with the previous dv,
-//      over the free nodes only (the chest wall is removed from the system);
+//      + contact, by block-Jacobi preconditioned CG, warm-started with the last two dv
+//      extrapolated, over the free nodes only (the chest wall is removed from the system);
 //   5. v += dv, x += h v; finger forces re-evaluated at the new state, low-pass filtered.
 //
 // Skipping the unchanged elements (what a palpation scene does not need): away from
 // the fingers the tissue is still and F does not change, so neither do R and the
-// blocks. An element keeping a rotation that is off by d theta (of order the F change,
-// at most the tolerance) gets a force off by d theta relative and the symmetric part of
-// its strain only to second order; between its updates it is exactly a linear
-// element in a fixed frame (energy-consistent). Tolerance 0 updates every element every
-// step, which is the arithmetic of the CUDA backend (CPU-GPU agreement checks use it).
-// docs/benchmarks.md has the measured step time against force error.
+// blocks. An element keeping a rotation that is off by d theta (at most the tolerance)
+// gets a force off by d theta relative and the symmetric part of its strain only to
+// second order; between its updates it is exactly a linear element in a fixed frame
+// (energy-consistent), which is what makes f = -K u + b0 exact for it. Tolerance 0
+// updates every element every step, which is the arithmetic of the CUDA backend (CPU-GPU
+// agreement checks use it). docs/benchmarks.md has the measured step time against force
+// error.
 #include "backend_cpu.h"
 
 #include <algorithm>
@@ -87,6 +90,7 @@ class CpuBackend final : public Backend {
     blocks_.resize(9 * (std::size_t(m_.num_blocks()) + threads_));
     diag_.resize(9 * std::size_t(nf) + 1);  // + 1: cg::multiply reads one past a block
     b_.resize(3 * (std::size_t(nf) + threads_));
+    b0_.resize(3 * (std::size_t(nf) + threads_));
     dv_.resize(3 * nf);
     kv_.resize(3 * nf);
     vfree_.resize(3 * nf);
@@ -123,12 +127,17 @@ class CpuBackend final : public Backend {
   void build_element_tables() {
     const int ne = m_.num_tets();
     eg_.resize(12 * std::size_t(ne));
+    eX_.resize(12 * std::size_t(ne));
     egg_.resize(10 * std::size_t(ne));
     evol_.resize(ne);
     eblk_.resize(16 * std::size_t(ne));
     erow_.resize(4 * std::size_t(ne));
     for (int e = 0; e < ne; ++e) {
       evol_[e] = T(m_.volume[e]);
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 4; ++a) c += 0.25 * m_.rest[m_.tets[e][a]];
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 3; ++k) eX_[12 * std::size_t(e) + 3 * a + k] = T(m_.rest[m_.tets[e][a]][k] - c[k]);
       for (int a = 0; a < 4; ++a) {
         for (int k = 0; k < 3; ++k) eg_[12 * std::size_t(e) + 3 * a + k] = T(m_.grad[e][a][k]);
         const int row = m_.dof[m_.tets[e][a]];
@@ -149,6 +158,7 @@ class CpuBackend final : public Backend {
       for (int k = 0; k < 3; ++k) x_[3 * i + k] = T(m_.rest[i][k]);
     std::fill(v_.begin(), v_.end(), T(0));
     std::fill(dv_.begin(), dv_.end(), T(0));
+    dvprev_.clear();
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
@@ -175,7 +185,7 @@ class CpuBackend final : public Backend {
       return st;
     }
 
-    assemble();
+    assemble(h);
     add_gravity_and_damping_rhs(h);
     add_contacts(fingers, h);
 
@@ -183,6 +193,19 @@ class CpuBackend final : public Backend {
     sys.scale = h * h + h * T(p_.damping.stiffness);  // (h^2 + h beta) K + D
     sys.diag = diag_.data();
     sys.diag_index = m_.diag_block.data();
+    // Warm start: the last two solutions extrapolated linearly (the velocity change of a
+    // pushed body varies smoothly from step to step; on the coarse sweep 10-13 % fewer CG
+    // iterations than the last solution alone). A guess worse than zero is caught by
+    // cg::solve, which then starts from zero.
+    if (dvprev_.size() == dv_.size()) {
+      for (std::size_t i = 0; i < dv_.size(); ++i) {
+        const T cur = dv_[i];
+        dv_[i] = T(2) * cur - dvprev_[i];
+        dvprev_[i] = cur;
+      }
+    } else {
+      dvprev_ = dv_;
+    }
     const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
                                cg_, parallel());
     st.cg_iterations = res.iterations;
@@ -229,35 +252,59 @@ class CpuBackend final : public Backend {
     bounds_ = b;
   }
 
-  // Elastic forces into b_ (as f); the rotated stiffness K (unscaled) kept in blocks_,
-  // updated element by element; K v into kv_; mass terms into diag_.
-  void assemble() {
+  // The rotated stiffness K (unscaled) kept in blocks_, updated element by element; into
+  // b_ the elastic force minus the stiffness damping, f - (beta + h) K v; mass terms into
+  // diag_.
+  //
+  // With a kept rotation R an element is exactly linear: f_a = -sum_b K_ab(R) (x_b - R X_b)
+  // = -sum_b K_ab u_b + sum_b K_ab (R - I) X_b (u = x - X, X the rest positions; the
+  // chest wall's u is 0). So with every element at the rotation its blocks were built
+  // with, f = -K u + b0, b0 = sum over elements of K_e (R_e - I) X_e, kept like K (an
+  // element's update adds its new minus its old part), and f - (beta + h) K v is one
+  // product: b0 - K (u + (beta + h) v). The element pass then only computes F and checks
+  // it; the per-element force (R sigma(R^T F - I) g) is formed only at tolerance 0, the
+  // CUDA backend's arithmetic, where every element is re-rotated every step anyway.
+  void assemble(T h) {
     // Assembled in full at the start, after a reset or a material change, and every
     // kReassembleSteps updates (the increments' rounding stays far below the CG
     // tolerance even in float; see kReassembleSteps).
     // Tolerance 0 (every element every step) assembles afresh rather than adding
     // new-minus-old blocks (half the block work).
     const T tol = T(p_.solver.corotation_tolerance);
-    const bool full = !assembled_ || !(tol > 0) || steps_since_assembly_ >= kReassembleSteps;
+    const bool kept = tol > 0;
+    const bool full = !assembled_ || !kept || steps_since_assembly_ >= kReassembleSteps;
     if (full) {
       std::fill(blocks_.begin(), blocks_.end(), T(0));
+      std::fill(b0_.begin(), b0_.end(), T(0));
       steps_since_assembly_ = 0;
     }
     ++steps_since_assembly_;
-    std::fill(b_.begin(), b_.end(), T(0));
+    if (!kept) std::fill(b_.begin(), b_.end(), T(0));
     const bool par = parallel();
     for (const auto& colour : m_.colours) {
       const int count = static_cast<int>(colour.size());
 #pragma omp parallel for schedule(static) if (par)
-      for (int c = 0; c < count; ++c) element(colour[c], full, tol);
+      for (int c = 0; c < count; ++c) element(colour[c], full, kept, tol);
     }
     assembled_ = true;
-    // K v over the free nodes (the chest wall does not move).
     const int nf = m_.num_free();
-    for (int i = 0; i < nf; ++i)
-      for (int k = 0; k < 3; ++k) vfree_[3 * i + k] = v_[3 * m_.free_nodes[i] + k];
+    const T damp = T(p_.damping.stiffness) + h;
     cg::BlockSystem<T> K{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data(), nullptr};
-    cg::multiply(K, vfree_.data(), kv_.data(), par);
+    if (kept) {
+      for (int i = 0; i < nf; ++i) {
+        const int node = m_.free_nodes[i];
+        for (int k = 0; k < 3; ++k)
+          vfree_[3 * i + k] = x_[3 * node + k] - T(m_.rest[node][k]) + damp * v_[3 * node + k];
+      }
+      cg::multiply(K, vfree_.data(), kv_.data(), par);
+      for (int i = 0; i < 3 * nf; ++i) b_[i] = b0_[i] - kv_[i];
+    } else {
+      // K v over the free nodes (the chest wall does not move).
+      for (int i = 0; i < nf; ++i)
+        for (int k = 0; k < 3; ++k) vfree_[3 * i + k] = v_[3 * m_.free_nodes[i] + k];
+      cg::multiply(K, vfree_.data(), kv_.data(), par);
+      for (int i = 0; i < 3 * nf; ++i) b_[i] -= damp * kv_[i];
+    }
     // Mass terms of the diagonal: (1 + h alpha) M.
     const T mscale = T(1) + T(p_.solver.dt) * T(p_.damping.mass);
     std::fill(diag_.begin(), diag_.end(), T(0));
@@ -268,9 +315,10 @@ class CpuBackend final : public Backend {
     }
   }
 
-  // Adds sign * (the element's rotated stiffness blocks for r_a = R g_a) to blocks_.
+  // Adds sign * (the element's rotated stiffness blocks for r_a = R g_a) to blocks_, and
+  // when y is given (y_b = (R - I) X_b) sign * sum_b K_ab y_b to b0_ at rows[a].
   // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
-  void add_blocks(std::size_t e, const V3 r[4], T sign, const int blk[16]) {
+  void add_blocks(std::size_t e, const V3 r[4], T sign, const int blk[16], const V3* y, const int rows[4]) {
     const T* gg = &egg_[10 * e];
     const T vs = sign * evol_[e];
     const T la = vs * lambda_[e], mb = vs * mu_[e];
@@ -293,17 +341,25 @@ class CpuBackend final : public Backend {
         kc[8] += mg;
         T* __restrict dst = &blocks_[std::size_t(blk[4 * a + b])];
         for (int i = 0; i < 9; ++i) dst[i] += kc[i];
+        if (y) {
+          T* __restrict ba = &b0_[std::size_t(rows[a])];
+          for (int i = 0; i < 3; ++i) ba[i] += kc[i] * y[b][0] + kc[3 + i] * y[b][1] + kc[6 + i] * y[b][2];
+        }
         if (b == a) continue;
         kr[0] += mg;
         kr[4] += mg;
         kr[8] += mg;
         T* __restrict tr = &blocks_[std::size_t(blk[4 * b + a])];
         for (int i = 0; i < 9; ++i) tr[i] += kr[i];
+        if (y) {
+          T* __restrict bb = &b0_[std::size_t(rows[b])];
+          for (int i = 0; i < 3; ++i) bb[i] += kr[i] * y[a][0] + kr[3 + i] * y[a][1] + kr[6 + i] * y[a][2];
+        }
       }
     }
   }
 
-  void element(int e, bool full, T tol) {
+  void element(int e, bool full, bool kept, T tol) {
     const auto& t = m_.tets[e];
     const std::size_t es = std::size_t(e);
     const T* ge = &eg_[12 * es];
@@ -356,16 +412,31 @@ class CpuBackend final : public Backend {
         const int v = eblk_[16 * es + k];
         blk[k] = v < 0 ? trash_blk : v;
       }
-      V3 r[4];
-      if (!full) {  // take the element's old blocks out
-        const M3 Rold = Eigen::Map<const M3>(Rk);
-        for (int a = 0; a < 4; ++a) r[a] = Rold * g[a];
-        add_blocks(es, r, T(-1), blk);
+      int rows[4];
+      for (int a = 0; a < 4; ++a) {
+        const int v = erow_[4 * es + a];
+        rows[a] = v < 0 ? trash_row : v;
       }
-      for (int a = 0; a < 4; ++a) r[a] = R * g[a];
-      add_blocks(es, r, T(1), blk);
+      const T* X = &eX_[12 * es];
+      V3 r[4], y[4];
+      if (!full) {  // take the element's old blocks (and its part of b0) out
+        const M3 Rold = Eigen::Map<const M3>(Rk);
+        for (int a = 0; a < 4; ++a) {
+          r[a] = Rold * g[a];
+          const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
+          y[a] = Rold * Xa - Xa;
+        }
+        add_blocks(es, r, T(-1), blk, y, rows);
+      }
+      for (int a = 0; a < 4; ++a) {
+        r[a] = R * g[a];
+        const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
+        y[a] = R * Xa - Xa;
+      }
+      add_blocks(es, r, T(1), blk, kept ? y : nullptr, rows);
       for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
     }
+    if (kept) return;  // the force is -K u + b0 (assemble())
     // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
     // formed once).
     const T vol = evol_[e];
@@ -378,15 +449,15 @@ class CpuBackend final : public Backend {
     }
   }
 
-  // b = h (f_el + m g - alpha M v - (beta + h) K v); contact terms are added after.
+  // b = h (f_el - (beta + h) K v + m g - alpha M v), b_ holding f_el - (beta + h) K v
+  // (assemble()); contact terms are added after.
   void add_gravity_and_damping_rhs(T h) {
-    const T alpha = T(p_.damping.mass), beta = T(p_.damping.stiffness);
+    const T alpha = T(p_.damping.mass);
     for (int i = 0; i < m_.num_free(); ++i) {
       const int node = m_.free_nodes[i];
       const T mass = T(m_.mass[node]);
       for (int k = 0; k < 3; ++k) {
-        const T f = b_[3 * i + k] + mass * T(p_.gravity[k]) - alpha * mass * v_[3 * node + k] -
-                    (beta + h) * kv_[3 * i + k];
+        const T f = b_[3 * i + k] + mass * T(p_.gravity[k]) - alpha * mass * v_[3 * node + k];
         b_[3 * i + k] = h * f;
       }
     }
@@ -462,12 +533,15 @@ class CpuBackend final : public Backend {
   std::vector<Eigen::Quaternion<T>> q_;      // (ntet) element rotations, warm start
   std::vector<T> lambda_, mu_;               // (ntet) materials in T
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
+  std::vector<T> eX_;                        // (ntet x 12) rest positions about the element's centroid
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
   std::vector<T> erot_, eF_;                 // (ntet x 9) rotation and F at the element's last extraction
   std::vector<T> ekrot_;                     // (ntet x 9) the rotation its blocks in K were built with
   std::vector<T> blocks_;                    // (nblock x 9) rotated stiffness K, column-major blocks, kept
   std::vector<T> diag_;                      // (nfree x 9) mass and contact diagonal D, per step
   std::vector<T> b_, dv_, kv_, vfree_;       // (nfree x 3)
+  std::vector<T> dvprev_;                    // (nfree x 3) the solution before dv_ (warm start)
+  std::vector<T> b0_;                        // (nfree x 3 + trash) sum of K_e (R_e - I) X_e, kept with K
   std::vector<T> precond_;                   // (nfree x 9) inverse diagonal blocks
   cg::Workspace<T> cg_;
   std::vector<contact::SurfaceContact> contacts_;
