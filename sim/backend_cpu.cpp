@@ -159,6 +159,7 @@ class CpuBackend final : public Backend {
     std::fill(v_.begin(), v_.end(), T(0));
     std::fill(dv_.begin(), dv_.end(), T(0));
     dvprev_.clear();
+    last_converged_ = false;
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
@@ -196,8 +197,10 @@ class CpuBackend final : public Backend {
     // Warm start: the last two solutions extrapolated linearly (the velocity change of a
     // pushed body varies smoothly from step to step; on the coarse sweep 10-13 % fewer CG
     // iterations than the last solution alone). A guess worse than zero is caught by
-    // cg::solve, which then starts from zero.
-    if (dvprev_.size() == dv_.size()) {
+    // cg::solve, which then starts from zero. Only after a converged solve: with the
+    // iterations capped below convergence, extrapolating the truncation error doubles it
+    // every step (the capped bench settings diverged).
+    if (dvprev_.size() == dv_.size() && last_converged_) {
       for (std::size_t i = 0; i < dv_.size(); ++i) {
         const T cur = dv_[i];
         dv_[i] = T(2) * cur - dvprev_[i];
@@ -209,6 +212,7 @@ class CpuBackend final : public Backend {
     const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
                                cg_, parallel());
     st.cg_iterations = res.iterations;
+    last_converged_ = res.converged;
     st.cg_residual = res.relative_residual;
     st.solved = true;
 
@@ -548,6 +552,7 @@ class CpuBackend final : public Backend {
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;
   bool rested_ = true;
+  bool last_converged_ = false;               // the last CG solve met its tolerance
   bool assembled_ = false;                   // blocks_ holds K for the current rotations
   long steps_since_assembly_ = 0;
   int threads_ = 1;                          // trash slots (OpenMP threads)
