@@ -319,46 +319,77 @@ class CpuBackend final : public Backend {
     }
   }
 
-  // Adds sign * (the element's rotated stiffness blocks for r_a = R g_a) to blocks_, and
-  // when y is given (y_b = (R - I) X_b) sign * sum_b K_ab y_b to b0_ at rows[a].
-  // Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
-  void add_blocks(std::size_t e, const V3 r[4], T sign, const int blk[16], const V3* y, const int rows[4]) {
+  // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I) for r_a = R g_a, without
+  // its identity part: column-major (cg::multiply) in kc; K_ba = K_ab^T column-major is
+  // K_ab row-major, kr. Both in storage order so that the adds are contiguous.
+  static void block_pair(const V3& lra, const V3& mra, const V3& rb, T kc[9], T kr[9]) {
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) {
+        kc[3 * j + i] = lra[i] * rb[j] + rb[i] * mra[j];
+        kr[3 * j + i] = lra[j] * rb[i] + rb[j] * mra[i];
+      }
+  }
+  // out += M y (M column-major 3x3) + mg y.
+  static void add_product(T* __restrict out, const T m[9], const V3& y, T mg) {
+    for (int i = 0; i < 3; ++i) out[i] += m[i] * y[0] + m[3 + i] * y[1] + m[6 + i] * y[2] + mg * y[i];
+  }
+
+  // Adds the element's rotated stiffness blocks for r_a = R g_a to blocks_, and when y is
+  // given (y_b = (R - I) X_b) sum_b K_ab y_b to b0_ at rows[a]. Symmetric: K_ba = K_ab^T,
+  // so 10 of the 16 blocks are computed.
+  void add_blocks(std::size_t e, const V3 r[4], const int blk[16], const V3* y, const int rows[4]) {
     const T* gg = &egg_[10 * e];
-    const T vs = sign * evol_[e];
-    const T la = vs * lambda_[e], mb = vs * mu_[e];
+    const T la = evol_[e] * lambda_[e], mb = evol_[e] * mu_[e];
     int pair = 0;
     for (int a = 0; a < 4; ++a) {
       const V3 lra = la * r[a], mra = mb * r[a];
       for (int b = a; b < 4; ++b) {
         const T mg = mb * gg[pair++];
-        // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I), column-major
-        // (cg::multiply) in kc; K_ba = K_ab^T column-major is K_ab row-major, kr. Both
-        // are formed in storage order so that the adds are contiguous (vectorised).
         T kc[9], kr[9];
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) {
-            kc[3 * j + i] = lra[i] * r[b][j] + r[b][i] * mra[j];
-            kr[3 * j + i] = lra[j] * r[b][i] + r[b][j] * mra[i];
-          }
-        kc[0] += mg;
-        kc[4] += mg;
-        kc[8] += mg;
+        block_pair(lra, mra, r[b], kc, kr);
         T* __restrict dst = &blocks_[std::size_t(blk[4 * a + b])];
         for (int i = 0; i < 9; ++i) dst[i] += kc[i];
-        if (y) {
-          T* __restrict ba = &b0_[std::size_t(rows[a])];
-          for (int i = 0; i < 3; ++i) ba[i] += kc[i] * y[b][0] + kc[3 + i] * y[b][1] + kc[6 + i] * y[b][2];
-        }
+        dst[0] += mg;
+        dst[4] += mg;
+        dst[8] += mg;
+        if (y) add_product(&b0_[std::size_t(rows[a])], kc, y[b], mg);
         if (b == a) continue;
-        kr[0] += mg;
-        kr[4] += mg;
-        kr[8] += mg;
         T* __restrict tr = &blocks_[std::size_t(blk[4 * b + a])];
         for (int i = 0; i < 9; ++i) tr[i] += kr[i];
-        if (y) {
-          T* __restrict bb = &b0_[std::size_t(rows[b])];
-          for (int i = 0; i < 3; ++i) bb[i] += kr[i] * y[a][0] + kr[3 + i] * y[a][1] + kr[6 + i] * y[a][2];
-        }
+        tr[0] += mg;
+        tr[4] += mg;
+        tr[8] += mg;
+        if (y) add_product(&b0_[std::size_t(rows[b])], kr, y[a], mg);
+      }
+    }
+  }
+
+  // An element's re-rotation from (r0, y0) to (r1, y1): adds its new blocks minus its old
+  // ones (the identity parts cancel) and its new part of b0 minus its old one, in one pass
+  // over its blocks and rows.
+  void replace_blocks(std::size_t e, const V3 r0[4], const V3 y0[4], const V3 r1[4], const V3 y1[4], const int blk[16],
+                      const int rows[4]) {
+    const T* gg = &egg_[10 * e];
+    const T la = evol_[e] * lambda_[e], mb = evol_[e] * mu_[e];
+    int pair = 0;
+    for (int a = 0; a < 4; ++a) {
+      const V3 lra0 = la * r0[a], mra0 = mb * r0[a], lra1 = la * r1[a], mra1 = mb * r1[a];
+      for (int b = a; b < 4; ++b) {
+        const T mg = mb * gg[pair++];
+        T kc0[9], kr0[9], kc1[9], kr1[9];
+        block_pair(lra0, mra0, r0[b], kc0, kr0);
+        block_pair(lra1, mra1, r1[b], kc1, kr1);
+        T* __restrict dst = &blocks_[std::size_t(blk[4 * a + b])];
+        for (int i = 0; i < 9; ++i) dst[i] += kc1[i] - kc0[i];
+        T* __restrict ba = &b0_[std::size_t(rows[a])];
+        add_product(ba, kc1, y1[b], mg);
+        add_product(ba, kc0, -y0[b], mg);
+        if (b == a) continue;
+        T* __restrict tr = &blocks_[std::size_t(blk[4 * b + a])];
+        for (int i = 0; i < 9; ++i) tr[i] += kr1[i] - kr0[i];
+        T* __restrict bb = &b0_[std::size_t(rows[b])];
+        add_product(bb, kr1, y1[a], mg);
+        add_product(bb, kr0, -y0[a], mg);
       }
     }
   }
@@ -423,21 +454,23 @@ class CpuBackend final : public Backend {
       }
       const T* X = &eX_[12 * es];
       V3 r[4], y[4];
-      if (!full) {  // take the element's old blocks (and its part of b0) out
-        const M3 Rold = Eigen::Map<const M3>(Rk);
-        for (int a = 0; a < 4; ++a) {
-          r[a] = Rold * g[a];
-          const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
-          y[a] = Rold * Xa - Xa;
-        }
-        add_blocks(es, r, T(-1), blk, y, rows);
-      }
       for (int a = 0; a < 4; ++a) {
         r[a] = R * g[a];
         const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
         y[a] = R * Xa - Xa;
       }
-      add_blocks(es, r, T(1), blk, kept ? y : nullptr, rows);
+      if (full) {
+        add_blocks(es, r, blk, kept ? y : nullptr, rows);
+      } else {  // the element's old blocks (and its part of b0) out, the new ones in
+        const M3 Rold = Eigen::Map<const M3>(Rk);
+        V3 r0[4], y0[4];
+        for (int a = 0; a < 4; ++a) {
+          r0[a] = Rold * g[a];
+          const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
+          y0[a] = Rold * Xa - Xa;
+        }
+        replace_blocks(es, r0, y0, r, y, blk, rows);
+      }
       for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
     }
     if (kept) return;  // the force is -K u + b0 (assemble())
