@@ -25,7 +25,6 @@
 #include <QTemporaryDir>
 #include <QTranslator>
 
-#include "gui_test_support.h"
 #include "import_dialog.h"
 #include "main_window.h"
 #include "panels.h"
@@ -69,7 +68,7 @@ class TstReview : public QObject {
     QStandardPaths::setTestModeEnabled(true);
     qputenv("PALPATION_DB", dir_.filePath(QStringLiteral("patients.sqlite")).toUtf8());
     qputenv("PALPATION_RECORDINGS", dir_.filePath(QStringLiteral("recordings")).toUtf8());
-    test::use_vtk_surface_format();
+    ui::VtkView::use_default_surface_format();
     rec_path_ = dir_.filePath(QStringLiteral("scripted.palrec"));
   }
 

@@ -20,7 +20,6 @@
 #include <QUndoStack>
 
 #include "force_plots.h"
-#include "gui_test_support.h"
 #include "main_window.h"
 #include "panels.h"
 #include "tumour_editor.h"
@@ -118,7 +117,7 @@ class TstUiMainWindow : public QObject {
   void initTestCase() {
     QStandardPaths::setTestModeEnabled(true);
     QSettings().remove(QStringLiteral("language"));  // a failed run leaves Japanese stored
-    test::use_vtk_surface_format();
+    ui::VtkView::use_default_surface_format();
     app::WorkstationOptions opt;
     opt.scenario = app::default_workstation_scenario();
     opt.haptic_priority = 0;

@@ -10,7 +10,6 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QSettings>
-#include <QSurfaceFormat>
 #include <QTimer>
 #include <QTranslator>
 
@@ -20,16 +19,8 @@
 #include "workstation.h"
 
 int main(int argc, char** argv) {
-  // VTK needs a 3.2 core context with depth and stencil (interlaced stereo uses the
-  // stencil); set before the QApplication exists (stack-notes.md).
-  QSurfaceFormat fmt;
-  fmt.setRenderableType(QSurfaceFormat::OpenGL);
-  fmt.setVersion(3, 2);
-  fmt.setProfile(QSurfaceFormat::CoreProfile);
-  fmt.setDepthBufferSize(24);
-  fmt.setStencilBufferSize(8);
-  fmt.setSwapInterval(0);
-  QSurfaceFormat::setDefaultFormat(fmt);
+  // VTK's OpenGL format, before the QApplication exists (stack-notes.md).
+  palpation::ui::VtkView::use_default_surface_format();
   if (!std::getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 0);
 
   QApplication app(argc, argv);

@@ -342,6 +342,17 @@ class QuadBufferWindow : public QOpenGLWindow {
   GLuint fbo_ = 0;
 };
 
+void VtkView::use_default_surface_format() {
+  QSurfaceFormat fmt;
+  fmt.setRenderableType(QSurfaceFormat::OpenGL);
+  fmt.setVersion(3, 2);
+  fmt.setProfile(QSurfaceFormat::CoreProfile);
+  fmt.setDepthBufferSize(24);
+  fmt.setStencilBufferSize(8);
+  fmt.setSwapInterval(0);
+  QSurfaceFormat::setDefaultFormat(fmt);
+}
+
 bool VtkView::quad_buffer_available(QString* why) {
   static int granted = -1;
   static QString reason;

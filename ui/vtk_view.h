@@ -78,6 +78,11 @@ class VtkView : public QOpenGLWidget {
   /// Whether this display grants an OpenGL context with stereo (quad) buffers; `why`
   /// gets the reason when not. Probes once with a small native window.
   static bool quad_buffer_available(QString* why = nullptr);
+  /// The default OpenGL format the view needs: a 3.2 core context with depth and stencil
+  /// (interlaced stereo uses the stencil), no vsync. Set it (QSurfaceFormat::
+  /// setDefaultFormat) before the QApplication's first window: the trainer's main() and
+  /// the GUI tests do.
+  static void use_default_surface_format();
   Stereo stereo() const { return stereo_; }
   void set_eye_angle(double degrees);
   void set_mirrored(bool on);
