@@ -228,9 +228,18 @@ class TestScanImport : public QObject {
     QVERIFY2(p.exitCode() == 2, qPrintable(err));
     // The message is the first line and a whole one (the file, the reader, the reason).
     const QString line = err.section('\n', 0, 0);
+#if defined(__SANITIZE_ADDRESS__)
+    // Under AddressSanitizer its allocation limit aborts the child (no address-space
+    // limit there: scan_read_child.cpp), which reads "crashed (SIGABRT): a malformed or
+    // hostile file?" (CI's stage 2 of 7f73f49).
+    QVERIFY2(line.startsWith("palpation: " + QString::fromStdString(path) + ": the scan reader ") &&
+                 line.contains("a malformed or hostile file"),
+             qPrintable(err));
+#else
     QVERIFY2(line.startsWith("palpation: " + QString::fromStdString(path) + ": the scan reader ") &&
                  line.endsWith("(a malformed or hostile file)"),
              qPrintable(err));
+#endif
 #endif
   }
 
