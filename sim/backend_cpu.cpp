@@ -79,7 +79,6 @@ class CpuBackend final : public Backend {
     x_.resize(3 * nn);
     v_.resize(3 * nn);
     q_.resize(ne);
-    erot_.resize(9 * std::size_t(ne));
     ekrot_.resize(9 * std::size_t(ne));
     eF_.resize(9 * std::size_t(ne));
     // Extra blocks and rows at the end (one per thread) take the contributions of fixed
@@ -416,7 +415,6 @@ class CpuBackend final : public Backend {
     // tol from the rotation they were built with (a push strains far more than it
     // rotates: at 1e-3 about a quarter of the extractions re-rotate K).
     T* Fref = &eF_[9 * es];
-    T* Rs = &erot_[9 * es];
     T* Rk = &ekrot_[9 * es];
     bool extract = full;
     if (!extract) {
@@ -424,22 +422,17 @@ class CpuBackend final : public Backend {
       for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(F.data()[i] - Fref[i]));
       extract = !(change <= tol);  // NaN too
     }
-    M3 R;
+    // Not extracting implies the kept mode (tolerance 0 is always full): K, b0 and the
+    // force (b0 - K u) need nothing more of this element.
+    if (!extract) return;
+    fem::extract_rotation<T>(F, q_[e]);
+    const M3 R = q_[e].toRotationMatrix();
+    for (int i = 0; i < 9; ++i) Fref[i] = F.data()[i];
     bool update = full;
-    if (extract) {
-      fem::extract_rotation<T>(F, q_[e]);
-      R = q_[e].toRotationMatrix();
-      for (int i = 0; i < 9; ++i) {
-        Rs[i] = R.data()[i];
-        Fref[i] = F.data()[i];
-      }
-      if (!update) {
-        T change = 0;
-        for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(R.data()[i] - Rk[i]));
-        update = !(change <= tol);
-      }
-    } else {
-      R = Eigen::Map<const M3>(Rs);
+    if (!update) {
+      T change = 0;
+      for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(R.data()[i] - Rk[i]));
+      update = !(change <= tol);
     }
     if (update) {
       int blk[16];
@@ -572,7 +565,7 @@ class CpuBackend final : public Backend {
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<T> eX_;                        // (ntet x 12) rest positions about the element's centroid
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
-  std::vector<T> erot_, eF_;                 // (ntet x 9) rotation and F at the element's last extraction
+  std::vector<T> eF_;                        // (ntet x 9) F at the element's last rotation extraction
   std::vector<T> ekrot_;                     // (ntet x 9) the rotation its blocks in K were built with
   std::vector<T> blocks_;                    // (nblock x 9) rotated stiffness K, column-major blocks, kept
   std::vector<T> diag_;                      // (nfree x 9) mass and contact diagonal D, per step
