@@ -2,7 +2,9 @@
 // HandHIRO: panels present; adding and painting a tumour changes the stiffness of the
 // right elements in the running simulation and undo restores them; the force plots
 // receive data; trainee mode hides tumours and locks the instructor panels; the 3-D view
-// shows the breast in mono and anaglyph; in Japanese every menu, panel title and button
+// shows the breast in mono and anaglyph, is presented by a native child window (no
+// QOpenGLWidget: docs/gui.md) that follows the layout, takes the mouse for palpation and the
+// brush, and is composited into window grabs (screenshots); in Japanese every menu, panel title and button
 // the user sees is translated.
 // Runs under Xvfb (the view needs an OpenGL context). No timing assertions.
 #include <QtTest>
@@ -15,6 +17,8 @@
 #include <QLabel>
 #include <QMenu>
 #include <QMenuBar>
+#include <QOpenGLWidget>
+#include <QWindow>
 #include <QSettings>
 #include <QStandardPaths>
 #include <QUndoStack>
@@ -230,6 +234,95 @@ class TstUiMainWindow : public QObject {
     QVERIFY(synced());
     ed->undo_stack()->undo();
     QVERIFY(synced());
+  }
+
+  // The view presents in a native child window, not a QOpenGLWidget (with one of those
+  // Qt composes the whole window with OpenGL every frame: docs/gui.md). The window fills
+  // the view and follows it when the dock layout changes size.
+  void view_is_a_native_window() {
+    ui::VtkView* v = w_->view();
+    QVERIFY2(w_->findChildren<QOpenGLWidget*>().isEmpty(), "a QOpenGLWidget makes Qt compose the whole window with OpenGL");
+    QWindow* win = v->native_window();
+    QVERIFY(win && win->handle());
+    QTRY_VERIFY(win->isExposed());
+    QCOMPARE(win->size(), v->size());
+    // The Forces dock closed: the view takes its height.
+    const QSize before = v->size();
+    w_->forces_dock()->hide();
+    QTRY_VERIFY(v->height() > before.height());
+    QTRY_COMPARE(win->size(), v->size());
+    QCOMPARE(win->mapToGlobal(QPoint(0, 0)), v->mapToGlobal(QPoint(0, 0)));
+    QCOMPARE(v->grabFramebuffer().size(), v->size());
+    w_->forces_dock()->show();
+    QTRY_COMPARE(v->size(), before);
+    QTRY_COMPARE(win->size(), before);
+  }
+
+  // Mouse palpation and the brush through the native window, as the user's mouse reaches
+  // them (QTest's events go through the window system interface to the QWindow).
+  void mouse_reaches_the_view_through_its_window() {
+    ui::VtkView* v = w_->view();
+    QWindow* win = v->native_window();
+    const QPoint c = v->rect().center();
+    // Palpate: the fingertip follows the cursor; the wheel presses in.
+    v->set_tool(ui::VtkView::Tool::Palpate);
+    int targets = 0;
+    bool present = false;
+    Eigen::Vector3d at = Eigen::Vector3d::Zero();
+    const auto conn = connect(v, &ui::VtkView::palpateTarget, this, [&](const Eigen::Vector3d& p, bool on) {
+      ++targets;
+      at = p;
+      present = on;
+    });
+    const auto disconnect_spy = qScopeGuard([conn] { QObject::disconnect(conn); });
+    QTest::mouseMove(win, c);
+    QTRY_VERIFY(targets > 0);
+    QVERIFY(present);
+    QVERIFY2(at.z() > 0.01, "on the dome");
+    const double depth0 = v->press_depth();
+    QWheelEvent wheel(QPointF(c), win->mapToGlobal(QPointF(c)), QPoint(), QPoint(0, 120), Qt::NoButton, Qt::NoModifier,
+                      Qt::NoScrollPhase, false);
+    QCoreApplication::sendEvent(win, &wheel);
+    QVERIFY(v->press_depth() > depth0);
+    // Leaving the window lifts the fingertip.
+    QEvent leave(QEvent::Leave);
+    QCoreApplication::sendEvent(win, &leave);
+    QVERIFY(!present);
+    v->set_tool(ui::VtkView::Tool::Camera);
+    // The brush: press, drag, release on the window is one undo step.
+    ui::TumourEditor* ed = w_->editor();
+    const int index0 = ed->undo_stack()->index();
+    w_->tumour_panel()->young->setValue(150.0);
+    v->set_tool(ui::VtkView::Tool::Paint);
+    QTest::mousePress(win, Qt::LeftButton, Qt::NoModifier, c);
+    for (int i = 1; i <= 5; ++i) QTest::mouseMove(win, c + QPoint(4 * i, 0));
+    QTest::mouseRelease(win, Qt::LeftButton, Qt::NoModifier, c + QPoint(20, 0));
+    v->set_tool(ui::VtkView::Tool::Camera);
+    QCOMPARE(ed->undo_stack()->index(), index0 + 1);
+    QVERIFY(synced());
+    ed->undo_stack()->undo();
+    QVERIFY(synced());
+    // Palpating took the device over from the scripted hand (MainWindow): give it back.
+    w_->workstation().device().set_mode(app::WorkstationDevice::Mode::Script);
+  }
+
+  // A window grab (the trainer's --screenshot, File > Save screenshot) shows the breast
+  // where the view sits: QWidget::grab leaves the native window out, the view's frame is
+  // read back and painted in.
+  void window_grab_shows_the_view() {
+    ui::VtkView* v = w_->view();
+    v->set_tumours_visible(false);
+    QTest::qWait(200);
+    const QRect r(v->mapTo(w_.get(), QPoint(0, 0)), v->size());
+    const QImage shot = ui::VtkView::grab_with_views(w_.get());
+    QCOMPARE(shot.size(), w_->size() * shot.devicePixelRatio());
+    const ImageStats in_view = stats(shot.copy(r));
+    const ImageStats plain = stats(w_->grab().toImage().copy(r));
+    qInfo("window grab, the view's part: skin %.3f composited, %.3f in QWidget::grab alone", in_view.skin_fraction,
+          plain.skin_fraction);
+    QVERIFY2(in_view.skin_fraction > 0.05, "the breast in the screenshot");
+    QVERIFY2(in_view.bright > 0.05, "lit skin in the screenshot");
+    v->set_tumours_visible(true);
   }
 
   // (Not "..._data": QtTest takes a slot ending in _data for a data function and never ran it.)

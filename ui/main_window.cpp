@@ -331,7 +331,7 @@ void MainWindow::build_actions() {
   a_open_rec_->setShortcut(QKeySequence::Open);
   a_screenshot_ = file_menu_->addAction(QString(), this, [this] {
     const QString f = QFileDialog::getSaveFileName(this, tr("Save screenshot"), QStringLiteral("screenshot.png"), tr("PNG images (*.png)"));
-    if (!f.isEmpty()) grab().save(f);
+    if (!f.isEmpty()) VtkView::grab_with_views(this).save(f);
   });
   file_menu_->addSeparator();
   a_quit_ = file_menu_->addAction(QString(), this, &QWidget::close);

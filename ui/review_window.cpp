@@ -413,9 +413,10 @@ int ReviewWindow::export_frames(const QString& dir, double t0, double t1, double
   const double dt = 1.0 / std::max(0.1, fps);
   for (double t = t0; t <= t1 + 1e-9; t += dt) {
     seek(t);
-    view_->update();
+    view_->request_render();
     QCoreApplication::processEvents();
-    const QImage img = centralWidget()->grab().toImage();
+    // The view's frame read back and painted in (its native window is not in a grab).
+    const QImage img = VtkView::grab_with_views(centralWidget());
     if (!img.save(QDir(dir).filePath(QStringLiteral("frame-%1.png").arg(n + 1, 4, 10, QLatin1Char('0'))))) break;
     ++n;
   }

@@ -15,6 +15,8 @@
 #include <QOpenGLExtraFunctions>
 #include <QOpenGLFunctions>
 #include <QOpenGLWindow>
+#include <QPainter>
+#include <QResizeEvent>
 #include <QWheelEvent>
 #include <QSurfaceFormat>
 #include <QWindow>
@@ -51,10 +53,65 @@ namespace {
 const double kFingerColour[5][3] = {{0.95, 0.75, 0.2}, {0.2, 0.55, 0.95}, {0.3, 0.8, 0.4}, {0.75, 0.45, 0.9}, {0.9, 0.4, 0.5}};
 }  // namespace
 
-VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent) {
+// The native child window the view presents in (docs/gui.md). Exposure and update requests
+// draw a frame; mouse, wheel and leave events go on to the view's handlers (picking,
+// palpation, the tumour brush, the camera) at the same positions, the window filling the
+// view. Keyboard focus stays with the widgets, so the window's shortcuts keep working; a
+// click focuses the view.
+class ViewWindow : public QWindow {
+ public:
+  explicit ViewWindow(VtkView* view) : view_(view) {
+    setSurfaceType(QSurface::OpenGLSurface);
+    setFormat(QSurfaceFormat::defaultFormat());
+    setFlag(Qt::WindowDoesNotAcceptFocus);
+  }
+  void detach() { view_ = nullptr; }
+  // Hands an event of the view's native window (this one or the quad-buffer window) to the
+  // view, as if it had happened on the view; true when it was one of those.
+  static bool forward(VtkView* view, QEvent* e) {
+    switch (e->type()) {
+      case QEvent::MouseButtonPress:
+      case QEvent::MouseButtonDblClick:
+        if (view->focusPolicy() & Qt::ClickFocus) view->setFocus(Qt::MouseFocusReason);
+        [[fallthrough]];
+      case QEvent::MouseButtonRelease:
+      case QEvent::MouseMove:
+      case QEvent::Wheel:
+      case QEvent::Leave:
+        QCoreApplication::sendEvent(view, e);
+        return true;
+      default: return false;
+    }
+  }
+
+ protected:
+  void exposeEvent(QExposeEvent*) override {
+    if (view_ && isExposed()) view_->present();
+  }
+  bool event(QEvent* e) override {
+    if (!view_) return QWindow::event(e);
+    if (e->type() == QEvent::UpdateRequest) {
+      view_->present();
+      return true;
+    }
+    return forward(view_, e) || QWindow::event(e);
+  }
+
+ private:
+  VtkView* view_;
+};
+
+VtkView::VtkView(QWidget* parent) : QWidget(parent) {
   setMouseTracking(true);
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(320, 240);
+  // The native window VTK presents in, filling this widget (docs/gui.md: only its pixels
+  // are drawn with OpenGL; the rest of the window stays raster).
+  gl_window_ = new ViewWindow(this);
+  container_ = QWidget::createWindowContainer(gl_window_, this);
+  container_->setMouseTracking(true);
+  container_->setFocusPolicy(Qt::NoFocus);
+  container_->setGeometry(rect());
   window_->SetReadyForRendering(false);
   window_->SetFrameBlitModeToNoBlit();
   window_->SetStereoCapableWindow(1);
@@ -69,25 +126,24 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent) {
   auto make_current = vtkSmartPointer<vtkCallbackCommand>::New();
   make_current->SetClientData(this);
   make_current->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-    auto* w = static_cast<VtkView*>(self);
-    if (w->context()) w->context()->makeCurrent(w->context()->surface());
+    static_cast<VtkView*>(self)->make_current();
   });
   window_->AddObserver(vtkCommand::WindowMakeCurrentEvent, make_current);
   auto is_current = vtkSmartPointer<vtkCallbackCommand>::New();
   is_current->SetClientData(this);
   is_current->SetCallback([](vtkObject*, unsigned long, void* self, void* call_data) {
     auto* w = static_cast<VtkView*>(self);
-    *static_cast<bool*>(call_data) = w->context() && QOpenGLContext::currentContext() == w->context();
+    *static_cast<bool*>(call_data) = w->context_ && QOpenGLContext::currentContext() == w->context_;
   });
   window_->AddObserver(vtkCommand::WindowIsCurrentEvent, is_current);
   auto frame = vtkSmartPointer<vtkCallbackCommand>::New();
   frame->SetClientData(this);
-  // A render VTK starts itself (not from paintGL) needs a repaint; one inside paintGL must
+  // A render VTK starts itself (not from present()) needs a frame; one inside present() must
   // not schedule another, or the view re-renders continuously (it did: 7-13 fps of
   // back-to-back frames under llvmpipe, taking CPU from the simulation).
   frame->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
     auto* w = static_cast<VtkView*>(self);
-    if (!w->painting_) w->update();
+    if (!w->painting_) w->request_render();
   });
   window_->AddObserver(vtkCommand::WindowFrameEvent, frame);
 
@@ -189,27 +245,73 @@ VtkView::VtkView(QWidget* parent) : QOpenGLWidget(parent) {
 }
 
 VtkView::~VtkView() {
-  delete quad_container_;
+  delete quad_container_;  // deletes the stereo window
   quad_container_ = nullptr;
   quad_window_ = nullptr;
-  makeCurrent();
-  window_->Finalize();
-  doneCurrent();
+  if (initialized_ && make_current()) {
+    window_->Finalize();
+    done_current();
+  }
+  initialized_ = false;
+  // The native window outlives this body (a child): it must not call back into the view.
+  if (gl_window_) gl_window_->detach();
+  delete container_;  // deletes the native window
+  container_ = nullptr;
+  gl_window_ = nullptr;
+  delete context_;
+  context_ = nullptr;
 }
 
-void VtkView::initializeGL() {
+bool VtkView::ensure_gl() {
+  if (initialized_) return true;
+  if (!gl_window_ || !gl_window_->handle()) return false;  // not created yet (never shown)
+  if (!context_) {
+    context_ = new QOpenGLContext;
+    context_->setFormat(gl_window_->requestedFormat());
+    if (!context_->create()) {
+      qWarning("palpation: no OpenGL context for the 3-D view");
+      delete context_;
+      context_ = nullptr;
+      return false;
+    }
+  }
+  if (!context_->makeCurrent(gl_window_)) return false;
   window_->SetOwnContext(false);
   window_->SetReadyForRendering(true);
   window_->OpenGLInitContext();
   initialized_ = true;
   if (stereo_ != Stereo::Mono) set_stereo(stereo_);
+  return true;
 }
 
-void VtkView::resizeGL(int w, int h) {
+bool VtkView::make_current() {
+  return context_ && gl_window_ && gl_window_->handle() && context_->makeCurrent(gl_window_);
+}
+
+void VtkView::done_current() {
+  if (context_) context_->doneCurrent();
+}
+
+QWindow* VtkView::native_window() const { return gl_window_; }
+
+void VtkView::resizeEvent(QResizeEvent* e) {
+  QWidget::resizeEvent(e);
+  container_->setGeometry(rect());
   if (quad_container_) quad_container_->setGeometry(rect());
   const qreal r = devicePixelRatioF();
-  window_->SetSize(int(w * r), int(h * r));
-  interactor_->UpdateSize(int(w * r), int(h * r));
+  window_->SetSize(int(width() * r), int(height() * r));
+  interactor_->UpdateSize(int(width() * r), int(height() * r));
+  request_render();
+}
+
+bool VtkView::event(QEvent* e) {
+  // The pointer over the view is over the native window: it takes the view's cursor.
+  if (e->type() == QEvent::CursorChange && gl_window_) gl_window_->setCursor(cursor());
+  return QWidget::event(e);
+}
+
+void VtkView::request_render() {
+  if (gl_window_) gl_window_->requestUpdate();
 }
 
 void VtkView::render_vtk() {
@@ -223,56 +325,104 @@ void VtkView::render_vtk() {
   st->Pop();
 }
 
-void VtkView::paintGL() {
-  if (!initialized_) return;
+void VtkView::present() {
+  if (!gl_window_ || !gl_window_->isExposed()) {
+    pending_ = true;  // drawn when the window is exposed
+    return;
+  }
+  if (!ensure_gl()) return;
+  pending_ = false;
   if (quad_window_) {  // quad-buffer stereo: the stereo window renders and presents
     quad_window_->requestUpdate();
     return;
   }
   QElapsedTimer timer;
   timer.start();
+  if (!make_current()) return;
   render_vtk();
-  // Blit VTK's display framebuffer into the widget's (mirrored for the half mirror).
+  // Blit VTK's display framebuffer into the window's back buffer (mirrored for the half
+  // mirror) and swap: only the view's pixels go to the display.
   vtkOpenGLState* st = window_->GetState();
   st->Reset();
   st->Push();
   const qreal r = devicePixelRatioF();
   const int w = int(width() * r), h = int(height() * r);
   st->PushDrawFramebufferBinding();
-  st->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, defaultFramebufferObject());
+  st->vtkglBindFramebuffer(GL_DRAW_FRAMEBUFFER, context_->defaultFramebufferObject());
   st->vtkglViewport(0, 0, w, h);
   st->vtkglScissor(0, 0, w, h);
   if (mirrored_) window_->BlitDisplayFramebuffer(0, 0, 0, w, h, w, 0, -w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   else window_->BlitDisplayFramebuffer(0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  // Alpha to 1 (the widget is composited with its alpha).
-  st->vtkglColorMask(false, false, false, true);
-  st->vtkglClearColor(0, 0, 0, 1);
-  st->vtkglClear(GL_COLOR_BUFFER_BIT);
-  st->vtkglColorMask(true, true, true, true);
   st->PopDrawFramebufferBinding();
   st->Pop();
+  context_->swapBuffers(gl_window_);
   ++frames_;
   paint_ns_ += double(timer.nsecsElapsed());
 }
 
+bool VtkView::render_now() {
+  if (!gl_window_ || !gl_window_->isExposed() || !ensure_gl()) return false;
+  present();
+  return true;
+}
+
 double VtkView::bench_render(int n) {
-  if (!initialized_ || n <= 0) return 0;
-  makeCurrent();
+  if (n <= 0 || !ensure_gl() || !make_current()) return 0;
   QElapsedTimer t;
   t.start();
   for (int i = 0; i < n; ++i) {
     render_vtk();
-    context()->functions()->glFinish();
+    context_->functions()->glFinish();
   }
-  const double ms = double(t.nsecsElapsed()) * 1e-6 / n;
-  doneCurrent();
-  return ms;
+  return double(t.nsecsElapsed()) * 1e-6 / n;
+}
+
+QImage VtkView::grabFramebuffer() {
+  if (!ensure_gl() || !make_current()) return {};
+  render_vtk();
+  vtkOpenGLFramebufferObject* display = window_->GetDisplayFramebuffer();
+  if (!display) return {};
+  const qreal r = devicePixelRatioF();
+  const int w = int(width() * r), h = int(height() * r);
+  QImage img(w, h, QImage::Format_RGBA8888);
+  vtkOpenGLState* st = window_->GetState();
+  st->Reset();
+  st->Push();
+  st->PushReadFramebufferBinding();
+  display->Bind(GL_READ_FRAMEBUFFER);
+  display->ActivateReadBuffer(0);  // the left eye in quad-buffer stereo
+  QOpenGLFunctions* f = context_->functions();
+  f->glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  f->glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, img.bits());
+  st->PopReadFramebufferBinding();
+  st->Pop();
+  // OpenGL's rows run bottom-up; the half mirror flips left and right as shown.
+  img = img.mirrored(mirrored_, true).convertToFormat(QImage::Format_RGB32);
+  img.setDevicePixelRatio(r);
+  return img;
+}
+
+QImage VtkView::grab_with_views(QWidget* w) {
+  QImage img = w->grab().toImage();
+  if (img.isNull()) return img;
+  QList<VtkView*> views = w->findChildren<VtkView*>();
+  if (auto* self = qobject_cast<VtkView*>(w)) views.prepend(self);
+  QPainter p(&img);
+  for (VtkView* v : views) {
+    // Only views shown inside w (not those of other top-level windows w happens to own).
+    if (v != w && (!v->isVisible() || v->window() != w->window() || !w->isAncestorOf(v))) continue;
+    const QImage frame = v->grabFramebuffer();
+    if (frame.isNull()) continue;
+    p.drawImage(QRect(v == w ? QPoint() : v->mapTo(w, QPoint()), v->size()), frame);
+  }
+  return img;
 }
 
 // ---------------------------------------------------------------------------------------
-// Quad-buffer stereo. Qt 6.4's QOpenGLWidget has no stereo buffers (stack-notes.md), so a
-// native window with a stereo format, sharing objects with the view's context, covers the
-// view: VTK renders both eyes (CrystalEyes) in the view's context into the two colour
+// Quad-buffer stereo. The view's window has the default (mono) format, fixed when it is
+// created, and the stereo format is asked for only where granted (stack-notes.md), so a
+// second native window with a stereo format, sharing objects with the view's context,
+// covers the view: VTK renders both eyes (CrystalEyes) in the view's context into the two colour
 // textures of its display framebuffer; this window blits them into GL_BACK_LEFT and
 // GL_BACK_RIGHT of its own default framebuffer. Mouse and wheel events go on to the view.
 
@@ -286,7 +436,7 @@ QSurfaceFormat stereo_format() {
 
 class QuadBufferWindow : public QOpenGLWindow {
  public:
-  explicit QuadBufferWindow(VtkView* view) : QOpenGLWindow(view->context(), QOpenGLWindow::NoPartialUpdate), view_(view) {
+  explicit QuadBufferWindow(VtkView* view) : QOpenGLWindow(view->context_, QOpenGLWindow::NoPartialUpdate), view_(view) {
     setFormat(stereo_format());
   }
   ~QuadBufferWindow() override {
@@ -302,14 +452,14 @@ class QuadBufferWindow : public QOpenGLWindow {
     QElapsedTimer timer;
     timer.start();
     // 1. Both eyes, in the view's context.
-    view_->makeCurrent();
+    if (!view_->make_current()) return;
     view_->render_vtk();
     vtkOpenGLFramebufferObject* display = view_->window_->GetDisplayFramebuffer();
     vtkTextureObject* lt = display ? display->GetColorAttachmentAsTextureObject(0) : nullptr;
     vtkTextureObject* rt = display ? display->GetColorAttachmentAsTextureObject(1) : nullptr;
     const GLuint left = lt ? lt->GetHandle() : 0, right = rt ? rt->GetHandle() : left;
-    view_->context()->functions()->glFinish();
-    view_->doneCurrent();
+    view_->context_->functions()->glFinish();
+    view_->done_current();
     // 2. Into the stereo back buffers, in this window's context.
     makeCurrent();
     if (!left) return;
@@ -332,10 +482,7 @@ class QuadBufferWindow : public QOpenGLWindow {
     ++view_->frames_;
     view_->paint_ns_ += double(timer.nsecsElapsed());
   }
-  void mousePressEvent(QMouseEvent* e) override { QCoreApplication::sendEvent(view_, e); }
-  void mouseMoveEvent(QMouseEvent* e) override { QCoreApplication::sendEvent(view_, e); }
-  void mouseReleaseEvent(QMouseEvent* e) override { QCoreApplication::sendEvent(view_, e); }
-  void wheelEvent(QWheelEvent* e) override { QCoreApplication::sendEvent(view_, e); }
+  bool event(QEvent* e) override { return ViewWindow::forward(view_, e) || QOpenGLWindow::event(e); }
 
  private:
   VtkView* view_;
@@ -406,7 +553,7 @@ void VtkView::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
   update_normals();
   surface_->Modified();
   set_element_young(geometry_->young);
-  update();
+  request_render();
 }
 
 void VtkView::update_normals() {
@@ -496,7 +643,7 @@ void VtkView::show_snapshot(const app::RenderSnapshot& s) {
     ++skipped_;  // nothing moved: keep the last frame
     return;
   }
-  update();
+  request_render();
 }
 
 void VtkView::set_element_young(const std::vector<double>& young) {
@@ -529,7 +676,7 @@ void VtkView::set_element_young(const std::vector<double>& young) {
   }
   tumour_poly_->SetPolys(faces);
   tumour_poly_->Modified();
-  update();
+  request_render();
 }
 
 int VtkView::tumour_cell_count() const { return tumour_cells_; }
@@ -539,7 +686,7 @@ void VtkView::set_tumours_visible(bool on) {
   tumour_actor_->SetVisibility(on);
   // Instructors see the tumours through a translucent skin; trainees see opaque skin.
   surface_actor_->GetProperty()->SetOpacity(on ? 0.6 : 1.0);
-  update();
+  request_render();
 }
 
 void VtkView::set_colour_mode(ColourMap m) {
@@ -557,19 +704,19 @@ void VtkView::set_colour_mode(ColourMap m) {
   }
   scalar_bar_->SetVisibility(m != ColourMap::None);
   update_scalars(nullptr);
-  update();
+  request_render();
 }
 
 bool VtkView::set_stereo(Stereo mode, QString* why) {
   bool ok = true;
   if (mode == Stereo::QuadBuffer) {
     QString reason;
-    if (!quad_buffer_available(&reason) || !context()) {
+    if (!quad_buffer_available(&reason) || !context_) {
       // Refused: say why and show anaglyph, which needs nothing of the display.
       if (why)
         *why = tr("Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; "
                   "side-by-side and interlaced are also available.")
-                   .arg(context() ? reason : tr("the view is not initialised yet"));
+                   .arg(context_ ? reason : tr("the view is not initialised yet"));
       mode = Stereo::Anaglyph;
       ok = false;
     }
@@ -602,21 +749,22 @@ bool VtkView::set_stereo(Stereo mode, QString* why) {
         quad_container_ = QWidget::createWindowContainer(quad_window_, this);
         quad_container_->setGeometry(rect());
         quad_container_->show();
+        quad_container_->raise();  // over the mono window
       }
       break;
   }
-  update();
+  request_render();
   return ok;
 }
 
 void VtkView::set_eye_angle(double degrees) {
   renderer_->GetActiveCamera()->SetEyeAngle(degrees);
-  update();
+  request_render();
 }
 
 void VtkView::set_mirrored(bool on) {
   mirrored_ = on;
-  update();
+  request_render();
 }
 
 void VtkView::set_camera(CameraPreset p) {
@@ -643,12 +791,12 @@ void VtkView::set_camera(CameraPreset p) {
   }
   c->SetViewAngle(30);
   renderer_->ResetCameraClippingRange();
-  update();
+  request_render();
 }
 
 void VtkView::set_overlay_text(const QString& text) {
   overlay_->SetInput(text.toUtf8().constData());
-  update();
+  request_render();
 }
 
 bool VtkView::pick_surface(const QPoint& pos, Eigen::Vector3d& point, Eigen::Vector3d& normal) {
@@ -675,7 +823,7 @@ void VtkView::forward_mouse(QMouseEvent* e, unsigned long vtk_event) {
                                         (e->modifiers() & Qt::ControlModifier) ? 1 : 0,
                                         (e->modifiers() & Qt::ShiftModifier) ? 1 : 0);
   interactor_->InvokeEvent(vtk_event, e);
-  update();
+  request_render();
 }
 
 void VtkView::palpate_at(const QPoint& pos) {
@@ -754,7 +902,7 @@ void VtkView::wheelEvent(QWheelEvent* e) {
   const qreal r = devicePixelRatioF();
   interactor_->SetEventInformationFlipY(int(e->position().x() * r), int(e->position().y() * r));
   interactor_->InvokeEvent(e->angleDelta().y() > 0 ? vtkCommand::MouseWheelForwardEvent : vtkCommand::MouseWheelBackwardEvent, e);
-  update();
+  request_render();
 }
 
 void VtkView::leaveEvent(QEvent*) {

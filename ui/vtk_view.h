@@ -1,5 +1,11 @@
-// The 3-D view: VTK 9.1 rendering inside a Qt 6 QOpenGLWidget (Debian's VTK Qt module is
-// Qt5-only; ../shared/stack-notes.md says how this is wired). Shows the deformed breast
+// The 3-D view: VTK 9.1 rendering into a native child window (a QWindow with its own
+// QOpenGLContext, in QWidget::createWindowContainer) inside a plain QWidget (Debian's VTK Qt
+// module is Qt5-only; ../shared/stack-notes.md says how VTK is wired to a Qt context). Not a
+// QOpenGLWidget: with one of those in a window, Qt 6 composes the whole top-level window with
+// OpenGL on every update, which under software GL cost 50-76 ms a frame (docs/gui.md); the
+// native window presents only the view's own pixels and the rest of the window stays raster.
+// A native window is not in QWidget::grab(): grabFramebuffer() reads VTK's frame back and
+// grab_with_views() composites it into a window grab (screenshots, exported frames). Shows the deformed breast
 // surface from the simulation's snapshots, the static chest, five fingertip spheres, the
 // stiff (tumour) elements through a translucent skin for instructors, an optional colour
 // map (displacement, or von Mises stress computed by the simulation thread) with a scalar
@@ -18,7 +24,8 @@
 #include <memory>
 #include <vector>
 
-#include <QOpenGLWidget>
+#include <QImage>
+#include <QWidget>
 #include <QString>
 
 #include <Eigen/Core>
@@ -27,7 +34,9 @@
 
 #include "workstation.h"
 
+class QOpenGLContext;
 class QOpenGLWindow;
+class QWindow;
 class vtkActor;
 class vtkLookupTable;
 class vtkScalarBarActor;
@@ -43,7 +52,9 @@ class vtkFloatArray;
 
 namespace palpation::ui {
 
-class VtkView : public QOpenGLWidget {
+class ViewWindow;
+
+class VtkView : public QWidget {
   Q_OBJECT
 
  public:
@@ -96,12 +107,27 @@ class VtkView : public QOpenGLWidget {
   bool pick_surface(const QPoint& pos, Eigen::Vector3d& point, Eigen::Vector3d& normal);
   /// Frames rendered so far (for the measured frame rate).
   quint64 frames() const { return frames_; }
+  /// Schedules a new frame (the native window's next update request). Not QWidget::update:
+  /// the widget under the window paints nothing.
+  void request_render();
+  /// Renders the current scene and presents it now (VTK render, blit, swap of the view's
+  /// window), when the window is on screen; false otherwise. The view-alone benchmark.
+  bool render_now();
   /// Benchmark (docs/gui.md): renders the current scene `n` times in VTK alone (no blit,
-  /// no composition), waiting for each; ms per frame.
+  /// no presentation), waiting for each; ms per frame.
   double bench_render(int n);
+  /// The view's image as VTK draws it now (rendered afresh and read back from VTK's
+  /// framebuffer; mirrored as shown; the left eye in quad-buffer stereo). Null before the
+  /// view's window exists.
+  QImage grabFramebuffer();
+  /// `w->grab()` with the frame of every visible 3-D view in w's window painted where the
+  /// view sits (QWidget::grab leaves a native child window out). For screenshots.
+  static QImage grab_with_views(QWidget* w);
+  /// The native window the view presents in (tests send it mouse events).
+  QWindow* native_window() const;
   /// Snapshots that changed nothing visible and so rendered nothing.
   quint64 skipped_snapshots() const { return skipped_; }
-  /// Mean time of one paintGL (VTK render + blit), ms, over the frames so far; and the
+  /// Mean time of one frame (VTK render + blit + swap), ms, over the frames so far; and the
   /// time spent turning snapshots into VTK arrays (show_snapshot), ms per snapshot.
   double paint_ms() const { return frames_ ? paint_ns_ * 1e-6 / double(frames_) : 0.0; }
   double update_ms() const { return snapshots_ ? update_ns_ * 1e-6 / double(snapshots_) : 0.0; }
@@ -114,9 +140,8 @@ class VtkView : public QOpenGLWidget {
   void palpateTarget(const Eigen::Vector3d& centre, bool present);
 
  protected:
-  void initializeGL() override;
-  void resizeGL(int w, int h) override;
-  void paintGL() override;
+  void resizeEvent(QResizeEvent* e) override;
+  bool event(QEvent* e) override;
   void mousePressEvent(QMouseEvent* e) override;
   void mouseMoveEvent(QMouseEvent* e) override;
   void mouseReleaseEvent(QMouseEvent* e) override;
@@ -129,8 +154,14 @@ class VtkView : public QOpenGLWidget {
   void update_normals();
   void update_scalars(const app::RenderSnapshot* s);
   void render_vtk();
-  void present_quad_buffer();
+  // The native window's side: first exposure creates the context and initializes VTK's
+  // OpenGL; present() renders (when needed) and shows the frame.
+  bool ensure_gl();
+  bool make_current();
+  void done_current();
+  void present();
   friend class QuadBufferWindow;
+  friend class ViewWindow;
 
   vtkNew<vtkGenericOpenGLRenderWindow> window_;
   vtkNew<vtkGenericRenderWindowInteractor> interactor_;
@@ -153,13 +184,16 @@ class VtkView : public QOpenGLWidget {
   std::vector<float> shown_positions_, shown_stress_;  // what the last render showed
   std::array<Eigen::Vector3d, 5> shown_fingers_{};
   std::array<bool, 5> shown_active_{};
+  ViewWindow* gl_window_ = nullptr;       // the native child window VTK presents in
+  QWidget* container_ = nullptr;          // its container widget, filling this one
+  QOpenGLContext* context_ = nullptr;     // VTK's context (owned by this widget)
   QOpenGLWindow* quad_window_ = nullptr;  // quad-buffer stereo: presents the two eyes
   QWidget* quad_container_ = nullptr;
   Stereo stereo_ = Stereo::Mono;
   Tool tool_ = Tool::Camera;
   ColourMap colour_map_ = ColourMap::None;
   bool tumours_visible_ = true, mirrored_ = false, stroke_ = false, pressing_ = false;
-  bool initialized_ = false, painting_ = false;
+  bool initialized_ = false, painting_ = false, pending_ = false;
   double press_ = 0.0;
   QPoint last_pos_;
   quint64 frames_ = 0, snapshots_ = 0, skipped_ = 0;
