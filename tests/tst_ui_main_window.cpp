@@ -39,6 +39,7 @@ struct ImageStats {
   double red_cyan = 0;       // pixels where r and g/b differ strongly (anaglyph fringes)
   double bright = 0;         // pixels brighter than the background and the chest can be (lit skin)
   double blue = 0;           // saturated blue pixels (a colour map's low end; not the background)
+  double tumour = 0;         // red well above green (the red tumour through the skin; not bare skin)
 };
 
 ImageStats stats(const QImage& img0) {
@@ -56,6 +57,7 @@ ImageStats stats(const QImage& img0) {
       if (std::abs(r - (g + b) / 2) > 60) s.red_cyan += 1;
       if (r + g + b > 3 * 150) s.bright += 1;
       if (b > 120 && b > r + 60 && b > g + 30) s.blue += 1;
+      if (r > 120 && r > g + 70) s.tumour += 1;
     }
   }
   s.mean_r /= n;
@@ -65,6 +67,7 @@ ImageStats stats(const QImage& img0) {
   s.red_cyan /= n;
   s.bright /= n;
   s.blue /= n;
+  s.tumour /= n;
   return s;
 }
 
@@ -348,12 +351,19 @@ class TstUiMainWindow : public QObject {
 
   void view_shows_breast_mono_and_anaglyph() {
     ui::VtkView* v = w_->view();
+    // The instructor's view: the red tumour through the translucent skin (the skin blended
+    // over it in one pass: vtk_view.cpp's BlendedSkinActor).
+    v->set_stereo(ui::VtkView::Stereo::Mono);
+    QVERIFY(v->tumours_visible());
+    const ImageStats seen = stats(v->grabFramebuffer());
     // Opaque skin without the red tumour: in mono nothing is strongly red or cyan.
     v->set_tumours_visible(false);
     v->set_stereo(ui::VtkView::Stereo::Mono);
     QTest::qWait(200);
     const ImageStats mono = stats(v->grabFramebuffer());
-    qInfo("mono: mean rgb %.0f %.0f %.0f, skin %.3f", mono.mean_r, mono.mean_g, mono.mean_b, mono.skin_fraction);
+    qInfo("mono: mean rgb %.0f %.0f %.0f, skin %.3f; tumour-red %.4f shown, %.4f hidden", mono.mean_r, mono.mean_g,
+          mono.mean_b, mono.skin_fraction, seen.tumour, mono.tumour);
+    QVERIFY2(seen.tumour > mono.tumour + 0.005, "the tumour shows through the skin");  // measured 0.013 against 0.004 (the pink fingertip)
     QVERIFY2(mono.skin_fraction > 0.05, "the breast covers part of the view");
     QVERIFY2(mono.bright > 0.05, "lit skin present");
     // A wide eye separation makes the two eyes' images differ clearly at every edge.

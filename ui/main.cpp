@@ -182,10 +182,11 @@ int main(int argc, char** argv) {
       const bool ok = img.save(file);
       const auto& s = w.workstation().stats();
       std::fprintf(stderr,
-                   "palpation-trainer: %s %s (%dx%d); view %.0f fps (paint %.1f ms/frame, snapshot %.2f ms), "
-                   "simulation %.0f Hz, haptic %.0f Hz\n",
+                   "palpation-trainer: %s %s (%dx%d); view %.0f fps (paint %.1f ms/frame: render %.1f, swap %.1f; snapshot "
+                   "%.2f ms), simulation %.0f Hz, haptic %.0f Hz\n",
                    ok ? "saved" : "could not save", qPrintable(file), img.width(), img.height(), w.frame_rate(),
-                   w.view()->paint_ms(), w.view()->update_ms(), s.step_rate_hz, s.haptic_rate_hz);
+                   w.view()->paint_ms(), w.view()->render_ms(), w.view()->swap_ms(), w.view()->update_ms(), s.step_rate_hz,
+                   s.haptic_rate_hz);
       if (qEnvironmentVariableIsSet("PALPATION_BENCH_VIEW")) {
         // docs/gui.md: the view's own cost. The simulation stopped (its core free), the
         // last snapshot drawn N times back to back, each a full frame of the view as it is
@@ -195,6 +196,9 @@ int main(int argc, char** argv) {
         w.workstation().stop();
         const int n = std::max(1, qEnvironmentVariableIntValue("PALPATION_BENCH_VIEW"));
         if (!w.view()->render_now()) std::fprintf(stderr, "palpation-trainer: view alone: the view is not on screen\n");
+        const quint64 f0 = w.view()->frames();
+        const double p0 = w.view()->paint_ms() * double(f0), r0 = w.view()->render_ms() * double(f0),
+                     s0 = w.view()->swap_ms() * double(f0);
         QElapsedTimer bench;
         bench.start();
         for (int i = 0; i < n; ++i) {
@@ -202,11 +206,16 @@ int main(int argc, char** argv) {
           QCoreApplication::processEvents();
         }
         const double repaint_ms = double(bench.nsecsElapsed()) * 1e-6 / n;
+        const double fn = double(w.view()->frames() - f0);
+        const double frame_ms = fn > 0 ? (w.view()->paint_ms() * double(w.view()->frames()) - p0) / fn : 0;
+        const double in_render = fn > 0 ? (w.view()->render_ms() * double(w.view()->frames()) - r0) / fn : 0;
+        const double in_swap = fn > 0 ? (w.view()->swap_ms() * double(w.view()->frames()) - s0) / fn : 0;
         const double render_ms = w.view()->bench_render(n);
         std::fprintf(stderr,
-                     "palpation-trainer: view alone: %.1f ms per frame presented (%.0f fps; %d frames), of which "
-                     "VTK's render %.1f ms\n",
-                     repaint_ms, 1000.0 / repaint_ms, n, render_ms);
+                     "palpation-trainer: view alone: %.1f ms per frame presented (%.0f fps; %d frames; a frame %.1f ms: "
+                     "render %.1f, blit %.1f, swap %.1f; the event loop %.1f); VTK's render alone (glFinish) %.1f ms\n",
+                     repaint_ms, 1000.0 / repaint_ms, n, frame_ms, in_render, frame_ms - in_render - in_swap, in_swap,
+                     repaint_ms - frame_ms, render_ms);
       }
       QApplication::exit(ok ? 0 : 1);
     });

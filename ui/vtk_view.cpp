@@ -32,6 +32,8 @@
 #include <vtkGenericRenderWindowInteractor.h>
 #include <vtkInteractorStyleTrackballCamera.h>
 #include <vtkLookupTable.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLActor.h>
 #include <vtkOpenGLState.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -51,6 +53,22 @@ namespace palpation::ui {
 namespace {
 // Fingertip colours (HandHIRO order: thumb, index, middle, ring, little).
 const double kFingerColour[5][3] = {{0.95, 0.75, 0.2}, {0.2, 0.55, 0.95}, {0.3, 0.8, 0.4}, {0.75, 0.45, 0.9}, {0.9, 0.4, 0.5}};
+
+// The translucent skin, drawn in VTK's opaque pass with plain alpha blending (VTK keeps
+// GL_BLEND on, source alpha over), added to the renderer after every other 3-D actor so
+// that the tumour, the chest and the fingertips are already in the framebuffer under it.
+// Its front faces only (back-face culling) of a closed shell: each pixel gets one skin
+// layer, so no depth sorting is needed. VTK 9.1 would otherwise draw any actor with
+// opacity < 1 in its order-independent translucency pass (float accumulation targets and a
+// full-screen composite), which under software GL doubled the view's render time (docs/gui.md).
+class BlendedSkinActor : public vtkOpenGLActor {
+ public:
+  static BlendedSkinActor* New();
+  vtkTypeMacro(BlendedSkinActor, vtkOpenGLActor)
+  vtkTypeBool HasTranslucentPolygonalGeometry() override { return 0; }
+  vtkTypeBool HasOpaqueGeometry() override { return GetVisibility() ? 1 : 0; }
+};
+vtkStandardNewMacro(BlendedSkinActor)
 }  // namespace
 
 // The native child window the view presents in (docs/gui.md). Exposure and update requests
@@ -101,7 +119,7 @@ class ViewWindow : public QWindow {
   VtkView* view_;
 };
 
-VtkView::VtkView(QWidget* parent) : QWidget(parent) {
+VtkView::VtkView(QWidget* parent) : QWidget(parent), surface_actor_(vtkSmartPointer<BlendedSkinActor>::New()) {
   setMouseTracking(true);
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(320, 240);
@@ -175,9 +193,9 @@ VtkView::VtkView(QWidget* parent) : QWidget(parent) {
   surface_actor_->GetProperty()->SetSpecularPower(20);
   surface_actor_->GetProperty()->SetOpacity(0.6);
   // Only the skin's front faces: with the tumour opaque under it, plain alpha blending
-  // of a convex shell needs no depth sorting (no depth peeling, a single pass).
+  // of a convex shell needs no depth sorting (no depth peeling, a single pass; drawn in
+  // the opaque pass, last: BlendedSkinActor).
   surface_actor_->GetProperty()->BackfaceCullingOn();
-  renderer_->AddActor(surface_actor_);
 
   scalar_bar_->SetLookupTable(lut_);
   scalar_bar_->SetNumberOfLabels(4);
@@ -232,6 +250,7 @@ VtkView::VtkView(QWidget* parent) : QWidget(parent) {
     renderer_->AddActor(a);
     finger_actors_.push_back(a);
   }
+  renderer_->AddActor(surface_actor_);  // last: blended over the others (BlendedSkinActor)
 
   overlay_->GetTextProperty()->SetFontSize(16);
   overlay_->GetTextProperty()->SetColor(1, 1, 1);
@@ -340,6 +359,7 @@ void VtkView::present() {
   timer.start();
   if (!make_current()) return;
   render_vtk();
+  const qint64 rendered = timer.nsecsElapsed();
   // Blit VTK's display framebuffer into the window's back buffer (mirrored for the half
   // mirror) and swap: only the view's pixels go to the display.
   vtkOpenGLState* st = window_->GetState();
@@ -355,9 +375,13 @@ void VtkView::present() {
   else window_->BlitDisplayFramebuffer(0, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
   st->PopDrawFramebufferBinding();
   st->Pop();
+  const qint64 blitted = timer.nsecsElapsed();
   context_->swapBuffers(gl_window_);
   ++frames_;
-  paint_ns_ += double(timer.nsecsElapsed());
+  const qint64 end = timer.nsecsElapsed();
+  paint_ns_ += double(end);
+  render_ns_ += double(rendered);
+  swap_ns_ += double(end - blitted);
 }
 
 bool VtkView::render_now() {

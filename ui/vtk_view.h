@@ -130,6 +130,10 @@ class VtkView : public QWidget {
   /// Mean time of one frame (VTK render + blit + swap), ms, over the frames so far; and the
   /// time spent turning snapshots into VTK arrays (show_snapshot), ms per snapshot.
   double paint_ms() const { return frames_ ? paint_ns_ * 1e-6 / double(frames_) : 0.0; }
+  /// Of paint_ms(): VTK's render (until its frame is in its own framebuffer) and the swap
+  /// (the window system taking the view's pixels); the rest is the blit.
+  double render_ms() const { return frames_ ? render_ns_ * 1e-6 / double(frames_) : 0.0; }
+  double swap_ms() const { return frames_ ? swap_ns_ * 1e-6 / double(frames_) : 0.0; }
   double update_ms() const { return snapshots_ ? update_ns_ * 1e-6 / double(snapshots_) : 0.0; }
 
  signals:
@@ -169,7 +173,7 @@ class VtkView : public QWidget {
   vtkNew<vtkPoints> points_;
   vtkNew<vtkPolyData> surface_;
   vtkNew<vtkFloatArray> normals_;        // (nnode x 3) point normals of the surface
-  vtkNew<vtkActor> surface_actor_;
+  vtkSmartPointer<vtkActor> surface_actor_;  // a BlendedSkinActor (vtk_view.cpp)
   vtkNew<vtkFloatArray> scalars_;        // (nnode) displacement mm or stress kPa
   vtkNew<vtkLookupTable> lut_;
   vtkNew<vtkScalarBarActor> scalar_bar_;
@@ -198,7 +202,7 @@ class VtkView : public QWidget {
   QPoint last_pos_;
   quint64 frames_ = 0, snapshots_ = 0, skipped_ = 0;
   int tumour_cells_ = 0;
-  double paint_ns_ = 0, update_ns_ = 0;
+  double paint_ns_ = 0, update_ns_ = 0, render_ns_ = 0, swap_ns_ = 0;
 };
 
 }  // namespace palpation::ui
