@@ -39,6 +39,7 @@
 
 #include "contact_sphere.h"
 #include "fem_corotational.h"
+#include "lanes4.h"
 #include "solve_cg.h"
 
 namespace palpation::sim {
@@ -73,14 +74,15 @@ class CpuBackend final : public Backend {
  public:
   using V3 = fem::Vec3<T>;
   using M3 = fem::Mat3<T>;
+  using V4 = lanes::V4<T>;
 
   CpuBackend(const Model& model, const SimParams& params) : m_(model), p_(params) {
     const int nn = m_.num_nodes(), ne = m_.num_tets(), nf = m_.num_free();
-    x_.resize(3 * nn);
+    x_.resize(3 * nn + 1);  // + 1: four-lane loads of the last node (element())
     v_.resize(3 * nn);
     q_.resize(ne);
     ekrot_.resize(9 * std::size_t(ne));
-    eF_.resize(9 * std::size_t(ne));
+    eF_.resize(12 * std::size_t(ne));
     // Extra blocks and rows at the end (one per thread) take the contributions of fixed
     // nodes, so that the element loop has no branches (see element()).
 #ifdef _OPENMP
@@ -94,7 +96,6 @@ class CpuBackend final : public Backend {
     kv_.resize(3 * nf);
     vfree_.resize(3 * nf);
     build_element_tables();
-    precond_.resize(9 * std::size_t(nf));
     cg_.resize(3 * nf);
     update_materials();
     reset();
@@ -165,7 +166,7 @@ class CpuBackend final : public Backend {
     assembled_ = false;
   }
 
-  void positions(std::vector<double>& xyz) const override { xyz.assign(x_.begin(), x_.end()); }
+  void positions(std::vector<double>& xyz) const override { xyz.assign(x_.begin(), x_.begin() + 3 * m_.num_nodes()); }
   void velocities(std::vector<double>& xyz) const override { xyz.assign(v_.begin(), v_.end()); }
 
   StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
@@ -189,7 +190,7 @@ class CpuBackend final : public Backend {
     add_gravity_and_damping_rhs(h);
     add_contacts(fingers, h);
 
-    cg::BlockSystem<T> sys{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data(), precond_.data()};
+    cg::BlockSystem<T> sys{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data()};
     sys.scale = h * h + h * T(p_.damping.stiffness);  // (h^2 + h beta) K + D
     sys.diag = diag_.data();
     sys.diag_index = m_.diag_block.data();
@@ -284,15 +285,23 @@ class CpuBackend final : public Backend {
     ++steps_since_assembly_;
     if (!kept) std::fill(b_.begin(), b_.end(), T(0));
     const bool par = parallel();
-    for (const auto& colour : m_.colours) {
-      const int count = static_cast<int>(colour.size());
-#pragma omp parallel for schedule(static) if (par)
-      for (int c = 0; c < count; ++c) element(colour[c], full, kept, tol);
+    if (par) {
+      // Colour by colour: no two elements of a colour share a node, so threads never add
+      // to the same block or row.
+      for (const auto& colour : m_.colours) {
+        const int count = static_cast<int>(colour.size());
+#pragma omp parallel for schedule(static)
+        for (int c = 0; c < count; ++c) element(colour[c], full, kept, tol);
+      }
+    } else {
+      // One thread: in storage order, so the per-element arrays stream through the cache
+      // (the colours scatter them).
+      for (int e = 0; e < m_.num_tets(); ++e) element(e, full, kept, tol);
     }
     assembled_ = true;
     const int nf = m_.num_free();
     const T damp = T(p_.damping.stiffness) + h;
-    cg::BlockSystem<T> K{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data(), nullptr};
+    cg::BlockSystem<T> K{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data()};
     if (kept) {
       for (int i = 0; i < nf; ++i) {
         const int node = m_.free_nodes[i];
@@ -319,115 +328,103 @@ class CpuBackend final : public Backend {
   }
 
   // K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) I) for r_a = R g_a, without
-  // its identity part: column-major (cg::multiply) in kc; K_ba = K_ab^T column-major is
-  // K_ab row-major, kr. Both in storage order so that the adds are contiguous.
-  static void block_pair(const V3& lra, const V3& mra, const V3& rb, T kc[9], T kr[9]) {
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) {
-        kc[3 * j + i] = lra[i] * rb[j] + rb[i] * mra[j];
-        kr[3 * j + i] = lra[j] * rb[i] + rb[j] * mra[i];
-      }
-  }
-  // out += M y (M column-major 3x3) + mg y.
-  static void add_product(T* __restrict out, const T m[9], const V3& y, T mg) {
-    for (int i = 0; i < 3; ++i) out[i] += m[i] * y[0] + m[3 + i] * y[1] + m[6 + i] * y[2] + mg * y[i];
-  }
-
-  // Adds the element's rotated stiffness blocks for r_a = R g_a to blocks_, and when y is
-  // given (y_b = (R - I) X_b) sum_b K_ab y_b to b0_ at rows[a]. Symmetric: K_ba = K_ab^T,
-  // so 10 of the 16 blocks are computed.
-  void add_blocks(std::size_t e, const V3 r[4], const int blk[16], const V3* y, const int rows[4]) {
-    const T* gg = &egg_[10 * e];
-    const T la = evol_[e] * lambda_[e], mb = evol_[e] * mu_[e];
-    int pair = 0;
-    for (int a = 0; a < 4; ++a) {
-      const V3 lra = la * r[a], mra = mb * r[a];
-      for (int b = a; b < 4; ++b) {
-        const T mg = mb * gg[pair++];
-        T kc[9], kr[9];
-        block_pair(lra, mra, r[b], kc, kr);
-        T* __restrict dst = &blocks_[std::size_t(blk[4 * a + b])];
-        for (int i = 0; i < 9; ++i) dst[i] += kc[i];
-        dst[0] += mg;
-        dst[4] += mg;
-        dst[8] += mg;
-        if (y) add_product(&b0_[std::size_t(rows[a])], kc, y[b], mg);
-        if (b == a) continue;
-        T* __restrict tr = &blocks_[std::size_t(blk[4 * b + a])];
-        for (int i = 0; i < 9; ++i) tr[i] += kr[i];
-        tr[0] += mg;
-        tr[4] += mg;
-        tr[8] += mg;
-        if (y) add_product(&b0_[std::size_t(rows[b])], kr, y[a], mg);
-      }
+  // its identity part, by columns: column j of K_ab is lambda r_a (r_b)_j + mu r_b (r_a)_j,
+  // column j of K_ba = K_ab^T is lambda (r_a)_j r_b + mu (r_b)_j r_a (lra = V lambda r_a,
+  // mra = V mu r_a).
+  static void block_pair(V4 lra, V4 mra, V4 rb, V4 kc[3], V4 kr[3]) {
+    for (int j = 0; j < 3; ++j) {
+      kc[j] = lra * rb[j] + rb * mra[j];
+      kr[j] = rb * lra[j] + mra * rb[j];
     }
   }
 
-  // An element's re-rotation from (r0, y0) to (r1, y1): adds its new blocks minus its old
-  // ones (the identity parts cancel) and its new part of b0 minus its old one, in one pass
-  // over its blocks and rows.
-  void replace_blocks(std::size_t e, const V3 r0[4], const V3 y0[4], const V3 r1[4], const V3 y1[4], const int blk[16],
-                      const int rows[4]) {
+  // Adds an element's rotated stiffness blocks for r1 (r_a = R g_a) to blocks_, minus
+  // those for r0 when r0 is given (a re-rotation: the identity parts cancel), and when y1
+  // is given (y_b = (R - I) X_b) its part of b0, sum_b K_ab y_b, to b0_ at rows[a], minus
+  // the old part for r0, y0. Symmetric: K_ba = K_ab^T, so 10 of the 16 blocks are computed.
+  void rotate_blocks(std::size_t e, const V4 r1[4], const V4* y1, const V4* r0, const V4* y0, const int blk[16],
+                     const int rows[4]) {
     const T* gg = &egg_[10 * e];
     const T la = evol_[e] * lambda_[e], mb = evol_[e] * mu_[e];
+    V4 acc[4] = {};  // b0 rows
     int pair = 0;
     for (int a = 0; a < 4; ++a) {
-      const V3 lra0 = la * r0[a], mra0 = mb * r0[a], lra1 = la * r1[a], mra1 = mb * r1[a];
+      const V4 lra1 = la * r1[a], mra1 = mb * r1[a];
+      V4 lra0 = {}, mra0 = {};
+      if (r0) {
+        lra0 = la * r0[a];
+        mra0 = mb * r0[a];
+      }
       for (int b = a; b < 4; ++b) {
         const T mg = mb * gg[pair++];
-        T kc0[9], kr0[9], kc1[9], kr1[9];
-        block_pair(lra0, mra0, r0[b], kc0, kr0);
-        block_pair(lra1, mra1, r1[b], kc1, kr1);
-        T* __restrict dst = &blocks_[std::size_t(blk[4 * a + b])];
-        for (int i = 0; i < 9; ++i) dst[i] += kc1[i] - kc0[i];
-        T* __restrict ba = &b0_[std::size_t(rows[a])];
-        add_product(ba, kc1, y1[b], mg);
-        add_product(ba, kc0, -y0[b], mg);
-        if (b == a) continue;
-        T* __restrict tr = &blocks_[std::size_t(blk[4 * b + a])];
-        for (int i = 0; i < 9; ++i) tr[i] += kr1[i] - kr0[i];
-        T* __restrict bb = &b0_[std::size_t(rows[b])];
-        add_product(bb, kr1, y1[a], mg);
-        add_product(bb, kr0, -y0[a], mg);
+        V4 kc[3], kr[3];
+        block_pair(lra1, mra1, r1[b], kc, kr);
+        if (r0) {
+          V4 kc0[3], kr0[3];
+          block_pair(lra0, mra0, r0[b], kc0, kr0);
+          if (y1) {
+            acc[a] += lanes::mul<T>(kc, y1[b]) - lanes::mul<T>(kc0, y0[b]) + mg * (y1[b] - y0[b]);
+            if (b != a) acc[b] += lanes::mul<T>(kr, y1[a]) - lanes::mul<T>(kr0, y0[a]) + mg * (y1[a] - y0[a]);
+          }
+          for (int j = 0; j < 3; ++j) {
+            kc[j] -= kc0[j];
+            kr[j] -= kr0[j];
+          }
+        } else {
+          for (int j = 0; j < 3; ++j) {
+            kc[j][j] += mg;
+            kr[j][j] += mg;
+          }
+          if (y1) {
+            acc[a] += lanes::mul<T>(kc, y1[b]);
+            if (b != a) acc[b] += lanes::mul<T>(kr, y1[a]);
+          }
+        }
+        lanes::add_block<T>(&blocks_[std::size_t(blk[4 * a + b])], kc);
+        if (b != a) lanes::add_block<T>(&blocks_[std::size_t(blk[4 * b + a])], kr);
       }
     }
+    if (!y1) return;
+    for (int a = 0; a < 4; ++a) {
+      T* bb = &b0_[std::size_t(rows[a])];
+      for (int k = 0; k < 3; ++k) bb[k] += acc[a][k];
+    }
   }
+
+  // R v for R given by its columns, and (R - I) v.
+  static V4 rotate(const V4 Rc[3], const T* v) { return Rc[0] * v[0] + Rc[1] * v[1] + Rc[2] * v[2]; }
 
   void element(int e, bool full, bool kept, T tol) {
     const auto& t = m_.tets[e];
     const std::size_t es = std::size_t(e);
     const T* ge = &eg_[12 * es];
-    int thread = 0;
-#ifdef _OPENMP
-    thread = omp_get_thread_num();
-#endif
-    const int trash_row = 3 * (m_.num_free() + thread), trash_blk = 9 * (m_.num_blocks() + thread);
-    V3 x[4], g[4];
-    for (int a = 0; a < 4; ++a) {
-      const T* xa = &x_[3 * std::size_t(t[a])];
-      x[a] = V3(xa[0], xa[1], xa[2]);
-      g[a] = V3(ge[3 * a], ge[3 * a + 1], ge[3 * a + 2]);
-    }
-    const M3 F = fem::deformation_gradient<T>(x, g);
+    // F = sum_a x_a g_a^T by columns: column j is sum_a x_a (g_a)_j.
+    V4 xa[4];
+    for (int a = 0; a < 4; ++a) xa[a] = lanes::load4(&x_[3 * std::size_t(t[a])]);  // lane 3: not used
+    V4 Fc[3];
+    for (int j = 0; j < 3; ++j) Fc[j] = xa[0] * ge[j] + xa[1] * ge[3 + j] + xa[2] * ge[6 + j] + xa[3] * ge[9 + j];
     // Two tolerances, both `tol` (max abs entry): the rotation is re-extracted (warm
     // started) when F has moved more than tol since the last extraction, and the
     // element's stiffness blocks in K are re-rotated only when that R has moved more than
     // tol from the rotation they were built with (a push strains far more than it
-    // rotates: at 1e-3 about a quarter of the extractions re-rotate K).
-    T* Fref = &eF_[9 * es];
-    T* Rk = &ekrot_[9 * es];
-    bool extract = full;
-    if (!extract) {
-      T change = 0;
-      for (int i = 0; i < 9; ++i) change = std::max(change, std::abs(F.data()[i] - Fref[i]));
-      extract = !(change <= tol);  // NaN too
+    // rotates: at 1e-3 about half of the extractions re-rotate K).
+    T* Fref = &eF_[12 * es];
+    if (!full) {
+      const V4 d0 = Fc[0] - lanes::load4(Fref), d1 = Fc[1] - lanes::load4(Fref + 4), d2 = Fc[2] - lanes::load4(Fref + 8);
+      const T tt = tol * tol;
+      const auto ok = (d0 * d0 <= tt) & (d1 * d1 <= tt) & (d2 * d2 <= tt);  // NaN: not ok
+      // Not extracting implies the kept mode (tolerance 0 is always full): K, b0 and the
+      // force (b0 - K u) need nothing more of this element.
+      if (ok[0] && ok[1] && ok[2]) return;
     }
-    // Not extracting implies the kept mode (tolerance 0 is always full): K, b0 and the
-    // force (b0 - K u) need nothing more of this element.
-    if (!extract) return;
+    M3 F;
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) F(i, j) = Fc[j][i];
+      lanes::store4(Fref + 4 * j, Fc[j]);
+    }
     fem::extract_rotation<T>(F, q_[e]);
     const M3 R = q_[e].toRotationMatrix();
-    for (int i = 0; i < 9; ++i) Fref[i] = F.data()[i];
+    T* Rk = &ekrot_[9 * es];
     bool update = full;
     if (!update) {
       T change = 0;
@@ -435,6 +432,11 @@ class CpuBackend final : public Backend {
       update = !(change <= tol);
     }
     if (update) {
+      int thread = 0;
+#ifdef _OPENMP
+      thread = omp_get_thread_num();
+#endif
+      const int trash_row = 3 * (m_.num_free() + thread), trash_blk = 9 * (m_.num_blocks() + thread);
       int blk[16];
       for (int k = 0; k < 16; ++k) {
         const int v = eblk_[16 * es + k];
@@ -446,23 +448,22 @@ class CpuBackend final : public Backend {
         rows[a] = v < 0 ? trash_row : v;
       }
       const T* X = &eX_[12 * es];
-      V3 r[4], y[4];
+      const V4 Rc[3] = {lanes::load3(R.data()), lanes::load3(R.data() + 3), lanes::load3(R.data() + 6)};
+      V4 r[4], y[4];
       for (int a = 0; a < 4; ++a) {
-        r[a] = R * g[a];
-        const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
-        y[a] = R * Xa - Xa;
+        r[a] = rotate(Rc, ge + 3 * a);
+        y[a] = rotate(Rc, X + 3 * a) - lanes::load3(X + 3 * a);
       }
       if (full) {
-        add_blocks(es, r, blk, kept ? y : nullptr, rows);
+        rotate_blocks(es, r, kept ? y : nullptr, nullptr, nullptr, blk, rows);
       } else {  // the element's old blocks (and its part of b0) out, the new ones in
-        const M3 Rold = Eigen::Map<const M3>(Rk);
-        V3 r0[4], y0[4];
+        const V4 R0[3] = {lanes::load3(Rk), lanes::load3(Rk + 3), lanes::load3(Rk + 6)};
+        V4 r0[4], y0[4];
         for (int a = 0; a < 4; ++a) {
-          r0[a] = Rold * g[a];
-          const V3 Xa(X[3 * a], X[3 * a + 1], X[3 * a + 2]);
-          y0[a] = Rold * Xa - Xa;
+          r0[a] = rotate(R0, ge + 3 * a);
+          y0[a] = rotate(R0, X + 3 * a) - lanes::load3(X + 3 * a);
         }
-        replace_blocks(es, r0, y0, r, y, blk, rows);
+        rotate_blocks(es, r, y, r0, y0, blk, rows);
       }
       for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
     }
@@ -471,10 +472,15 @@ class CpuBackend final : public Backend {
     // formed once).
     const T vol = evol_[e];
     const M3 RS = -vol * (R * fem::linear_stress<T>(R.transpose() * F - M3::Identity(), lambda_[e], mu_[e]));
+    int thread = 0;
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+#endif
+    const int trash_row = 3 * (m_.num_free() + thread);
     for (int a = 0; a < 4; ++a) {
       const int v = erow_[4 * es + a];
       T* bb = &b_[std::size_t(v < 0 ? trash_row : v)];
-      const V3 f = RS * g[a];
+      const V3 f = RS * V3(ge[3 * a], ge[3 * a + 1], ge[3 * a + 2]);
       for (int k = 0; k < 3; ++k) bb[k] += f[k];
     }
   }
@@ -565,14 +571,13 @@ class CpuBackend final : public Backend {
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<T> eX_;                        // (ntet x 12) rest positions about the element's centroid
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
-  std::vector<T> eF_;                        // (ntet x 9) F at the element's last rotation extraction
+  std::vector<T> eF_;                        // (ntet x 12) F's columns (4 lanes) at the last extraction
   std::vector<T> ekrot_;                     // (ntet x 9) the rotation its blocks in K were built with
   std::vector<T> blocks_;                    // (nblock x 9) rotated stiffness K, column-major blocks, kept
   std::vector<T> diag_;                      // (nfree x 9) mass and contact diagonal D, per step
   std::vector<T> b_, dv_, kv_, vfree_;       // (nfree x 3)
   std::vector<T> dvprev_;                    // (nfree x 3) the solution before dv_ (warm start)
   std::vector<T> b0_;                        // (nfree x 3 + trash) sum of K_e (R_e - I) X_e, kept with K
-  std::vector<T> precond_;                   // (nfree x 9) inverse diagonal blocks
   cg::Workspace<T> cg_;
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force

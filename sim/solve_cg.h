@@ -12,6 +12,12 @@
 
 #include <Eigen/Dense>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "lanes4.h"
+
 namespace palpation::sim::cg {
 
 template <class T>
@@ -20,7 +26,6 @@ struct BlockSystem {
   const int* row_ptr;    // (n + 1)
   const int* col;        // (nblock)
   const T* blocks;       // (nblock x 9) column-major 3x3, plus one T of padding at the end
-  T* precond;            // (n x 9) workspace for the inverse diagonal blocks
   T scale = 1;           // A = scale * blocks + diag
   const T* diag = nullptr;       // (n x 9) column-major extra diagonal blocks + 1 T padding, or none
   const int* diag_index = nullptr;  // (n) block index of each row's diagonal, or none (searched)
@@ -29,7 +34,9 @@ struct BlockSystem {
 template <class T>
 struct Workspace {
   std::vector<T> r, z, p, q;
+  std::vector<T> precond;  // (n / 3 x 12) inverse diagonal blocks, columns of four lanes
   void resize(std::size_t n) {
+    precond.resize(4 * n);
     r.resize(n);
     z.resize(n);
     p.resize(n);
@@ -51,23 +58,28 @@ struct Result {
 /// value past each block (the array carries one value of padding) and is ignored.
 template <class T>
 void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bool parallel, T* dot_out = nullptr) {
-  typedef T V4 __attribute__((vector_size(4 * sizeof(T))));
-  auto load4 = [](const T* p) {
-    V4 v;
-    __builtin_memcpy(&v, p, sizeof(V4));
-    return v;
+  using V4 = lanes::V4<T>;
+  using lanes::load4;
+  // One block: three columns times x's three entries broadcast.
+  auto block = [](const T* __restrict b, const T* __restrict xx) {
+    const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
+    return load4(b) * x0 + load4(b + 3) * x1 + load4(b + 6) * x2;
   };
   T xy = 0;
 #pragma omp parallel for schedule(static) reduction(+ : xy) if (parallel)
   for (int i = 0; i < A.n; ++i) {
-    V4 acc = {0, 0, 0, 0};
+    // Two blocks per turn into two sums (half the loop overhead, two independent chains).
+    V4 acc = {0, 0, 0, 0}, acc2 = {0, 0, 0, 0};
+    const int* __restrict c = A.col;
+    int k = A.row_ptr[i];
     const int end = A.row_ptr[i + 1];
-    for (int k = A.row_ptr[i]; k < end; ++k) {
-      const T* __restrict b = A.blocks + 9 * std::size_t(k);
-      const T* __restrict xx = x + 3 * A.col[k];
-      const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
-      acc += load4(b) * x0 + load4(b + 3) * x1 + load4(b + 6) * x2;
+    const T* __restrict b = A.blocks + 9 * std::size_t(k);
+    for (; k + 2 <= end; k += 2, b += 18) {
+      acc += block(b, x + 3 * c[k]);
+      acc2 += block(b + 9, x + 3 * c[k + 1]);
     }
+    if (k < end) acc += block(b, x + 3 * c[k]);
+    acc += acc2;
     if (A.diag) {
       const T* __restrict d = A.diag + 9 * std::size_t(i);
       const T* __restrict xx = x + 3 * i;
@@ -92,9 +104,9 @@ T dot(const T* a, const T* b, int n, bool parallel) {
   return s;
 }
 
-/// Inverts the diagonal blocks of A into A.precond.
+/// Inverts the diagonal blocks of A into P (n x 12), by columns of four lanes (lane 3 zero).
 template <class T>
-void build_block_jacobi(const BlockSystem<T>& A) {
+void build_block_jacobi(const BlockSystem<T>& A, T* P) {
   using M3 = Eigen::Matrix<T, 3, 3>;
   for (int i = 0; i < A.n; ++i) {
     int k;
@@ -108,8 +120,63 @@ void build_block_jacobi(const BlockSystem<T>& A) {
     if (A.diag) D += Eigen::Map<const M3>(A.diag + 9 * std::size_t(i));
     M3 Dinv = D.inverse();
     if (!Dinv.allFinite()) Dinv.setZero();
-    Eigen::Map<Eigen::Matrix<T, 3, 3, Eigen::RowMajor>>(A.precond + 9 * std::size_t(i)) = Dinv;
+    T* Pi = P + 12 * std::size_t(i);
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) Pi[4 * c + r] = Dinv(r, c);
+      Pi[4 * c + 3] = 0;
+    }
   }
+}
+
+/// Over block rows [lo, hi): z = P r (block-Jacobi); returns r . z.
+template <class T>
+T precondition(const T* __restrict P, const T* __restrict r, T* __restrict z, int lo, int hi) {
+  using V4 = lanes::V4<T>;
+  V4 rz = {};
+  for (int i = lo; i < hi; ++i) {
+    const T* Pi = P + 12 * std::size_t(i);
+    const T* ri = r + 3 * std::size_t(i);
+    const V4 zi = lanes::load4(Pi) * ri[0] + lanes::load4(Pi + 4) * ri[1] + lanes::load4(Pi + 8) * ri[2];
+    z[3 * i] = zi[0];
+    z[3 * i + 1] = zi[1];
+    z[3 * i + 2] = zi[2];
+    rz += zi * lanes::load3(ri);
+  }
+  return rz[0] + rz[1] + rz[2];
+}
+
+/// Over entries [lo, hi): x += alpha p, r -= alpha q; returns r . r (four lanes at a time,
+/// the reduction in four partial sums, which scalar code cannot vectorise).
+template <class T>
+T update_x_r(T* __restrict x, T* __restrict r, const T* __restrict p, const T* __restrict q, T alpha, int lo, int hi) {
+  using V4 = lanes::V4<T>;
+  V4 rr = {};
+  int i = lo;
+  for (; i + 4 <= hi; i += 4) {
+    lanes::store4(x + i, lanes::load4(x + i) + alpha * lanes::load4(p + i));
+    const V4 ri = lanes::load4(r + i) - alpha * lanes::load4(q + i);
+    lanes::store4(r + i, ri);
+    rr += ri * ri;
+  }
+  T s = rr[0] + rr[1] + rr[2] + rr[3];
+  for (; i < hi; ++i) {
+    x[i] += alpha * p[i];
+    r[i] -= alpha * q[i];
+    s += r[i] * r[i];
+  }
+  return s;
+}
+
+/// The block rows [lo, hi) of this thread's share of n rows (all of them outside a
+/// parallel region).
+inline void thread_rows(int n, int& lo, int& hi) {
+  int t = 0, nt = 1;
+#ifdef _OPENMP
+  t = omp_get_thread_num();
+  nt = omp_get_num_threads();
+#endif
+  lo = int(std::int64_t(n) * t / nt);
+  hi = int(std::int64_t(n) * (t + 1) / nt);
 }
 
 /// Solves A x = b to ||b - A x|| <= tol ||b|| or max_iter iterations. Two passes over
@@ -119,12 +186,12 @@ template <class T>
 Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Workspace<T>& w, bool parallel) {
   const int n = 3 * A.n;
   w.resize(n);
-  build_block_jacobi(A);
+  build_block_jacobi(A, w.precond.data());
   T* __restrict r = w.r.data();
   T* __restrict z = w.z.data();
   T* __restrict p = w.p.data();
   T* __restrict q = w.q.data();
-  const T* __restrict P = A.precond;
+  const T* __restrict P = w.precond.data();
   Result res;
   const T bnorm = std::sqrt(dot(b, b, n, parallel));
   if (!(bnorm > 0)) {
@@ -147,16 +214,8 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
     }
     rnorm = bnorm;
   }
-  T rz = 0;
-  for (int i = 0; i < A.n; ++i) {
-    const T* Pi = P + 9 * std::size_t(i);
-    const T* ri = r + 3 * i;
-    for (int c = 0; c < 3; ++c) {
-      z[3 * i + c] = Pi[3 * c] * ri[0] + Pi[3 * c + 1] * ri[1] + Pi[3 * c + 2] * ri[2];
-      p[3 * i + c] = z[3 * i + c];
-      rz += ri[c] * z[3 * i + c];
-    }
-  }
+  T rz = precondition(P, r, z, 0, A.n);
+  for (int i = 0; i < n; ++i) p[i] = z[i];
   int it = 0;
   while (it < max_iter && rnorm > tol * bnorm) {
     T pq = 0;
@@ -164,21 +223,12 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
     if (!(pq > 0)) break;  // not positive definite along p (or NaN): stop, report
     const T alpha = rz / pq;
     T rz_new = 0, rr_new = 0;
-#pragma omp parallel for schedule(static) reduction(+ : rz_new, rr_new) if (parallel)
-    for (int i = 0; i < A.n; ++i) {
-      const T* Pi = P + 9 * std::size_t(i);
-      T ri[3];
-      for (int c = 0; c < 3; ++c) {
-        x[3 * i + c] += alpha * p[3 * i + c];
-        ri[c] = r[3 * i + c] - alpha * q[3 * i + c];
-        r[3 * i + c] = ri[c];
-      }
-      for (int c = 0; c < 3; ++c) {
-        const T zc = Pi[3 * c] * ri[0] + Pi[3 * c + 1] * ri[1] + Pi[3 * c + 2] * ri[2];
-        z[3 * i + c] = zc;
-        rz_new += ri[c] * zc;
-        rr_new += ri[c] * ri[c];
-      }
+#pragma omp parallel reduction(+ : rz_new, rr_new) if (parallel)
+    {
+      int lo, hi;
+      thread_rows(A.n, lo, hi);
+      rr_new += update_x_r(x, r, p, q, alpha, 3 * lo, 3 * hi);
+      rz_new += precondition(P, r, z, lo, hi);
     }
     rnorm = std::sqrt(rr_new);
     const T beta = rz_new / rz;

@@ -57,8 +57,8 @@ class TestSolveCg : public QObject {
     QCOMPARE(ldlt.info(), Eigen::Success);
     const Eigen::VectorXd x_ref = ldlt.solve(b);
 
-    std::vector<double> x(n, 0.0), pre(9 * std::size_t(s.m.num_free()));
-    cg::BlockSystem<double> sys{s.m.num_free(), s.m.row_ptr.data(), s.m.col.data(), s.blocks.data(), pre.data()};
+    std::vector<double> x(n, 0.0);
+    cg::BlockSystem<double> sys{s.m.num_free(), s.m.row_ptr.data(), s.m.col.data(), s.blocks.data()};
     cg::Workspace<double> w;
     const auto res = cg::solve(sys, b.data(), x.data(), 1e-12, 10000, w, false);
     QVERIFY(res.converged);
@@ -83,8 +83,8 @@ class TestSolveCg : public QObject {
   void capIsHonoured() {
     const System s = make_system(0.1);
     const int n = 3 * s.m.num_free();
-    std::vector<double> b(n, 1.0), x(n, 0.0), pre(9 * std::size_t(s.m.num_free()));
-    cg::BlockSystem<double> sys{s.m.num_free(), s.m.row_ptr.data(), s.m.col.data(), s.blocks.data(), pre.data()};
+    std::vector<double> b(n, 1.0), x(n, 0.0);
+    cg::BlockSystem<double> sys{s.m.num_free(), s.m.row_ptr.data(), s.m.col.data(), s.blocks.data()};
     cg::Workspace<double> w;
     const auto capped = cg::solve(sys, b.data(), x.data(), 1e-14, 7, w, false);
     QCOMPARE(capped.iterations, 7);
@@ -103,8 +103,8 @@ class TestSolveCg : public QObject {
     Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(s.A);
     const Eigen::VectorXd x_ref = ldlt.solve(b);
-    std::vector<float> bf(n, 1.0f), xf(n, 0.0f), blocks(s.blocks.begin(), s.blocks.end()), pre(9 * std::size_t(s.m.num_free()));
-    cg::BlockSystem<float> sys{s.m.num_free(), s.m.row_ptr.data(), s.m.col.data(), blocks.data(), pre.data()};
+    std::vector<float> bf(n, 1.0f), xf(n, 0.0f), blocks(s.blocks.begin(), s.blocks.end());
+    cg::BlockSystem<float> sys{s.m.num_free(), s.m.row_ptr.data(), s.m.col.data(), blocks.data()};
     cg::Workspace<float> w;
     const auto res = cg::solve(sys, bf.data(), xf.data(), 1e-5f, 10000, w, false);
     QVERIFY(res.converged);
