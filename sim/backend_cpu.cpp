@@ -69,6 +69,9 @@ constexpr int kParallelMinFree = 3000;
 // minute at 1 kHz).
 constexpr long kReassembleSteps = 65536;
 
+// Elements per stage of the element pass (CpuBackend::elements).
+constexpr int kChunk = 64;
+
 template <class T>
 class CpuBackend final : public Backend {
  public:
@@ -290,13 +293,16 @@ class CpuBackend final : public Backend {
       // to the same block or row.
       for (const auto& colour : m_.colours) {
         const int count = static_cast<int>(colour.size());
+        const int chunks = (count + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(static)
-        for (int c = 0; c < count; ++c) element(colour[c], full, kept, tol);
+        for (int k = 0; k < chunks; ++k)
+          elements(std::min(kChunk, count - k * kChunk), [&](int c) { return colour[k * kChunk + c]; }, full, kept, tol);
       }
     } else {
       // One thread: in storage order, so the per-element arrays stream through the cache
       // (the colours scatter them).
-      for (int e = 0; e < m_.num_tets(); ++e) element(e, full, kept, tol);
+      for (int e0 = 0; e0 < m_.num_tets(); e0 += kChunk)
+        elements(std::min(kChunk, m_.num_tets() - e0), [e0](int c) { return e0 + c; }, full, kept, tol);
     }
     assembled_ = true;
     const int nf = m_.num_free();
@@ -394,14 +400,45 @@ class CpuBackend final : public Backend {
   // R v for R given by its columns, and (R - I) v.
   static V4 rotate(const V4 Rc[3], const T* v) { return Rc[0] * v[0] + Rc[1] * v[1] + Rc[2] * v[2]; }
 
-  void element(int e, bool full, bool kept, T tol) {
+  // The element pass over `count` elements index(0..count-1) in three stages: F and its
+  // check for each, the rotation extraction of those that moved, four at a time
+  // (fem::extract_rotation4: independent chains side by side), then their blocks.
+  template <class Index>
+  void elements(int count, Index index, bool full, bool kept, T tol) {
+    int moved[kChunk];
+    V4 Fm[kChunk][3];
+    int n = 0;
+    for (int c = 0; c < count; ++c) {
+      const int e = index(c);
+      if (deformation(e, full, tol, Fm[n])) moved[n++] = e;
+    }
+    for (int k0 = 0; k0 < n; k0 += 4) {
+      V4 A[9], q[4];
+      for (int l = 0; l < 4; ++l) {
+        const int k = std::min(k0 + l, n - 1);  // a short last group repeats its last element
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) A[3 * j + i][l] = Fm[k][j][i];
+        const auto& qe = q_[moved[k]];
+        q[0][l] = qe.w();
+        q[1][l] = qe.x();
+        q[2][l] = qe.y();
+        q[3][l] = qe.z();
+      }
+      fem::extract_rotation4<T>(A, q);
+      for (int l = 0; l < 4 && k0 + l < n; ++l) q_[moved[k0 + l]] = Eigen::Quaternion<T>(q[0][l], q[1][l], q[2][l], q[3][l]);
+    }
+    for (int k = 0; k < n; ++k) element(moved[k], Fm[k], full, kept, tol);
+  }
+
+  // F = sum_a x_a g_a^T of element e into Fc (columns); true when its rotation is to be
+  // re-extracted (always when `full`), and then F is kept as the new reference.
+  bool deformation(int e, bool full, T tol, V4 Fc[3]) {
     const auto& t = m_.tets[e];
     const std::size_t es = std::size_t(e);
     const T* ge = &eg_[12 * es];
-    // F = sum_a x_a g_a^T by columns: column j is sum_a x_a (g_a)_j.
+    // Column j of F is sum_a x_a (g_a)_j.
     V4 xa[4];
     for (int a = 0; a < 4; ++a) xa[a] = lanes::load4(&x_[3 * std::size_t(t[a])]);  // lane 3: not used
-    V4 Fc[3];
     for (int j = 0; j < 3; ++j) Fc[j] = xa[0] * ge[j] + xa[1] * ge[3 + j] + xa[2] * ge[6 + j] + xa[3] * ge[9 + j];
     // Two tolerances, both `tol` (max abs entry): the rotation is re-extracted (warm
     // started) when F has moved more than tol since the last extraction, and the
@@ -415,14 +452,17 @@ class CpuBackend final : public Backend {
       const auto ok = (d0 * d0 <= tt) & (d1 * d1 <= tt) & (d2 * d2 <= tt);  // NaN: not ok
       // Not extracting implies the kept mode (tolerance 0 is always full): K, b0 and the
       // force (b0 - K u) need nothing more of this element.
-      if (ok[0] && ok[1] && ok[2]) return;
+      if (ok[0] && ok[1] && ok[2]) return false;
     }
-    M3 F;
-    for (int j = 0; j < 3; ++j) {
-      for (int i = 0; i < 3; ++i) F(i, j) = Fc[j][i];
-      lanes::store4(Fref + 4 * j, Fc[j]);
-    }
-    fem::extract_rotation<T>(F, q_[e]);
+    for (int j = 0; j < 3; ++j) lanes::store4(Fref + 4 * j, Fc[j]);
+    return true;
+  }
+
+  // Element e after its rotation q_[e] was re-extracted for F (columns Fc): its blocks
+  // re-rotated if R moved more than tol from theirs, and at tolerance 0 its force.
+  void element(int e, const V4 Fc[3], bool full, bool kept, T tol) {
+    const std::size_t es = std::size_t(e);
+    const T* ge = &eg_[12 * es];
     const M3 R = q_[e].toRotationMatrix();
     T* Rk = &ekrot_[9 * es];
     bool update = full;
@@ -471,6 +511,9 @@ class CpuBackend final : public Backend {
     // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
     // formed once).
     const T vol = evol_[e];
+    M3 F;
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) F(i, j) = Fc[j][i];
     const M3 RS = -vol * (R * fem::linear_stress<T>(R.transpose() * F - M3::Identity(), lambda_[e], mu_[e]));
     int thread = 0;
 #ifdef _OPENMP

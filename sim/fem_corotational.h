@@ -13,6 +13,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "lanes4.h"
+
 namespace palpation::sim::fem {
 
 template <class T>
@@ -64,6 +66,73 @@ void extract_rotation(const Mat3<T>& A, Eigen::Quaternion<T>& q, int iterations 
     const Eigen::Quaternion<T> dq(c, s * omega.x(), s * omega.y(), s * omega.z());
     q = dq * q;
     q.normalize();
+  }
+}
+
+/// extract_rotation for four matrices at once, one per lane (the same arithmetic per
+/// lane; a lane stops updating where the scalar loop would break). A[3 j + i] holds entry
+/// (i, j) of the four matrices, q[0..3] the quaternions' w, x, y, z, refined in place.
+/// The scalar loop is a chain of dependent divisions and square roots (latency-bound:
+/// most warm-started extractions run all four iterations); four independent chains side
+/// by side take about the time of one.
+template <class T>
+void extract_rotation4(const lanes::V4<T> A[9], lanes::V4<T> q[4], int iterations = kRotationIterations) {
+  using V4 = lanes::V4<T>;
+  using Mask = typename lanes::Lanes4<T>::Mask;
+  auto sqrt4 = [](V4 v) {
+    for (int k = 0; k < 4; ++k) v[k] = std::sqrt(v[k]);
+    return v;
+  };
+  Mask active = {-1, -1, -1, -1};
+  for (int it = 0; it < iterations; ++it) {
+    const V4 w = q[0], x = q[1], y = q[2], z = q[3];
+    // q.toRotationMatrix() (Eigen's formula), by columns.
+    const V4 tx = T(2) * x, ty = T(2) * y, tz = T(2) * z;
+    const V4 twx = tx * w, twy = ty * w, twz = tz * w, txx = tx * x, txy = ty * x, txz = tz * x, tyy = ty * y,
+             tyz = tz * y, tzz = tz * z;
+    const V4 R[9] = {T(1) - (tyy + tzz), txy + twz, txz - twy,   // column 0
+                     txy - twz, T(1) - (txx + tzz), tyz + twx,   // column 1
+                     txz + twy, tyz - twx, T(1) - (txx + tyy)};  // column 2
+    // omega = sum_c R.col(c) x A.col(c) / (|sum_c R.col(c) . A.col(c)| + 1e-9)
+    V4 ox = {}, oy = {}, oz = {}, dot = {};
+    for (int c = 0; c < 3; ++c) {
+      const V4 *r = R + 3 * c, *a = A + 3 * c;
+      ox += r[1] * a[2] - r[2] * a[1];
+      oy += r[2] * a[0] - r[0] * a[2];
+      oz += r[0] * a[1] - r[1] * a[0];
+      dot += r[0] * a[0] + r[1] * a[1] + r[2] * a[2];
+    }
+    const V4 denom = (dot < T(0) ? -dot : dot) + T(1e-9);
+    ox /= denom;
+    oy /= denom;
+    oz /= denom;
+    const V4 w2 = ox * ox + oy * oy + oz * oz;
+    const V4 wn = sqrt4(w2);
+    active &= ~(wn < rotation_tolerance<T>());  // the scalar loop's break (NaN goes on)
+    if (!(active[0] | active[1] | active[2] | active[3])) break;
+    // cos(w/2), sin(w/2)/w: the series below 1e-2, the functions lane by lane above.
+    V4 c = T(1) - w2 / T(8) + w2 * w2 / T(384);
+    V4 s = T(0.5) - w2 / T(48);
+    for (int k = 0; k < 4; ++k)
+      if (!(wn[k] < T(1e-2))) {
+        c[k] = std::cos(T(0.5) * wn[k]);
+        s[k] = std::sin(T(0.5) * wn[k]) / wn[k];
+      }
+    const V4 sx = s * ox, sy = s * oy, sz = s * oz;
+    // dq * q, dq = (c, s omega), then normalised.
+    V4 nw = c * w - (sx * x + sy * y + sz * z);
+    V4 nx = c * x + w * sx + (sy * z - sz * y);
+    V4 ny = c * y + w * sy + (sz * x - sx * z);
+    V4 nz = c * z + w * sz + (sx * y - sy * x);
+    const V4 norm = sqrt4(nw * nw + nx * nx + ny * ny + nz * nz);
+    nw /= norm;
+    nx /= norm;
+    ny /= norm;
+    nz /= norm;
+    q[0] = active ? nw : w;
+    q[1] = active ? nx : x;
+    q[2] = active ? ny : y;
+    q[3] = active ? nz : z;
   }
 }
 

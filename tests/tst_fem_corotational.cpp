@@ -210,6 +210,62 @@ class TestFemCorotational : public QObject {
     QVERIFY(f[3].z() > 0);  // pushed back up through the face
     for (int a = 0; a < 4; ++a) QVERIFY(f[a].allFinite());
   }
+
+  // The four-lane extraction (the CPU backend's) is the scalar one lane by lane: the same
+  // warm start and iteration count give the same rotation to round-off (1e-12 in double,
+  // 1e-5 in float: a few ulps of the iteration's divisions and roots), for mildly
+  // deformed, strongly rotated (past the series' 1e-2 rad, cos/sin lane by lane) and
+  // inverted elements, with lanes stopping at different iterations. And a NaN lane
+  // gives NaN like the scalar loop, without touching the others.
+  void fourLaneExtractionMatchesScalar() {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    auto check = [&](auto zero, double tol) {
+      using T = decltype(zero);
+      using V4 = palpation::sim::lanes::V4<T>;
+      for (int trial = 0; trial < 200; ++trial) {
+        V4 A[9], q[4];
+        Eigen::Quaternion<T> qs[4];
+        fem::Mat3<T> F[4];
+        for (int l = 0; l < 4; ++l) {
+          // Lane kinds: near identity, rotated by up to 1.5 rad, inverted, already converged.
+          const int kind = (trial + l) % 4;
+          const Eigen::Vector3d axis = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+          const double angle = kind == 1 ? 1.5 * u(rng) : 0.01 * u(rng);
+          M3 Fd = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) Fd(i, j) += (kind == 3 ? 0.0 : 0.05) * u(rng);
+          if (kind == 2) Fd.col(2) *= -0.5;  // det < 0
+          F[l] = Fd.cast<T>();
+          qs[l] = kind == 3 ? Eigen::Quaternion<T>(Eigen::AngleAxis<T>(T(angle), axis.cast<T>()))
+                            : Eigen::Quaternion<T>::Identity();
+          for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i) A[3 * j + i][l] = F[l](i, j);
+          q[0][l] = qs[l].w();
+          q[1][l] = qs[l].x();
+          q[2][l] = qs[l].y();
+          q[3][l] = qs[l].z();
+        }
+        fem::extract_rotation4<T>(A, q);
+        for (int l = 0; l < 4; ++l) {
+          fem::extract_rotation<T>(F[l], qs[l]);
+          const Eigen::Quaternion<T> ql(q[0][l], q[1][l], q[2][l], q[3][l]);
+          const double d = double((ql.toRotationMatrix() - qs[l].toRotationMatrix()).cwiseAbs().maxCoeff());
+          if (!(d <= tol)) qWarning("trial %d lane %d: differs by %g", trial, l, d);
+          QVERIFY(d <= tol);
+        }
+      }
+      // NaN in lane 1 only.
+      V4 A[9] = {}, q[4] = {{1, 1, 1, 1}, {}, {}, {}};
+      for (int j = 0; j < 3; ++j) A[4 * j] = V4{1, 1, 1, 1};  // identity in every lane
+      A[0][1] = std::numeric_limits<T>::quiet_NaN();
+      fem::extract_rotation4<T>(A, q);
+      QVERIFY(std::isnan(q[0][1]));
+      for (int l : {0, 2, 3}) QCOMPARE(double(q[0][l]), 1.0);
+    };
+    check(double(0), 1e-12);
+    check(float(0), 1e-5);
+  }
 };
 
 QTEST_APPLESS_MAIN(TestFemCorotational)
