@@ -146,7 +146,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     opt.warmup = 20;
     settings = {{1e-6, 500}, {1e-3, 500}, {1e-10, 10}};
   } else {
-    settings = {{1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20}};
+    settings = {{3e-2, 1000}, {1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20}};
   }
   const auto avail = sim::available_backends();
   if (opt.backends.empty()) opt.backends = avail;
