@@ -163,10 +163,23 @@ class TstReview : public QObject {
     // In Japanese (the .qm compiled from translations/palpation_ja.ts): the review's own
     // strings follow a language change; a missing or stale catalogue leaves them English.
     {
+      // The recorded events are English in the file (data); the list shows them in the
+      // chosen language (ui/recorded_text.h).
+      QStringList events_en;
+      for (int i = 0; i < rw.marker_list()->count(); ++i) events_en << rw.marker_list()->item(i)->text();
       QTranslator ja;
       QVERIFY(ja.load(QStringLiteral(":/i18n/palpation_ja.qm")));
       QCoreApplication::installTranslator(&ja);
       QTRY_COMPARE(rw.play_button()->text(), QStringLiteral("再生"));
+      QStringList events_ja, same;
+      for (int i = 0; i < rw.marker_list()->count(); ++i) events_ja << rw.marker_list()->item(i)->text();
+      QCOMPARE(events_ja.size(), events_en.size());
+      for (qsizetype i = 0; i < events_en.size(); ++i) {
+        qInfo("event: %s | %s", qPrintable(events_en[i]), qPrintable(events_ja[i]));
+        if (events_ja[i] == events_en[i]) same << events_en[i];
+      }
+      QVERIFY2(events_en.size() >= 3 && same.isEmpty(), qPrintable(QStringLiteral("still English: ") + same.join(QStringLiteral(" | "))));
+      QVERIFY2(events_ja.join(QLatin1Char('\n')).contains(QStringLiteral("研修生のマーク 1（")), qPrintable(events_ja.join(QLatin1Char('\n'))));
       QCOMPARE(rw.windowTitle(), QStringLiteral("レビュー: scripted.palrec"));
       QStringList buttons;
       for (auto* b : rw.findChildren<QPushButton*>()) buttons << b->text();
@@ -174,6 +187,7 @@ class TstReview : public QObject {
                qPrintable(buttons.join(QStringLiteral(" | "))));
       QCoreApplication::removeTranslator(&ja);
       QTRY_COMPARE(rw.play_button()->text(), QStringLiteral("Play"));
+      QCOMPARE(rw.marker_list()->item(0)->text(), events_en.front());
     }
 
     // Scrub: the time, the plots' cursor and the 3-D frame follow.
@@ -284,6 +298,23 @@ class TstReview : public QObject {
     QVERIFY(builtins.size() >= 17);
     for (const auto& p : builtins) QVERIFY2(names.contains(QString::fromStdString(p.name)), p.name.c_str());
     QVERIFY(names.contains(QLatin1String("phantom:box")));
+    // The built-in patients' descriptions (English in the library) follow the language:
+    // every one differs in Japanese, and reads as stored again in English.
+    auto description = [&](const std::string& name) {
+      return chooser->itemData(chooser->findData(QString::fromStdString(name)), Qt::ToolTipRole).toString();
+    };
+    for (const auto& p : builtins) QCOMPARE(description(p.name), QString::fromStdString(p.description));
+    QVERIFY(w->set_language(QStringLiteral("ja")));
+    QCoreApplication::sendPostedEvents(nullptr, QEvent::LanguageChange);
+    QStringList untranslated;
+    for (const auto& p : builtins)
+      if (description(p.name) == QString::fromStdString(p.description)) untranslated << QString::fromStdString(p.description);
+    QVERIFY2(untranslated.isEmpty(), qPrintable(QStringLiteral("still English: ") + untranslated.join(QStringLiteral(" | "))));
+    QCOMPARE(description("breast-small"), QStringLiteral("健康な乳房、小さめ（339 mL）、腫瘍なし"));
+    QCOMPARE(description("tumour-1.0cm-mid-firm"), QStringLiteral("中くらいの乳房、硬めの腫瘍 直径 1.0 cm（107 kPa）、中心は皮膚の下 2.5 cm"));
+    QVERIFY(w->set_language(QStringLiteral("en")));
+    QCoreApplication::sendPostedEvents(nullptr, QEvent::LanguageChange);
+    for (const auto& p : builtins) QCOMPARE(description(p.name), QString::fromStdString(p.description));
 
     auto& ws = w->workstation();
     const std::uint64_t gen = ws.geometry()->generation;

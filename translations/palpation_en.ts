@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="40"/>
+        <location filename="../ui/panels.cpp" line="41"/>
         <source>Thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="40"/>
+        <location filename="../ui/panels.cpp" line="41"/>
         <source>Index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="42"/>
         <source>Middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="42"/>
         <source>Ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="42"/>
+        <location filename="../ui/panels.cpp" line="43"/>
         <source>Little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -60,6 +60,7 @@
 <context>
     <name>QObject</name>
     <message>
+        <location filename="../ui/recorded_text.cpp" line="19"/>
         <location filename="../ui/tumour_editor.cpp" line="43"/>
         <source>Undo: %1</source>
         <translation type="unfinished"></translation>
@@ -68,27 +69,27 @@
 <context>
     <name>ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="31"/>
+        <location filename="../ui/review_window.cpp" line="32"/>
         <source>thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="31"/>
+        <location filename="../ui/review_window.cpp" line="32"/>
         <source>index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="33"/>
         <source>middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="33"/>
         <source>ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="33"/>
+        <location filename="../ui/review_window.cpp" line="34"/>
         <source>little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -96,47 +97,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="396"/>
+        <location filename="../ui/panels.cpp" line="401"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="397"/>
+        <location filename="../ui/panels.cpp" line="402"/>
         <source>Mouse palpation (no robot)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="398"/>
+        <location filename="../ui/panels.cpp" line="403"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="399"/>
+        <location filename="../ui/panels.cpp" line="404"/>
         <source>HandHIRO address</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="400"/>
+        <location filename="../ui/panels.cpp" line="405"/>
         <source>Loop jitter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="401"/>
+        <location filename="../ui/panels.cpp" line="406"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="414"/>
+        <location filename="../ui/panels.cpp" line="419"/>
         <source>attached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="414"/>
+        <location filename="../ui/panels.cpp" line="419"/>
         <source>released</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="416"/>
+        <location filename="../ui/panels.cpp" line="421"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -776,105 +777,243 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="110"/>
+        <location filename="../ui/panels.cpp" line="112"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="111"/>
+        <location filename="../ui/panels.cpp" line="113"/>
         <source>Box phantom</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="112"/>
+        <location filename="../ui/panels.cpp" line="114"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="113"/>
+        <location filename="../ui/panels.cpp" line="115"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="115"/>
+        <location filename="../ui/panels.cpp" line="120"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="116"/>
+        <location filename="../ui/panels.cpp" line="121"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="117"/>
+        <location filename="../ui/panels.cpp" line="122"/>
         <source>Fine (GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="118"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="119"/>
+        <location filename="../ui/panels.cpp" line="124"/>
         <source>Resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="120"/>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="121"/>
+        <location filename="../ui/panels.cpp" line="126"/>
         <source>Poisson ratio</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="127"/>
         <source>Load patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="128"/>
         <source>Import scan...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="124"/>
+        <location filename="../ui/panels.cpp" line="129"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="125"/>
+        <location filename="../ui/panels.cpp" line="130"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::RecordedText</name>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="41"/>
+        <source>device: mouse palpation</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="42"/>
+        <source>device: scripted hand</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="43"/>
+        <source>trainee mode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="44"/>
+        <source>instructor mode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="45"/>
+        <source>solver/contact parameters changed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="49"/>
+        <source>trainee mark %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="50"/>
+        <source>trainee mark %1 at (%2, %3, %4) cm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="52"/>
+        <source>: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="56"/>
+        <source>patient loaded: %1 nodes, %2 tetrahedra, backend %3</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="57"/>
+        <source>loading patient: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="58"/>
+        <source>patient not loaded: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="59"/>
+        <source>simulation stopped: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="61"/>
+        <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="63"/>
+        <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="64"/>
+        <source>change: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="77"/>
+        <source>small</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="78"/>
+        <source>medium</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="79"/>
+        <source>large</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="80"/>
+        <source>wide and flat</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="81"/>
+        <source>narrow and projecting</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="82"/>
+        <source>Healthy breast, %1 (%2 mL), no tumour</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="83"/>
+        <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="86"/>
+        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <source>soft</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <source>firm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <source>hard</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="93"/>
+        <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>palpation::ui::ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="193"/>
+        <location filename="../ui/review_window.cpp" line="194"/>
         <source>Export the session as CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="193"/>
+        <location filename="../ui/review_window.cpp" line="194"/>
         <source>CSV files (*.csv)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="195"/>
+        <location filename="../ui/review_window.cpp" line="196"/>
         <source>Export CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="198"/>
+        <location filename="../ui/review_window.cpp" line="199"/>
         <source>Folder for the PNG frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/review_window.cpp" line="201"/>
+        <location filename="../ui/review_window.cpp" line="202"/>
         <source>%n frame(s) written to %1</source>
         <translation>
             <numerusform>%n frame written to %1</numerusform>
@@ -882,115 +1021,115 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="246"/>
+        <location filename="../ui/review_window.cpp" line="247"/>
         <source>Review: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="247"/>
-        <location filename="../ui/review_window.cpp" line="292"/>
+        <location filename="../ui/review_window.cpp" line="248"/>
+        <location filename="../ui/review_window.cpp" line="299"/>
         <source>Pause</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="247"/>
-        <location filename="../ui/review_window.cpp" line="292"/>
-        <location filename="../ui/review_window.cpp" line="301"/>
+        <location filename="../ui/review_window.cpp" line="248"/>
+        <location filename="../ui/review_window.cpp" line="299"/>
+        <location filename="../ui/review_window.cpp" line="308"/>
         <source>Play</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="248"/>
+        <location filename="../ui/review_window.cpp" line="249"/>
         <source>Speed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="249"/>
+        <location filename="../ui/review_window.cpp" line="250"/>
         <source>Export CSV...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="250"/>
+        <location filename="../ui/review_window.cpp" line="251"/>
         <source>Export PNG frames...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="251"/>
+        <location filename="../ui/review_window.cpp" line="252"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="253"/>
+        <location filename="../ui/review_window.cpp" line="260"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="254"/>
+        <location filename="../ui/review_window.cpp" line="261"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="258"/>
+        <location filename="../ui/review_window.cpp" line="265"/>
         <source>%1 (re-sim.)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="260"/>
+        <location filename="../ui/review_window.cpp" line="267"/>
         <source>now</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="261"/>
+        <location filename="../ui/review_window.cpp" line="268"/>
         <source>Events</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="356"/>
+        <location filename="../ui/review_window.cpp" line="363"/>
         <source>Re-simulation stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="359"/>
+        <location filename="../ui/review_window.cpp" line="366"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="368"/>
+        <location filename="../ui/review_window.cpp" line="375"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="375"/>
+        <location filename="../ui/review_window.cpp" line="382"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="376"/>
+        <location filename="../ui/review_window.cpp" line="383"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="378"/>
+        <location filename="../ui/review_window.cpp" line="385"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="382"/>
+        <location filename="../ui/review_window.cpp" line="389"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="391"/>
+        <location filename="../ui/review_window.cpp" line="398"/>
         <source>The recording was interrupted: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="392"/>
+        <location filename="../ui/review_window.cpp" line="399"/>
         <source>The recording was recovered after an interruption.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="399"/>
+        <location filename="../ui/review_window.cpp" line="406"/>
         <source>Written: %1</source>
         <translation type="unfinished"></translation>
     </message>
@@ -998,92 +1137,92 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="320"/>
+        <location filename="../ui/panels.cpp" line="325"/>
         <source>Backend</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="321"/>
+        <location filename="../ui/panels.cpp" line="326"/>
         <source>CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="322"/>
+        <location filename="../ui/panels.cpp" line="327"/>
         <source>CG max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="323"/>
+        <location filename="../ui/panels.cpp" line="328"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="324"/>
+        <location filename="../ui/panels.cpp" line="329"/>
         <source>Safety</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="325"/>
+        <location filename="../ui/panels.cpp" line="330"/>
         <source>Step time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="326"/>
+        <location filename="../ui/panels.cpp" line="331"/>
         <source>CG iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="327"/>
+        <location filename="../ui/panels.cpp" line="332"/>
         <source>Simulation rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="328"/>
+        <location filename="../ui/panels.cpp" line="333"/>
         <source>Haptic rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="329"/>
+        <location filename="../ui/panels.cpp" line="334"/>
         <source>Apply solver settings</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="330"/>
+        <location filename="../ui/panels.cpp" line="335"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="342"/>
+        <location filename="../ui/panels.cpp" line="347"/>
         <source>stopped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="343"/>
+        <location filename="../ui/panels.cpp" line="348"/>
         <source>loading</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="344"/>
+        <location filename="../ui/panels.cpp" line="349"/>
         <source>running</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="345"/>
+        <location filename="../ui/panels.cpp" line="350"/>
         <source>swapping</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>error: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="351"/>
+        <location filename="../ui/panels.cpp" line="356"/>
         <source>no fault</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="352"/>
+        <location filename="../ui/panels.cpp" line="357"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>%n backend fallback</numerusform>
@@ -1091,7 +1230,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="353"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>%n divergence reset</numerusform>
@@ -1099,18 +1238,18 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="354"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>forces held and blended</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="358"/>
+        <location filename="../ui/panels.cpp" line="363"/>
         <source>%1 ms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
-        <location filename="../ui/panels.cpp" line="361"/>
+        <location filename="../ui/panels.cpp" line="365"/>
+        <location filename="../ui/panels.cpp" line="366"/>
         <source>%1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1270,103 +1409,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="229"/>
-        <location filename="../ui/panels.cpp" line="255"/>
+        <location filename="../ui/panels.cpp" line="234"/>
+        <location filename="../ui/panels.cpp" line="260"/>
         <source>Source: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="256"/>
+        <location filename="../ui/panels.cpp" line="261"/>
         <source>Preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="257"/>
+        <location filename="../ui/panels.cpp" line="262"/>
         <source>Stiffness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="258"/>
+        <location filename="../ui/panels.cpp" line="263"/>
         <source>Add by shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="259"/>
+        <location filename="../ui/panels.cpp" line="264"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="260"/>
+        <location filename="../ui/panels.cpp" line="265"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="261"/>
+        <location filename="../ui/panels.cpp" line="266"/>
         <source>Shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="262"/>
+        <location filename="../ui/panels.cpp" line="267"/>
         <source>Centre x, y, z</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="263"/>
+        <location filename="../ui/panels.cpp" line="268"/>
         <source>Radius (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="264"/>
+        <location filename="../ui/panels.cpp" line="269"/>
         <source>Add tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="265"/>
+        <location filename="../ui/panels.cpp" line="270"/>
         <source>Remove selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="266"/>
+        <location filename="../ui/panels.cpp" line="271"/>
         <source>Brush</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="267"/>
+        <location filename="../ui/panels.cpp" line="272"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="268"/>
+        <location filename="../ui/panels.cpp" line="273"/>
         <source>Depth below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="269"/>
+        <location filename="../ui/panels.cpp" line="274"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="270"/>
+        <location filename="../ui/panels.cpp" line="275"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="271"/>
+        <location filename="../ui/panels.cpp" line="276"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="277"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="278"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="279"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1374,22 +1513,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="360"/>
+        <location filename="../ui/vtk_view.cpp" line="542"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="363"/>
+        <location filename="../ui/vtk_view.cpp" line="545"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="559"/>
+        <location filename="../ui/vtk_view.cpp" line="741"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="561"/>
+        <location filename="../ui/vtk_view.cpp" line="743"/>
         <source>the view is not initialised yet</source>
         <translation type="unfinished"></translation>
     </message>

@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="40"/>
+        <location filename="../ui/panels.cpp" line="41"/>
         <source>Thumb</source>
         <translation>親指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="40"/>
+        <location filename="../ui/panels.cpp" line="41"/>
         <source>Index</source>
         <translation>人差し指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="42"/>
         <source>Middle</source>
         <translation>中指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="42"/>
         <source>Ring</source>
         <translation>薬指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="42"/>
+        <location filename="../ui/panels.cpp" line="43"/>
         <source>Little</source>
         <translation>小指</translation>
     </message>
@@ -60,6 +60,7 @@
 <context>
     <name>QObject</name>
     <message>
+        <location filename="../ui/recorded_text.cpp" line="19"/>
         <location filename="../ui/tumour_editor.cpp" line="43"/>
         <source>Undo: %1</source>
         <translation>取り消し: %1</translation>
@@ -68,27 +69,27 @@
 <context>
     <name>ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="31"/>
+        <location filename="../ui/review_window.cpp" line="32"/>
         <source>thumb</source>
         <translation>親指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="31"/>
+        <location filename="../ui/review_window.cpp" line="32"/>
         <source>index</source>
         <translation>人差し指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="33"/>
         <source>middle</source>
         <translation>中指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="33"/>
         <source>ring</source>
         <translation>薬指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="33"/>
+        <location filename="../ui/review_window.cpp" line="34"/>
         <source>little</source>
         <translation>小指</translation>
     </message>
@@ -96,47 +97,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="396"/>
+        <location filename="../ui/panels.cpp" line="401"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation>シミュレーションの HandHIRO（自動触診）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="397"/>
+        <location filename="../ui/panels.cpp" line="402"/>
         <source>Mouse palpation (no robot)</source>
         <translation>マウス触診（ロボットなし）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="398"/>
+        <location filename="../ui/panels.cpp" line="403"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="399"/>
+        <location filename="../ui/panels.cpp" line="404"/>
         <source>HandHIRO address</source>
         <translation>HandHIRO アドレス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="400"/>
+        <location filename="../ui/panels.cpp" line="405"/>
         <source>Loop jitter</source>
         <translation>ループのジッタ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="401"/>
+        <location filename="../ui/panels.cpp" line="406"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation>HandHIRO のネットワーク接続は起動時に選びます: palpation-trainer --device emulator、または --device handhiro --robot アドレス:ポート</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="414"/>
+        <location filename="../ui/panels.cpp" line="419"/>
         <source>attached</source>
         <translation>装着</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="414"/>
+        <location filename="../ui/panels.cpp" line="419"/>
         <source>released</source>
         <translation>解放</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="416"/>
+        <location filename="../ui/panels.cpp" line="421"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation>%1 µs（0.5 秒間の最大）</translation>
     </message>
@@ -776,220 +777,358 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="110"/>
+        <location filename="../ui/panels.cpp" line="112"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
         <translation>乳房ファントム（論文の腫瘍）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="111"/>
+        <location filename="../ui/panels.cpp" line="113"/>
         <source>Box phantom</source>
         <translation>直方体ファントム</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="112"/>
+        <location filename="../ui/panels.cpp" line="114"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
         <translation>論文の乳房と腫瘍（x = 12.5 cm、107 kPa）。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="113"/>
+        <location filename="../ui/panels.cpp" line="115"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
         <translation>10 x 10 x 5 cm の組織ブロック、腫瘍なし。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="115"/>
+        <location filename="../ui/panels.cpp" line="120"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation>粗い（約 1,000 節点、CPU でリアルタイム）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="116"/>
+        <location filename="../ui/panels.cpp" line="121"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation>論文（約 9,100 節点、GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="117"/>
+        <location filename="../ui/panels.cpp" line="122"/>
         <source>Fine (GPU)</source>
         <translation>細かい（GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="118"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="119"/>
+        <location filename="../ui/panels.cpp" line="124"/>
         <source>Resolution</source>
         <translation>解像度</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="120"/>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation>組織のヤング率</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="121"/>
+        <location filename="../ui/panels.cpp" line="126"/>
         <source>Poisson ratio</source>
         <translation>ポアソン比</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="127"/>
         <source>Load patient</source>
         <translation>患者を読み込む</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="128"/>
         <source>Import scan...</source>
         <translation>スキャンを取り込む...</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="124"/>
+        <location filename="../ui/panels.cpp" line="129"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation>ライブラリの患者（内蔵の乳房形状、大きさ・深さ・硬さ別の腫瘍症例、取り込んだスキャン）と内蔵ファントム。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="125"/>
+        <location filename="../ui/panels.cpp" line="130"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation>ファントム患者のみ。取り込んだスキャンはメッシュ生成時の解像度のままです。</translation>
     </message>
 </context>
 <context>
+    <name>palpation::ui::RecordedText</name>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="41"/>
+        <source>device: mouse palpation</source>
+        <translation>デバイス: マウスで触診</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="42"/>
+        <source>device: scripted hand</source>
+        <translation>デバイス: 自動触診ハンド</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="43"/>
+        <source>trainee mode</source>
+        <translation>研修生モード</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="44"/>
+        <source>instructor mode</source>
+        <translation>指導者モード</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="45"/>
+        <source>solver/contact parameters changed</source>
+        <translation>ソルバー／接触のパラメータを変更</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="49"/>
+        <source>trainee mark %1</source>
+        <translation>研修生のマーク %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="50"/>
+        <source>trainee mark %1 at (%2, %3, %4) cm</source>
+        <translation>研修生のマーク %1（%2, %3, %4 cm）</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="52"/>
+        <source>: %1</source>
+        <translation>: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="56"/>
+        <source>patient loaded: %1 nodes, %2 tetrahedra, backend %3</source>
+        <translation>患者を読み込みました: 節点 %1、四面体 %2、バックエンド %3</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="57"/>
+        <source>loading patient: %1</source>
+        <translation>患者を読み込み中: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="58"/>
+        <source>patient not loaded: %1</source>
+        <translation>患者を読み込めませんでした: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="59"/>
+        <source>simulation stopped: %1</source>
+        <translation>シミュレーションが停止しました: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="61"/>
+        <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
+        <translation>バックエンドのエラー: %1。静止状態から CPU で続行します（力を保持してから滑らかに切り替え）</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="63"/>
+        <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
+        <translation>シミュレーションが発散しました（%1）: 物体を静止状態に戻しました（力を保持してから滑らかに切り替え）</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="64"/>
+        <source>change: %1</source>
+        <translation>変更: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="77"/>
+        <source>small</source>
+        <translation>小さめ</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="78"/>
+        <source>medium</source>
+        <translation>中くらい</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="79"/>
+        <source>large</source>
+        <translation>大きめ</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="80"/>
+        <source>wide and flat</source>
+        <translation>広く平ら</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="81"/>
+        <source>narrow and projecting</source>
+        <translation>細く突出</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="82"/>
+        <source>Healthy breast, %1 (%2 mL), no tumour</source>
+        <translation>健康な乳房、%1（%2 mL）、腫瘍なし</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="83"/>
+        <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
+        <translation>健康な乳房、%1（%2 mL、論文の大きさ）、腫瘍なし</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="86"/>
+        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
+        <translation>論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、皮膚の下 1.5 cm</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <source>soft</source>
+        <translation>柔らかい</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <source>firm</source>
+        <translation>硬めの</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <source>hard</source>
+        <translation>硬い</translation>
+    </message>
+    <message>
+        <location filename="../ui/recorded_text.cpp" line="93"/>
+        <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
+        <translation>中くらいの乳房、%1腫瘍 直径 %2 cm（%3 kPa）、中心は皮膚の下 %4 cm</translation>
+    </message>
+</context>
+<context>
     <name>palpation::ui::ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="193"/>
+        <location filename="../ui/review_window.cpp" line="194"/>
         <source>Export the session as CSV</source>
         <translation>セッションを CSV で出力</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="193"/>
+        <location filename="../ui/review_window.cpp" line="194"/>
         <source>CSV files (*.csv)</source>
         <translation>CSV ファイル (*.csv)</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="195"/>
+        <location filename="../ui/review_window.cpp" line="196"/>
         <source>Export CSV</source>
         <translation>CSV 出力</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="198"/>
+        <location filename="../ui/review_window.cpp" line="199"/>
         <source>Folder for the PNG frames</source>
         <translation>PNG フレームの保存先フォルダ</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/review_window.cpp" line="201"/>
+        <location filename="../ui/review_window.cpp" line="202"/>
         <source>%n frame(s) written to %1</source>
         <translation>
             <numerusform>%1 に %n フレームを書き出しました</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="246"/>
+        <location filename="../ui/review_window.cpp" line="247"/>
         <source>Review: %1</source>
         <translation>レビュー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="247"/>
-        <location filename="../ui/review_window.cpp" line="292"/>
+        <location filename="../ui/review_window.cpp" line="248"/>
+        <location filename="../ui/review_window.cpp" line="299"/>
         <source>Pause</source>
         <translation>一時停止</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="247"/>
-        <location filename="../ui/review_window.cpp" line="292"/>
-        <location filename="../ui/review_window.cpp" line="301"/>
+        <location filename="../ui/review_window.cpp" line="248"/>
+        <location filename="../ui/review_window.cpp" line="299"/>
+        <location filename="../ui/review_window.cpp" line="308"/>
         <source>Play</source>
         <translation>再生</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="248"/>
+        <location filename="../ui/review_window.cpp" line="249"/>
         <source>Speed</source>
         <translation>速度</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="249"/>
+        <location filename="../ui/review_window.cpp" line="250"/>
         <source>Export CSV...</source>
         <translation>CSV 出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="250"/>
+        <location filename="../ui/review_window.cpp" line="251"/>
         <source>Export PNG frames...</source>
         <translation>PNG フレーム出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="251"/>
+        <location filename="../ui/review_window.cpp" line="252"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation>指導者のイベントと研修生のマーク（クリックでその時刻へ移動）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="253"/>
+        <location filename="../ui/review_window.cpp" line="260"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation>各指先の力 (N): デバイスへ送った力（実線）、再シミュレーションの力（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="254"/>
+        <location filename="../ui/review_window.cpp" line="261"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation>各指先の力 (N): 記録（実線）、再シミュレーション（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="258"/>
+        <location filename="../ui/review_window.cpp" line="265"/>
         <source>%1 (re-sim.)</source>
         <translation>%1（再計算）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="260"/>
+        <location filename="../ui/review_window.cpp" line="267"/>
         <source>now</source>
         <translation>現在</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="261"/>
+        <location filename="../ui/review_window.cpp" line="268"/>
         <source>Events</source>
         <translation>イベント</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="356"/>
+        <location filename="../ui/review_window.cpp" line="363"/>
         <source>Re-simulation stopped: %1</source>
         <translation>再シミュレーションが停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="359"/>
+        <location filename="../ui/review_window.cpp" line="366"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: %4 N（%6 秒の%5、記録された最大の力 %7 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="368"/>
+        <location filename="../ui/review_window.cpp" line="375"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: 0 N（記録された最大の力 %4 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="375"/>
+        <location filename="../ui/review_window.cpp" line="382"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation>再現しました: 同じバックエンドと設定で同じ力になります。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="376"/>
+        <location filename="../ui/review_window.cpp" line="383"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation>完全には再現されていません（バックエンドまたは設定が異なります）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="378"/>
+        <location filename="../ui/review_window.cpp" line="385"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation>1 kHz で送った力はシミュレーションの力と最大 %1 N 異なります（力覚ループの局所接触モデル、カップリング、安全フィルタによる）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="382"/>
+        <location filename="../ui/review_window.cpp" line="389"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation>記録されたデバイス入力から、シナリオの時間刻みで %2 ティック中 %1 ティックを再シミュレーションしました（バックエンド %3）。記録された力との最大差: %4 N（記録された最大の力 %5 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="391"/>
+        <location filename="../ui/review_window.cpp" line="398"/>
         <source>The recording was interrupted: %1</source>
         <translation>記録は途中で中断されています: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="392"/>
+        <location filename="../ui/review_window.cpp" line="399"/>
         <source>The recording was recovered after an interruption.</source>
         <translation>この記録は中断の後に復元されたものです。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="399"/>
+        <location filename="../ui/review_window.cpp" line="406"/>
         <source>Written: %1</source>
         <translation>書き出しました: %1</translation>
     </message>
@@ -997,117 +1136,117 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="320"/>
+        <location filename="../ui/panels.cpp" line="325"/>
         <source>Backend</source>
         <translation>バックエンド</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="321"/>
+        <location filename="../ui/panels.cpp" line="326"/>
         <source>CG tolerance</source>
         <translation>CG 許容誤差</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="322"/>
+        <location filename="../ui/panels.cpp" line="327"/>
         <source>CG max. iterations</source>
         <translation>CG 最大反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="323"/>
+        <location filename="../ui/panels.cpp" line="328"/>
         <source>State</source>
         <translation>状態</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="324"/>
+        <location filename="../ui/panels.cpp" line="329"/>
         <source>Safety</source>
         <translation>安全</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="325"/>
+        <location filename="../ui/panels.cpp" line="330"/>
         <source>Step time</source>
         <translation>ステップ時間</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="326"/>
+        <location filename="../ui/panels.cpp" line="331"/>
         <source>CG iterations</source>
         <translation>CG 反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="327"/>
+        <location filename="../ui/panels.cpp" line="332"/>
         <source>Simulation rate</source>
         <translation>シミュレーション周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="328"/>
+        <location filename="../ui/panels.cpp" line="333"/>
         <source>Haptic rate</source>
         <translation>力覚ループ周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="329"/>
+        <location filename="../ui/panels.cpp" line="334"/>
         <source>Apply solver settings</source>
         <translation>ソルバー設定を適用</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="330"/>
+        <location filename="../ui/panels.cpp" line="335"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation>バックエンドの変更は患者の（再）読み込み時に反映されます。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="342"/>
+        <location filename="../ui/panels.cpp" line="347"/>
         <source>stopped</source>
         <translation>停止</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="343"/>
+        <location filename="../ui/panels.cpp" line="348"/>
         <source>loading</source>
         <translation>読み込み中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="344"/>
+        <location filename="../ui/panels.cpp" line="349"/>
         <source>running</source>
         <translation>実行中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="345"/>
+        <location filename="../ui/panels.cpp" line="350"/>
         <source>swapping</source>
         <translation>患者を切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>error: %1</source>
         <translation>エラー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="351"/>
+        <location filename="../ui/panels.cpp" line="356"/>
         <source>no fault</source>
         <translation>異常なし</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="352"/>
+        <location filename="../ui/panels.cpp" line="357"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>バックエンドのフォールバック %n 回</numerusform>
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="353"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>発散リセット %n 回</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="354"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>forces held and blended</source>
         <translation>力を保持して切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="358"/>
+        <location filename="../ui/panels.cpp" line="363"/>
         <source>%1 ms</source>
         <translation>%1 ms</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
-        <location filename="../ui/panels.cpp" line="361"/>
+        <location filename="../ui/panels.cpp" line="365"/>
+        <location filename="../ui/panels.cpp" line="366"/>
         <source>%1 Hz</source>
         <translation>%1 Hz</translation>
     </message>
@@ -1264,103 +1403,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="229"/>
-        <location filename="../ui/panels.cpp" line="255"/>
+        <location filename="../ui/panels.cpp" line="234"/>
+        <location filename="../ui/panels.cpp" line="260"/>
         <source>Source: %1</source>
         <translation>出典: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="256"/>
+        <location filename="../ui/panels.cpp" line="261"/>
         <source>Preset</source>
         <translation>プリセット</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="257"/>
+        <location filename="../ui/panels.cpp" line="262"/>
         <source>Stiffness</source>
         <translation>硬さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="258"/>
+        <location filename="../ui/panels.cpp" line="263"/>
         <source>Add by shape</source>
         <translation>形状で追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="259"/>
+        <location filename="../ui/panels.cpp" line="264"/>
         <source>Sphere</source>
         <translation>球</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="260"/>
+        <location filename="../ui/panels.cpp" line="265"/>
         <source>Ellipsoid</source>
         <translation>楕円体</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="261"/>
+        <location filename="../ui/panels.cpp" line="266"/>
         <source>Shape</source>
         <translation>形状</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="262"/>
+        <location filename="../ui/panels.cpp" line="267"/>
         <source>Centre x, y, z</source>
         <translation>中心 x, y, z</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="263"/>
+        <location filename="../ui/panels.cpp" line="268"/>
         <source>Radius (x, y, z)</source>
         <translation>半径 (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="264"/>
+        <location filename="../ui/panels.cpp" line="269"/>
         <source>Add tumour</source>
         <translation>腫瘍を追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="265"/>
+        <location filename="../ui/panels.cpp" line="270"/>
         <source>Remove selected</source>
         <translation>選択を削除</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="266"/>
+        <location filename="../ui/panels.cpp" line="271"/>
         <source>Brush</source>
         <translation>ブラシ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="267"/>
+        <location filename="../ui/panels.cpp" line="272"/>
         <source>Radius</source>
         <translation>半径</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="268"/>
+        <location filename="../ui/panels.cpp" line="273"/>
         <source>Depth below the skin</source>
         <translation>皮膚からの深さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="269"/>
+        <location filename="../ui/panels.cpp" line="274"/>
         <source>Paint</source>
         <translation>描画</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="270"/>
+        <location filename="../ui/panels.cpp" line="275"/>
         <source>Erase</source>
         <translation>消去</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="271"/>
+        <location filename="../ui/panels.cpp" line="276"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation>乳房上をドラッグして腫瘍組織を描画（1 ストロークで 1 回の取り消し）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="277"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation>乳房上をドラッグして正常組織に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="278"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="279"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
@@ -1368,22 +1507,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="360"/>
+        <location filename="../ui/vtk_view.cpp" line="542"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation>このプラットフォーム（%1）ではネイティブウィンドウの OpenGL コンテキストを作れません</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="363"/>
+        <location filename="../ui/vtk_view.cpp" line="545"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation>このディスプレイの OpenGL（%1）にはステレオバッファがありません。クアッドバッファ立体視にはステレオ対応の GPU、ドライバ、ディスプレイが必要です</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="559"/>
+        <location filename="../ui/vtk_view.cpp" line="741"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation>クアッドバッファ立体視は使えません: %1。代わりにアナグリフ（赤青メガネ）で表示します。サイドバイサイドとインターレースも使えます。</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="561"/>
+        <location filename="../ui/vtk_view.cpp" line="743"/>
         <source>the view is not initialised yet</source>
         <translation>ビューがまだ初期化されていません</translation>
     </message>

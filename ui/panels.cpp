@@ -20,6 +20,7 @@
 #include <QVBoxLayout>
 
 #include "backend.h"
+#include "recorded_text.h"
 #include "tumour_editor.h"
 
 namespace palpation::ui {
@@ -83,7 +84,8 @@ void PatientPanel::set_patients(const QList<Entry>& entries) {
   phantom->clear();
   for (const auto& e : entries) {
     phantom->addItem(e.name, e.name);
-    phantom->setItemData(phantom->count() - 1, e.description, Qt::ToolTipRole);
+    phantom->setItemData(phantom->count() - 1, e.description, Qt::UserRole + 2);  // as stored (English for built-ins)
+    phantom->setItemData(phantom->count() - 1, RecordedText::patient_description(e.description.toStdString()), Qt::ToolTipRole);
     phantom->setItemData(phantom->count() - 1, e.category, Qt::UserRole + 1);
   }
   // The built-in phantoms, always there (also without a library).
@@ -111,6 +113,9 @@ void PatientPanel::retranslate() {
   phantom->setItemText(n - 1, tr("Box phantom"));
   phantom->setItemData(n - 2, tr("The paper's breast with its tumour (107 kPa at x = 12.5 cm)."), Qt::ToolTipRole);
   phantom->setItemData(n - 1, tr("A 10 x 10 x 5 cm block of tissue, no tumour."), Qt::ToolTipRole);
+  for (int i = 0; i < n - 2; ++i)  // the library's patients: their stored descriptions in the new language
+    phantom->setItemData(i, RecordedText::patient_description(phantom->itemData(i, Qt::UserRole + 2).toString().toStdString()),
+                         Qt::ToolTipRole);
   if (description) description->setText(phantom->currentData(Qt::ToolTipRole).toString());  // the chosen one's, in the new language
   resolution->setItemText(0, tr("Coarse (about 1,000 nodes, real time on a CPU)"));
   resolution->setItemText(1, tr("Paper (about 9,100 nodes, GPU)"));

@@ -23,6 +23,7 @@
 #include <QValueAxis>
 #include <QVBoxLayout>
 
+#include "recorded_text.h"
 #include "vtk_view.h"
 
 namespace palpation::ui {
@@ -178,7 +179,7 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::ReviewSession> session, QWidget*
   dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
   addDockWidget(Qt::RightDockWidgetArea, dock);
   for (const auto& m : session_->markers()) {
-    auto* it = new QListWidgetItem(QStringLiteral("%1  %2").arg(clock(m.t), QString::fromStdString(m.text)), markers_);
+    auto* it = new QListWidgetItem(markers_);  // the text: retranslate()
     it->setData(Qt::UserRole, m.t);
     it->setForeground(marker_colour(m.kind));
   }
@@ -249,6 +250,12 @@ void ReviewWindow::retranslate() {
   csv_->setText(tr("Export CSV..."));
   png_->setText(tr("Export PNG frames..."));
   markers_title_->setText(tr("Instructor events and trainee marks (click to go there)"));
+  // The events as recorded (English) in the chosen language (RecordedText).
+  const auto& markers = session_->markers();
+  for (int i = 0; i < markers_->count() && i < int(markers.size()); ++i) {
+    const auto& m = markers[std::size_t(i)];
+    markers_->item(i)->setText(QStringLiteral("%1  %2").arg(clock(m.t), RecordedText::event(m.text)));
+  }
   chart_->setTitle(session_->has_steps()
                        ? tr("Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)")
                        : tr("Force on each fingertip (N): recorded (solid), re-simulated (dashed)"));
