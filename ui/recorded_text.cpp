@@ -30,6 +30,8 @@ QString editor_text(const QString& s) {
   if ((m = whole(QStringLiteral("Painted tumour (\\d+), ([^ ]+) kPa"), s)).hasMatch())
     return ed("Painted tumour %1, %2 kPa").arg(m.captured(1), m.captured(2));
   if (s == QLatin1String("Patient's tumour")) return ed("Patient's tumour");
+  if (s == QLatin1String("Paint")) return ed("Paint");  // one dab of a stroke
+  if (s == QLatin1String("Erase")) return ed("Erase");
   return s;
 }
 
