@@ -819,7 +819,12 @@ void VtkView::set_camera(CameraPreset p) {
 }
 
 void VtkView::set_overlay_text(const QString& text) {
-  overlay_->SetInput(text.toUtf8().constData());
+  // The main window sets the text 4 times a second; the same text again needs no frame
+  // (an idle view drew 4 frames a second for it).
+  const QByteArray utf8 = text.toUtf8();
+  const char* shown = overlay_->GetInput();
+  if (utf8 == QByteArray(shown ? shown : "")) return;
+  overlay_->SetInput(utf8.constData());
   request_render();
 }
 
