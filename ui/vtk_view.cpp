@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <utility>
 
 #include <QCoreApplication>
 #include <QElapsedTimer>
@@ -288,7 +289,8 @@ bool VtkView::ensure_gl() {
     context_ = new QOpenGLContext;
     context_->setFormat(gl_window_->requestedFormat());
     if (!context_->create()) {
-      qWarning("palpation: no OpenGL context for the 3-D view");
+      static bool said = false;  // once, not per frame (the offscreen platform without a display has none)
+      if (!std::exchange(said, true)) qWarning("palpation: no OpenGL context for the 3-D view");
       delete context_;
       context_ = nullptr;
       return false;
