@@ -71,6 +71,10 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   patient_panel_->show_scenario(scenario_);
   tumour_panel_ = new TumourPanel(editor_);
   sim_panel_ = new SimulationPanel;
+  // What runs (the default patient's real-time settings, app/workstation.cpp), not the
+  // scenario defaults.
+  sim_panel_->tolerance->setValue(scenario_.params.solver.cg_tolerance);
+  sim_panel_->iterations->setValue(scenario_.params.solver.cg_max_iterations);
   device_panel_ = new DevicePanel(ws_->device_config().hand.capabilities.max_force);
   if (!ws_->simulated_device()) {
     // A link (emulator or robot): fixed at start (--device); the mouse needs the simulated device.
@@ -255,7 +259,8 @@ bool MainWindow::choose_patient(const QString& name, QString* error) {
     if (error) *error = QString::fromStdString(e.what());
     return false;
   }
-  s.params.solver.dt = scenario_.params.solver.dt;
+  // The solver settings are the workstation's (Simulation panel), not the patient's.
+  s.params.solver = scenario_.params.solver;
   chosen_ = s;
   patient_panel_->select_patient(name);
   patient_panel_->show_scenario(s);

@@ -293,7 +293,7 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   tolerance->setDecimals(6);
   tolerance->setRange(1e-6, 1e-1);
   tolerance->setSingleStep(1e-4);
-  // The simulation's own defaults (params.h): the panel shows what runs until Apply.
+  // The simulation's own defaults (params.h) until the main window shows what runs.
   const sim::SolverParams defaults;
   tolerance->setValue(defaults.cg_tolerance);
   iterations = new QSpinBox;
