@@ -30,6 +30,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <thread>
 
 #include <Eigen/Dense>
 
@@ -61,6 +62,13 @@ namespace {
 // Below this many free nodes a parallel region costs more than it saves (measured:
 // see docs/benchmarks.md, "threads").
 constexpr int kParallelMinFree = 3000;
+
+// Fewer hardware threads than this: one thread unless asked (solver.threads >= 2). On a
+// 2-core machine the other core is the haptic loop's, the GUI's or another job's, and
+// OpenMP's spinning barriers then wait on a descheduled thread: paper mesh under load
+// 3-4, 96.7 ms median and 1.70 s p99 a step with two threads against 23.5 / 46 ms with one
+// (docs/benchmarks.md, session 5).
+constexpr unsigned kParallelMinCores = 4;
 
 // Full re-assembly of K after this many steps of element-wise updates. Each update adds
 // new minus old blocks, so K carries one rounding per update; after 2^16 updates of one
@@ -246,7 +254,7 @@ class CpuBackend final : public Backend {
  private:
   // threads: 1 = serial, >= 2 = always parallel (OpenMP's team), 0 = where it pays.
   bool parallel() const {
-    return p_.solver.threads >= 2 || (p_.solver.threads == 0 && m_.num_free() >= kParallelMinFree);
+    return p_.solver.threads >= 2 || (p_.solver.threads == 0 && m_.num_free() >= kParallelMinFree && cores_ >= kParallelMinCores);
   }
 
   void surface_bounds() {
@@ -630,6 +638,7 @@ class CpuBackend final : public Backend {
   bool assembled_ = false;                   // blocks_ holds K for the current rotations
   long steps_since_assembly_ = 0;
   int threads_ = 1;                          // trash slots (OpenMP threads)
+  unsigned cores_ = std::thread::hardware_concurrency();
 };
 
 }  // namespace
