@@ -382,6 +382,44 @@ class TstUiMainWindow : public QObject {
     v->set_tumours_visible(true);
   }
 
+  // The light rendering style (docs/gui.md): under Xvfb the renderer is Mesa's software one,
+  // so the view chose the light style by itself; View > Fast rendering turns it off and on,
+  // and the breast is drawn either way.
+  void fast_rendering_style() {
+    ui::VtkView* v = w_->view();
+    QVERIFY(!v->gl_renderer().isEmpty());
+    qInfo("GL_RENDERER: %s", qPrintable(v->gl_renderer()));
+    QVERIFY2(v->software_renderer(), qPrintable(v->gl_renderer()));
+    QVERIFY(ui::VtkView::is_software_renderer(QStringLiteral("llvmpipe (LLVM 15.0.6, 256 bits)")));
+    QVERIFY(ui::VtkView::is_software_renderer(QStringLiteral("GDI Generic (Software Rasterizer)")));
+    QVERIFY(!ui::VtkView::is_software_renderer(QStringLiteral("NVIDIA GeForce RTX 3060/PCIe/SSE2")));
+    QVERIFY(v->light_style());
+    auto* fast = w_->findChild<QAction*>(QStringLiteral("fast_rendering"));
+    QVERIFY(fast && fast->isCheckable());
+    QVERIFY(fast->isChecked());
+    const ImageStats light = stats(v->grabFramebuffer());
+    fast->trigger();  // off: the full style
+    QVERIFY(!fast->isChecked());
+    QVERIFY(!v->light_style());
+    QCOMPARE(QSettings().value(QStringLiteral("view/fast_rendering")).toBool(), false);
+    const ImageStats full = stats(v->grabFramebuffer());
+    fast->trigger();  // on again
+    QVERIFY(fast->isChecked());
+    QVERIFY(v->light_style());
+    QCOMPARE(QSettings().value(QStringLiteral("view/fast_rendering")).toBool(), true);
+    const ImageStats again = stats(v->grabFramebuffer());
+    qInfo("skin/bright/tumour: light %.3f %.3f %.4f, full %.3f %.3f %.4f", light.skin_fraction, light.bright, light.tumour,
+          full.skin_fraction, full.bright, full.tumour);
+    for (const ImageStats* s : {&light, &full, &again}) {
+      QVERIFY2(s->skin_fraction > 0.05, "the breast covers part of the view");
+      QVERIFY2(s->bright > 0.02, "lit skin present");  // translucent (instructor): measured 0.044 light, 0.079 full
+      QVERIFY2(s->tumour > 0.003, "the tumour shows through the skin");
+    }
+    // Not the same picture: the background differs (plain against the gradient).
+    QVERIFY(std::abs(light.mean_r - full.mean_r) + std::abs(light.mean_g - full.mean_g) + std::abs(light.mean_b - full.mean_b) > 1.0);
+    QSettings().remove(QStringLiteral("view/fast_rendering"));
+  }
+
   // Quad-buffer stereo where the display has no stereo visuals (Xvfb, offscreen): a clear
   // reason and the view falls back to anaglyph, still drawing the breast.
   void quad_buffer_falls_back_to_anaglyph() {

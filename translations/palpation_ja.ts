@@ -628,6 +628,16 @@
         <translation>鏡像（ハーフミラー表示）</translation>
     </message>
     <message>
+        <location filename="../ui/main_window.cpp" line="485"/>
+        <source>Fast rendering (software OpenGL)</source>
+        <translation>高速描画（ソフトウェア OpenGL）</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="486"/>
+        <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
+        <translation>軽い 3D 表示：単色の背景、皮膚のハイライトなし、陰影なしの胸壁。コンピューターが OpenGL をソフトウェアで描画するときは自動でオンになります。</translation>
+    </message>
+    <message>
         <location filename="../ui/main_window.cpp" line="463"/>
         <source>Displacement colour map</source>
         <translation>変位カラーマップ</translation>

@@ -187,6 +187,9 @@ int main(int argc, char** argv) {
                    ok ? "saved" : "could not save", qPrintable(file), img.width(), img.height(), w.frame_rate(),
                    w.view()->paint_ms(), w.view()->render_ms(), w.view()->swap_ms(), w.view()->update_ms(), s.step_rate_hz,
                    s.haptic_rate_hz);
+      std::fprintf(stderr, "palpation-trainer: OpenGL renderer \"%s\"%s; %s rendering style\n",
+                   qPrintable(w.view()->gl_renderer()), w.view()->software_renderer() ? " (software)" : "",
+                   w.view()->light_style() ? "light (fast)" : "full");
       if (qEnvironmentVariableIsSet("PALPATION_BENCH_VIEW")) {
         // docs/gui.md: the view's own cost. The simulation stopped (its core free), the
         // last snapshot drawn N times back to back, each a full frame of the view as it is

@@ -167,6 +167,13 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   const int stereo = settings.value(QStringLiteral("view/stereo"), 0).toInt();
   if (stereo > 0 && stereo < 4) a_stereo_[stereo]->trigger();
   a_mirror_->setChecked(settings.value(QStringLiteral("view/mirrored"), false).toBool());
+  // PALPATION_FAST_RENDER=0/1 (the view bench, docs/gui.md) overrides the stored choice.
+  const QByteArray fast_env = qgetenv("PALPATION_FAST_RENDER");
+  if (!fast_env.isEmpty())
+    view_->set_render_style(fast_env == "0" ? VtkView::RenderStyle::Full : VtkView::RenderStyle::Light);
+  else if (settings.contains(QStringLiteral("view/fast_rendering")))
+    view_->set_render_style(settings.value(QStringLiteral("view/fast_rendering")).toBool() ? VtkView::RenderStyle::Light
+                                                                                          : VtkView::RenderStyle::Full);
   set_language(settings.value(QStringLiteral("language"), QStringLiteral("en")).toString());
   retranslate();
 
@@ -384,6 +391,16 @@ void MainWindow::build_actions() {
     view_->set_mirrored(on);
     QSettings().setValue(QStringLiteral("view/mirrored"), on);
   });
+  // The light rendering style (docs/gui.md): on by itself under software OpenGL; the
+  // user's choice, once made, is stored and wins.
+  a_fast_ = view_menu_->addAction(QString());
+  a_fast_->setObjectName(QStringLiteral("fast_rendering"));
+  a_fast_->setCheckable(true);
+  connect(a_fast_, &QAction::triggered, this, [this](bool on) {
+    view_->set_render_style(on ? VtkView::RenderStyle::Light : VtkView::RenderStyle::Full);
+    QSettings().setValue(QStringLiteral("view/fast_rendering"), on);
+  });
+  connect(view_, &VtkView::lightStyleChanged, a_fast_, &QAction::setChecked);
   a_colour_ = view_menu_->addAction(QString());
   a_colour_->setCheckable(true);
   // Colour maps, at most one: displacement, or stress (the simulation thread computes
@@ -465,6 +482,9 @@ void MainWindow::retranslate() {
   for (int i = 0; i < 5; ++i) a_stereo_[i]->setText(st[i]);
   a_eye_->setText(tr("Eye separation..."));
   a_mirror_->setText(tr("Mirrored (half-mirror display)"));
+  a_fast_->setText(tr("Fast rendering (software OpenGL)"));
+  a_fast_->setToolTip(tr("A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. "
+                         "On by itself when the computer draws OpenGL in software."));
   a_colour_->setText(tr("Displacement colour map"));
   a_stress_->setText(tr("Stress colour map (von Mises)"));
   a_tumours_->setText(tr("Show tumours"));

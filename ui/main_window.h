@@ -115,7 +115,7 @@ class MainWindow : public QMainWindow {
         *mode_menu_ = nullptr, *lang_menu_ = nullptr, *panels_menu_ = nullptr;
   QToolBar* toolbar_ = nullptr;
   QAction *a_screenshot_ = nullptr, *a_quit_ = nullptr, *a_undo_ = nullptr, *a_redo_ = nullptr, *a_colour_ = nullptr, *a_stress_ = nullptr,
-          *a_tumours_ = nullptr, *a_mirror_ = nullptr, *a_eye_ = nullptr, *a_trainee_ = nullptr, *a_instructor_ = nullptr,
+          *a_tumours_ = nullptr, *a_mirror_ = nullptr, *a_fast_ = nullptr, *a_eye_ = nullptr, *a_trainee_ = nullptr, *a_instructor_ = nullptr,
           *a_camera_tool_ = nullptr, *a_palpate_tool_ = nullptr, *a_en_ = nullptr, *a_ja_ = nullptr;
   QAction* a_stereo_[5] = {};
   QAction* a_cam_[4] = {};

@@ -301,8 +301,44 @@ bool VtkView::ensure_gl() {
   window_->SetReadyForRendering(true);
   window_->OpenGLInitContext();
   initialized_ = true;
+  // The renderer, once: software OpenGL gets the light style (Auto).
+  if (const auto* name = context_->functions()->glGetString(GL_RENDERER))
+    gl_renderer_ = QString::fromLatin1(reinterpret_cast<const char*>(name));
+  software_ = is_software_renderer(gl_renderer_);
+  apply_style();
   if (stereo_ != Stereo::Mono) set_stereo(stereo_);
   return true;
+}
+
+bool VtkView::is_software_renderer(const QString& r) {
+  for (const char* s : {"llvmpipe", "softpipe", "swrast", "Software"})
+    if (r.contains(QLatin1String(s), Qt::CaseInsensitive)) return true;
+  return false;
+}
+
+void VtkView::set_render_style(RenderStyle s) {
+  style_ = s;
+  apply_style();
+}
+
+void VtkView::apply_style() {
+  const bool light = style_ == RenderStyle::Light || (style_ == RenderStyle::Auto && software_);
+  // docs/gui.md (measured under llvmpipe): the gradient background is a full-view shaded
+  // quad, the skin's specular term half of its shading, the lit chest slab about half the
+  // view's pixels. The light style drops them: a plain clear, diffuse skin, an unlit chest.
+  renderer_->SetGradientBackground(!light);
+  if (light) renderer_->SetBackground(0.2, 0.23, 0.29);  // between the gradient's ends
+  else renderer_->SetBackground(0.13, 0.15, 0.19);
+  surface_actor_->GetProperty()->SetSpecular(light ? 0.0 : 0.2);
+  // Unlit, the chest would show its full colour, as bright as the skin: the colour it has
+  // lit from the oblique camera's headlight (about 0.55 of it) instead.
+  chest_actor_->GetProperty()->SetLighting(!light);
+  if (light) chest_actor_->GetProperty()->SetColor(0.34, 0.275, 0.25);
+  else chest_actor_->GetProperty()->SetColor(0.62, 0.50, 0.46);
+  const bool changed = light != light_;
+  light_ = light;
+  request_render();
+  if (changed) emit lightStyleChanged(light);
 }
 
 bool VtkView::make_current() {

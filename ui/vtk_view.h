@@ -17,7 +17,10 @@
 // rewrites the points array, the point normals (area-weighted, over the surface
 // triangles) and the scalars in place and marks them Modified(); nothing is re-created
 // and no VTK filter runs per frame; the tumour's boundary faces are extracted when the
-// materials change, not per frame. A snapshot that moves nothing renders nothing.
+// materials change, not per frame. A snapshot that moves nothing renders nothing. Under
+// software OpenGL (llvmpipe and the like) the view draws in a light style by itself
+// (set_render_style; View > Fast rendering): a plain background, no specular on the skin,
+// an unlit chest, which the renderer shades per pixel at a cost and which inform nobody.
 #pragma once
 
 #include <array>
@@ -95,6 +98,21 @@ class VtkView : public QWidget {
   /// the GUI tests do.
   static void use_default_surface_format();
   Stereo stereo() const { return stereo_; }
+  /// The rendering style (docs/gui.md): Full (gradient background, specular skin, lit
+  /// chest) or Light, for software OpenGL: a plain background, no specular on the skin, an
+  /// unlit chest; the breast, the fingertips, the tumours and the colour maps as in Full.
+  /// Auto (the default) is Light where the context's GL_RENDERER is a software one
+  /// (is_software_renderer), read once when the context exists; Full until then.
+  enum class RenderStyle { Auto, Full, Light };
+  void set_render_style(RenderStyle s);
+  RenderStyle render_style() const { return style_; }
+  /// Whether the light style is in effect now.
+  bool light_style() const { return light_; }
+  /// GL_RENDERER of the view's context; empty before the context exists.
+  QString gl_renderer() const { return gl_renderer_; }
+  bool software_renderer() const { return software_; }
+  /// llvmpipe, softpipe, swrast, "Software" (Microsoft's GDI renderer and others).
+  static bool is_software_renderer(const QString& gl_renderer);
   void set_eye_angle(double degrees);
   void set_mirrored(bool on);
   void set_camera(CameraPreset p);
@@ -142,6 +160,8 @@ class VtkView : public QWidget {
   void brushStrokeEnded();
   /// Where the mouse fingertip should be (Palpate tool); present = false lifts it away.
   void palpateTarget(const Eigen::Vector3d& centre, bool present);
+  /// The style in effect changed (set_render_style, or Auto resolved once the renderer is known).
+  void lightStyleChanged(bool light);
 
  protected:
   void resizeEvent(QResizeEvent* e) override;
@@ -158,6 +178,7 @@ class VtkView : public QWidget {
   void update_normals();
   void update_scalars(const app::RenderSnapshot* s);
   void render_vtk();
+  void apply_style();
   // The native window's side: first exposure creates the context and initializes VTK's
   // OpenGL; present() renders (when needed) and shows the frame.
   bool ensure_gl();
@@ -196,6 +217,9 @@ class VtkView : public QWidget {
   Stereo stereo_ = Stereo::Mono;
   Tool tool_ = Tool::Camera;
   ColourMap colour_map_ = ColourMap::None;
+  RenderStyle style_ = RenderStyle::Auto;
+  bool light_ = false, software_ = false;
+  QString gl_renderer_;
   bool tumours_visible_ = true, mirrored_ = false, stroke_ = false, pressing_ = false;
   bool initialized_ = false, painting_ = false, pending_ = false;
   double press_ = 0.0;
