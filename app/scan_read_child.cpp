@@ -1,15 +1,15 @@
 // The scan reader's child process: why a re-executed child and not fork(), see
-// scan_read_child.h. Parent: posix_spawn of /proc/self/exe with kChildFlag, a pipe on
-// the child's stdout, a poll loop (cancel, wall-clock deadline), then the child's exit
-// status and message turned into a SurfaceMesh or an ImportError. Child: a constructor
-// that runs before main() (before Qt, QtTest or libFuzzer see the arguments), sets its
-// limits, reads the file with assimp (read_here) and writes the result.
+// sim/self_child.h. Parent: self_child::run (posix_spawn of /proc/self/exe with
+// kChildFlag, a socket on the child's stdout, cancel, wall-clock deadline), then the
+// child's exit status and message turned into a SurfaceMesh or an ImportError. Child:
+// a constructor that runs before main() (before Qt, QtTest or libFuzzer see the
+// arguments), sets its limits, reads the file with assimp (read_here) and writes the
+// result.
 #include "scan_read_child.h"
 
-#include <fcntl.h>
-#include <poll.h>
+#include "self_child.h"
+
 #include <signal.h>
-#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/time.h>
 #include <sys/wait.h>
@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -61,18 +60,6 @@ static_assert(sizeof(std::array<int, 3>) == 3 * sizeof(int), "triangles are sent
 
 constexpr std::uint64_t kGiB = std::uint64_t(1) << 30, kMiB = std::uint64_t(1) << 20;
 
-bool write_all(int fd, const void* data, std::size_t n) {
-  const char* p = static_cast<const char*>(data);
-  while (n > 0) {
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return false;
-    p += w;
-    n -= static_cast<std::size_t>(w);
-  }
-  return true;
-}
-
 bool send(Kind kind, const SurfaceMesh* s, const std::string& text) {
   Header h{};
   std::memcpy(h.magic, kMagic, 4);
@@ -80,10 +67,10 @@ bool send(Kind kind, const SurfaceMesh* s, const std::string& text) {
   h.vertices = s ? s->vertices.size() : 0;
   h.triangles = s ? s->triangles.size() : 0;
   h.text = text.size();
-  return write_all(STDOUT_FILENO, &h, sizeof h) &&
-         (h.vertices == 0 || write_all(STDOUT_FILENO, s->vertices.data(), h.vertices * sizeof(Eigen::Vector3d))) &&
-         (h.triangles == 0 || write_all(STDOUT_FILENO, s->triangles.data(), h.triangles * sizeof(std::array<int, 3>))) &&
-         (text.empty() || write_all(STDOUT_FILENO, text.data(), text.size()));
+  return sim::self_child::write_all(STDOUT_FILENO, &h, sizeof h) &&
+         (h.vertices == 0 || sim::self_child::write_all(STDOUT_FILENO, s->vertices.data(), h.vertices * sizeof(Eigen::Vector3d))) &&
+         (h.triangles == 0 || sim::self_child::write_all(STDOUT_FILENO, s->triangles.data(), h.triangles * sizeof(std::array<int, 3>))) &&
+         (text.empty() || sim::self_child::write_all(STDOUT_FILENO, text.data(), text.size()));
 }
 
 #ifndef PALPATION_SCAN_READER_ASAN
@@ -146,7 +133,6 @@ __attribute__((constructor)) void scan_reader_child_hook(int argc, char** argv, 
 #error "the scan reader's child needs glibc (constructor arguments); see scan_read_child.h"
 #endif
 
-std::string why_errno(const char* what) { return std::string(what) + ": " + std::strerror(errno); }
 
 /// The child's message, or false when it is not exactly one well-formed message.
 bool decode(const std::string& b, Kind& kind, SurfaceMesh& s, std::string& text) {
@@ -168,19 +154,6 @@ bool decode(const std::string& b, Kind& kind, SurfaceMesh& s, std::string& text)
   text.assign(p, h.text);
   kind = static_cast<Kind>(h.kind);
   return true;
-}
-
-std::string signal_name(int sig) {
-  switch (sig) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS: return "SIGBUS";
-    case SIGABRT: return "SIGABRT";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGKILL: return "SIGKILL";
-    case SIGXCPU: return "SIGXCPU";
-    default: return "signal " + std::to_string(sig);
-  }
 }
 
 }  // namespace
@@ -211,32 +184,15 @@ Limits limits_for(const std::string& path) {
 }
 
 SurfaceMesh read_in_child(const std::string& path, const Limits& lim, const std::function<bool()>& cancelled) {
-  const std::string cannot = path + ": the scan reader could not be started (";
-  int fd[2];
-  if (pipe2(fd, O_CLOEXEC) != 0) throw std::runtime_error(cannot + why_errno("pipe") + ")");
-  // The child: stdout is the pipe, stdin and stderr /dev/null (assimp's messages and a
-  // sanitizer's report go nowhere), no other descriptor of this process (the library's
-  // database, the device's sockets, Gmsh's pipes), no blocked or ignored signals.
-  posix_spawn_file_actions_t fa;
-  posix_spawnattr_t at;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_adddup2(&fa, fd[1], STDOUT_FILENO);
-  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addclosefrom_np(&fa, 3);
-  posix_spawnattr_init(&at);
-  sigset_t none, dfl;
-  sigemptyset(&none);
-  sigemptyset(&dfl);
-  for (const int sig : {SIGPIPE, SIGXCPU, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGINT, SIGTERM, SIGHUP, SIGQUIT})
-    sigaddset(&dfl, sig);
-  posix_spawnattr_setsigmask(&at, &none);
-  posix_spawnattr_setsigdefault(&at, &dfl);
-  posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  std::string a0 = "palpation-scan-reader", a1 = kChildFlag, a2 = std::to_string(lim.memory_bytes),
-              a3 = std::to_string(static_cast<long long>(std::ceil(lim.cpu_seconds))), a4 = path;
-  char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), nullptr};
-  char** envp = environ;
+  // The child (sim/self_child.h): stdin at its end, stdout to us, stderr /dev/null
+  // (assimp's messages and a sanitizer's report go nowhere), no other descriptor of this
+  // process (the library's database, the device's sockets), no blocked or ignored signals.
+  sim::self_child::Job job;
+  job.argv = {"palpation-scan-reader", kChildFlag, std::to_string(lim.memory_bytes),
+              std::to_string(static_cast<long long>(std::ceil(lim.cpu_seconds))), path};
+  job.wall_seconds = lim.wall_seconds;
+  job.cancelled = cancelled;
+  job.max_output = static_cast<std::size_t>(std::min<std::uint64_t>(lim.memory_bytes + kMiB, SIZE_MAX / 2));
 #ifdef PALPATION_SCAN_READER_ASAN
   std::vector<std::string> env_strings;
   std::string asan = "ASAN_OPTIONS=";
@@ -249,80 +205,18 @@ SurfaceMesh read_in_child(const std::string& path, const Limits& lim, const std:
   std::vector<char*> env_ptrs;
   for (auto& e : env_strings) env_ptrs.push_back(e.data());
   env_ptrs.push_back(nullptr);
-  envp = env_ptrs.data();
+  job.envp = env_ptrs.data();
 #endif
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, &at, argv, envp);
-  posix_spawn_file_actions_destroy(&fa);
-  posix_spawnattr_destroy(&at);
-  ::close(fd[1]);
-  if (rc != 0) {
-    ::close(fd[0]);
-    errno = rc;
-    throw std::runtime_error(cannot + why_errno("posix_spawn /proc/self/exe") + ")");
+  sim::self_child::Outcome o;
+  try {
+    o = sim::self_child::run(job);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path + ": the scan reader could not be started (" + e.what() + ")");
   }
-
-  // Read until end of data, or until the child has ended (another process forked
-  // meanwhile, e.g. Gmsh's child, may hold a copy of the pipe's write end), the deadline
-  // passes or the caller cancels.
-  std::string buf;
-  const std::uint64_t max_message = lim.memory_bytes + kMiB;
-  bool reaped = false, timed_out = false, stopped = false, too_long = false;
-  int status = 0;
-  rusage ru{};
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto deadline = t0 + std::chrono::duration<double>(lim.wall_seconds);
-  char chunk[1 << 16];
-  auto reap = [&](int flags) {
-    pid_t w;
-    do {
-      w = ::wait4(pid, &status, flags, &ru);
-    } while (w < 0 && errno == EINTR);
-    if (w == pid) reaped = true;
-    return reaped;
-  };
-  for (;;) {
-    if (cancelled && cancelled()) {
-      stopped = true;
-      break;
-    }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd pf{fd[0], POLLIN, 0};
-    const int r = ::poll(&pf, 1, static_cast<int>(std::min<long long>(left.count(), 100)));
-    if (r < 0 && errno == EINTR) continue;
-    if (r < 0) break;
-    if (r == 0) {
-      if (reap(WNOHANG)) {
-        // Ended: everything it wrote is in the pipe. Take it without waiting.
-        ::fcntl(fd[0], F_SETFL, ::fcntl(fd[0], F_GETFL) | O_NONBLOCK);
-        for (;;) {
-          const ssize_t n = ::read(fd[0], chunk, sizeof chunk);
-          if (n < 0 && errno == EINTR) continue;
-          if (n <= 0) break;
-          buf.append(chunk, static_cast<std::size_t>(n));
-          if (buf.size() > max_message) break;
-        }
-        break;
-      }
-      continue;
-    }
-    const ssize_t n = ::read(fd[0], chunk, sizeof chunk);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;  // end of data: the child closed its stdout (it ends now)
-    buf.append(chunk, static_cast<std::size_t>(n));
-    if (buf.size() > max_message) {
-      too_long = true;
-      break;
-    }
-  }
-  ::close(fd[0]);
-  if (!reaped && (stopped || timed_out || too_long)) ::kill(pid, SIGKILL);
-  if (!reaped) reap(0);
-
+  const bool stopped = o.cancelled, timed_out = o.timed_out, too_long = o.too_long;
+  const int status = o.status;
+  const rusage& ru = o.usage;
+  const std::string& buf = o.output;
   if (stopped) throw std::runtime_error("cancelled");
   const double cpu = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   char num[64];
@@ -339,7 +233,7 @@ SurfaceMesh read_in_child(const std::string& path, const Limits& lim, const std:
     }
     if (sig == SIGKILL)
       throw ImportError(path + ": the scan reader was killed (SIGKILL; out of memory?): a malformed or hostile file?");
-    throw ImportError(path + ": the scan reader crashed (" + signal_name(sig) + "): a malformed or hostile file?");
+    throw ImportError(path + ": the scan reader crashed (" + sim::self_child::signal_name(sig) + "): a malformed or hostile file?");
   }
   Kind kind = kFailed;
   SurfaceMesh s;

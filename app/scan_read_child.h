@@ -6,9 +6,9 @@
 // or the error text, back through a pipe. Whatever assimp does there costs an
 // ImportError naming the file, never the GUI, the CLI or the machine's memory.
 //
-// The child is this same executable, re-executed (/proc/self/exe) with a marker argument
-// that a constructor in scan_read_child.cpp recognises before main() runs: it reads the
-// file and _exit()s. Not a plain fork(): the workstation is multithreaded (haptic,
+// The child is this same executable, re-executed (/proc/self/exe, sim/self_child.h) with
+// a marker argument that a constructor in scan_read_child.cpp recognises before main()
+// runs: it reads the file and _exit()s. Not a plain fork(): the workstation is multithreaded (haptic,
 // simulation, recorder, Qt, VTK threads), and after fork() only async-signal-safe calls
 // are allowed in the child, while assimp allocates, uses iostreams and locales, whose
 // locks another thread may hold at the moment of the fork. posix_spawn (glibc: clone with

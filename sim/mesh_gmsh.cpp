@@ -1,7 +1,8 @@
 // Gmsh meshing of the breast phantom and import of volume mesh files. The only file of
 // the project that includes gmsh.h (design.md section 2). Gmsh keeps global state, so
 // every use holds one process-wide lock from gmsh::initialize to gmsh::finalize; files
-// are read in a forked child process, because Gmsh's readers crash on some corrupt files.
+// are read, and scans tetrahedralised, in a child process (self_child.h), because Gmsh's
+// readers crash on some corrupt files and a mesher's hang must not hold the caller.
 #include "mesh_gmsh.h"
 
 #include <gmsh.h>
@@ -25,12 +26,11 @@
 #include <utility>
 
 #if defined(__unix__)
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include "self_child.h"
 #endif
 
 namespace palpation::sim {
@@ -47,7 +47,7 @@ std::mutex& gmsh_mutex() {
 }
 
 /// One Gmsh API session: initialize on entry, finalize on every exit (also on
-/// exceptions). The caller holds gmsh_mutex(), or is a forked child that owns its copy
+/// exceptions). The caller holds gmsh_mutex(), or is a child process that owns its copy
 /// of Gmsh alone.
 class GmshSession {
  public:
@@ -273,107 +273,84 @@ bool decode(const std::string& b, TetMesh& m, std::string& error) {
   return true;
 }
 
-/// Runs `work` (a Gmsh job filling a mesh or an error) in a forked child. Returns false
-/// only when no child could be started (the caller then runs it in process); otherwise
-/// fills `mesh` or `error`. `cancelled` (may be empty) is polled: true kills the child.
-bool run_in_child(const std::function<void(TetMesh&, std::string&)>& work, double timeout_s,
-                  const std::function<bool()>& cancelled, const char* what, TetMesh& mesh, std::string& error) {
-  int fd[2];
-  if (pipe(fd) != 0) return false;
-  pid_t pid;
-  {
-    // Fork while no other thread is inside Gmsh, so the child's copy is consistent.
-    std::lock_guard<std::mutex> lock(gmsh_mutex());
-    pid = fork();
-  }
-  if (pid < 0) {
-    close(fd[0]);
-    close(fd[1]);
+/// The mesher's input (the child's stdin): f64 edge, u64 nvert, u64 ntri, f64[3 nvert],
+/// i32[3 ntri].
+std::string encode_surface(const std::vector<Eigen::Vector3d>& v, const std::vector<std::array<int, 3>>& tris, double edge) {
+  std::string b;
+  const std::uint64_t nv = v.size(), nt = tris.size();
+  b.append(reinterpret_cast<const char*>(&edge), 8);
+  b.append(reinterpret_cast<const char*>(&nv), 8);
+  b.append(reinterpret_cast<const char*>(&nt), 8);
+  for (const auto& p : v) b.append(reinterpret_cast<const char*>(p.data()), 3 * sizeof(double));
+  for (const auto& t : tris) b.append(reinterpret_cast<const char*>(t.data()), 3 * sizeof(int));
+  return b;
+}
+
+bool decode_surface(const std::string& b, std::vector<Eigen::Vector3d>& v, std::vector<std::array<int, 3>>& tris, double& edge) {
+  if (b.size() < 24) return false;
+  std::uint64_t nv = 0, nt = 0;
+  std::memcpy(&edge, b.data(), 8);
+  std::memcpy(&nv, b.data() + 8, 8);
+  std::memcpy(&nt, b.data() + 16, 8);
+  const std::uint64_t rest = b.size() - 24;
+  if (nv > rest / (3 * sizeof(double)) || nt > rest / (3 * sizeof(int)) || nv * 3 * sizeof(double) + nt * 3 * sizeof(int) != rest)
     return false;
+  v.resize(nv);
+  tris.resize(nt);
+  const char* p = b.data() + 24;
+  for (auto& x : v) {
+    std::memcpy(x.data(), p, 3 * sizeof(double));
+    p += 3 * sizeof(double);
   }
-  if (pid == 0) {
-    // Child: only this thread exists; it owns its copy of Gmsh. Never return from here.
-    close(fd[0]);
-    // A reader crash must end this child quietly: default fatal-signal actions (not the
-    // parent's crash handlers, e.g. QtTest's), no core file, no console output.
-    for (const int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) signal(sig, SIG_DFL);
-    const rlimit no_core{0, 0};
-    setrlimit(RLIMIT_CORE, &no_core);
-    if (const int null = open("/dev/null", O_WRONLY); null >= 0) {
-      dup2(null, STDOUT_FILENO);
-      dup2(null, STDERR_FILENO);
-      close(null);
-    }
-    TetMesh m;
-    std::string why;
-    work(m, why);
-    const std::string b = encode(m, why);
-    std::size_t done = 0;
-    while (done < b.size()) {
-      const ssize_t w = write(fd[1], b.data() + done, b.size() - done);
-      if (w < 0 && errno == EINTR) continue;
-      if (w <= 0) break;
-      done += static_cast<std::size_t>(w);
-    }
-    close(fd[1]);
-    _exit(0);  // no atexit handlers or static destructors of the parent's copy
-  }
-  close(fd[1]);
-  std::string buf;
-  bool timed_out = false, stopped = false;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  char chunk[1 << 16];
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
-      timed_out = true;
-      break;
-    }
-    if (cancelled && cancelled()) {
-      stopped = true;
-      break;
-    }
-    pollfd pf{fd[0], POLLIN, 0};
-    const int r = poll(&pf, 1, static_cast<int>(std::min<long long>(left.count(), cancelled ? 100 : 1000)));
-    if (r < 0 && errno == EINTR) continue;
-    if (r < 0) break;
-    if (r == 0) continue;
-    const ssize_t n = read(fd[0], chunk, sizeof(chunk));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;  // end of data (child closed the pipe or died)
-    buf.append(chunk, static_cast<std::size_t>(n));
-  }
-  close(fd[0]);
-  if (timed_out || stopped) kill(pid, SIGKILL);
-  int status = 0;
-  pid_t w;
-  do {
-    w = waitpid(pid, &status, 0);
-  } while (w < 0 && errno == EINTR);
-  if (stopped) {
-    error = std::string("cancelled (the Gmsh ") + what + " was stopped)";
-    return true;
-  }
-  if (timed_out) {
-    std::ostringstream o;
-    o << "the Gmsh " << what << " did not finish within " << static_cast<int>(timeout_s) << " s (stopped)";
-    error = o.str();
-    return true;
-  }
-  if (w == pid && WIFSIGNALED(status)) {
-    error = std::string("the Gmsh ") + what + " crashed (signal " + std::to_string(WTERMSIG(status)) +
-            "): the input is corrupt or not supported";
-    return true;
-  }
-  if (!decode(buf, mesh, error)) {
-    mesh = TetMesh{};
-    error = std::string("the Gmsh ") + what + " stopped without a result (corrupt input?)";
+  for (auto& t : tris) {
+    std::memcpy(t.data(), p, 3 * sizeof(int));
+    p += 3 * sizeof(int);
   }
   return true;
 }
 
-bool read_in_child(const std::string& path, double timeout_s, TetMesh& mesh, std::string& error) {
-  return run_in_child([&path](TetMesh& m, std::string& why) { read_here(path, m, why); }, timeout_s, {}, "reader", mesh, error);
+/// The argv[1] that turns an executable into a Gmsh child (self_child.h).
+constexpr const char* kChildFlag = "--palpation-internal-gmsh";
+
+/// Runs a Gmsh job ("mesh" with `input`, or "read" with a path) in a re-executed child
+/// (self_child.h: not fork(), whose child can hang on a lock another thread held).
+/// Returns false only when no child could be started (the caller then runs the job in
+/// process); otherwise fills `mesh` or `error`. `cancelled` (may be empty) is polled:
+/// true kills the child.
+bool run_in_child(const char* what, std::vector<std::string> args, std::string input, double timeout_s,
+                  const std::function<bool()>& cancelled, TetMesh& mesh, std::string& error) {
+  self_child::Job job;
+  job.argv = {std::string("palpation-gmsh-") + what, kChildFlag};
+  job.argv.insert(job.argv.end(), args.begin(), args.end());
+  job.input = std::move(input);
+  job.wall_seconds = timeout_s;
+  job.cancelled = cancelled;
+  self_child::Outcome o;
+  try {
+    o = self_child::run(job);
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+  if (o.cancelled) {
+    error = std::string("cancelled (the Gmsh ") + what + " was stopped)";
+    return true;
+  }
+  if (o.timed_out) {
+    std::ostringstream m;
+    m << "the Gmsh " << what << " did not finish within " << static_cast<int>(timeout_s) << " s (stopped)";
+    error = m.str();
+    return true;
+  }
+  if (WIFSIGNALED(o.status)) {
+    error = std::string("the Gmsh ") + what + " crashed (" + self_child::signal_name(WTERMSIG(o.status)) +
+            "): the input is corrupt or not supported";
+    return true;
+  }
+  if (!decode(o.output, mesh, error)) {
+    mesh = TetMesh{};
+    error = std::string("the Gmsh ") + what + " stopped without a result (corrupt input?)";
+  }
+  return true;
 }
 #endif
 
@@ -425,6 +402,38 @@ void tetrahedralize_here(const std::vector<Eigen::Vector3d>& v, const std::vecto
     error = reason_of(std::current_exception());
   }
 }
+
+#if defined(__unix__)
+/// The child: argv = {name, kChildFlag, "mesh"} (the surface on stdin) or {name,
+/// kChildFlag, "read", path}. Writes encode()'s message to stdout; returns the exit status.
+int child_main(int argc, char** argv) {
+  const rlimit no_core{0, 0};
+  setrlimit(RLIMIT_CORE, &no_core);  // a reader crash ends quietly
+  TetMesh m;
+  std::string why;
+  if (argc == 3 && std::strcmp(argv[2], "mesh") == 0) {
+    std::string in;
+    std::vector<Eigen::Vector3d> v;
+    std::vector<std::array<int, 3>> tris;
+    double edge = 0;
+    if (!self_child::read_all(STDIN_FILENO, in) || !decode_surface(in, v, tris, edge)) return 3;
+    tetrahedralize_here(v, tris, edge, m, why);
+  } else if (argc == 4 && std::strcmp(argv[2], "read") == 0) {
+    read_here(argv[3], m, why);
+  } else {
+    return 3;
+  }
+  const std::string b = encode(m, why);
+  return self_child::write_all(STDOUT_FILENO, b.data(), b.size()) ? 0 : 5;
+}
+
+// glibc passes (argc, argv, envp) to ELF constructors. This runs before main() of any
+// executable that links the Gmsh jobs: started as their child, the process does the job
+// and ends here (_exit: no static destructors, no atexit handlers, no leak checks).
+__attribute__((constructor)) void gmsh_child_hook(int argc, char** argv, char**) {
+  if (argc >= 2 && argv && argv[1] && std::strcmp(argv[1], kChildFlag) == 0) _exit(child_main(argc, argv));
+}
+#endif
 
 }  // namespace
 
@@ -583,8 +592,7 @@ TetMesh gmsh_tetrahedralize(const std::vector<Eigen::Vector3d>& vertices, const 
   TetMesh mesh;
   std::string error;
 #if defined(__unix__)
-  if (!run_in_child([&](TetMesh& m, std::string& why) { tetrahedralize_here(vertices, triangles, edge, m, why); },
-                    timeout_s, cancelled, "mesher", mesh, error))
+  if (!run_in_child("mesher", {"mesh"}, encode_surface(vertices, triangles, edge), timeout_s, cancelled, mesh, error))
 #endif
   {
     std::lock_guard<std::mutex> lock(gmsh_mutex());
@@ -606,11 +614,11 @@ TetMesh gmsh_read_volume(const std::string& path) {
   std::string error;
 #if defined(__unix__)
   // Gmsh's readers trust the file (a corrupt node tag in a .msh file is a segfault), so
-  // they run in a forked child that sends the mesh back through a pipe; a crash or a
+  // they run in a child process that sends the mesh back through a socket; a crash or a
   // hang there costs an error message, not the process.
   const double size_mb = static_cast<double>(fs::file_size(path, ec)) / 1e6;
   const double timeout_s = 60.0 + 5.0 * size_mb;  // generous: readers do ~50 MB/s
-  if (!read_in_child(path, timeout_s, mesh, error))
+  if (!run_in_child("reader", {"read", path}, {}, timeout_s, {}, mesh, error))
 #endif
   {
     std::lock_guard<std::mutex> lock(gmsh_mutex());

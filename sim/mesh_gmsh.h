@@ -24,7 +24,7 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
                     const LogFn& log);
 
 /// Tetrahedralises a closed, consistently oriented triangle surface with target edge
-/// length `edge` (m), in a forked child process: a Gmsh crash or hang costs an error, and
+/// length `edge` (m), in a child process (self_child.h): a Gmsh crash or hang costs an error, and
 /// `cancelled` (polled every 0.1 s; may be empty) or `timeout_s` stops it. Throws
 /// std::runtime_error ("Gmsh: ..." / "cancelled ...").
 TetMesh gmsh_tetrahedralize(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<int, 3>>& triangles,

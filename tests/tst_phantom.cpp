@@ -5,14 +5,21 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
+#include <vector>
+
+#include <unistd.h>
 
 #include "mesh.h"
 #include "mesh_gmsh.h"
@@ -105,6 +112,18 @@ std::string to_msh22(const TetMesh& m) {
     }                                                                                 \
     QVERIFY2(threw_, ("no error for " + p_).c_str());                                 \
   } while (0)
+
+
+// A 10 cm cube's closed, outward-oriented surface (12 triangles).
+std::vector<Eigen::Vector3d> cube_vertices() {
+  std::vector<Eigen::Vector3d> v;
+  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? 0.1 : 0.0, i & 2 ? 0.1 : 0.0, i & 4 ? 0.1 : 0.0);
+  return v;
+}
+std::vector<std::array<int, 3>> cube_triangles() {
+  return {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+          {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+}
 
 }  // namespace
 
@@ -351,6 +370,79 @@ class TestPhantom : public QObject {
     QVERIFY(tet_volume(one.nodes[one.tets[0][0]], one.nodes[one.tets[0][1]], one.nodes[one.tets[0][2]],
                        one.nodes[one.tets[0][3]]) > 0);
     EXPECT_READ_FAILS(write_file(dir.path(), "crash.msh", head + "1 1 2 3 1999999999992\n$EndElements\n"));
+  }
+
+  // Gmsh's jobs run in a freshly executed copy of this program (sim/self_child.h), not a
+  // fork() of it: the child seen under /proc has the job's own argv and this executable.
+  // A forked child would show this test's argv.
+  void gmshJobsRunInAFreshProcess() {
+    std::atomic<bool> done{false};
+    TetMesh m;
+    std::string error;
+    std::thread job([&] {
+      try {
+        m = gmsh_tetrahedralize(cube_vertices(), cube_triangles(), 0.008, 120.0, {});
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      done = true;
+    });
+    std::vector<std::string> seen;
+    std::string exe;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe");
+    while (!done && seen.empty()) {
+      for (const auto& d : std::filesystem::directory_iterator("/proc")) {
+        std::ifstream st(d.path() / "stat");
+        std::string pid, comm, state;
+        long ppid = 0;
+        if (!(st >> pid >> comm >> state >> ppid) || ppid != long(::getpid())) continue;
+        std::ifstream cl(d.path() / "cmdline", std::ios::binary);
+        std::string arg;
+        while (std::getline(cl, arg, '\0')) seen.push_back(arg);
+        std::error_code ec;
+        exe = std::filesystem::read_symlink(d.path() / "exe", ec).string();
+        if (!seen.empty()) break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    job.join();
+    QVERIFY2(error.empty(), error.c_str());
+    QVERIFY(m.num_tets() > 100);
+    QVERIFY2(seen.size() >= 3, "the mesher's child process was not seen");
+    QCOMPARE(QString::fromStdString(seen[0]), QStringLiteral("palpation-gmsh-mesher"));
+    QCOMPARE(QString::fromStdString(seen[1]), QStringLiteral("--palpation-internal-gmsh"));
+    QCOMPARE(QString::fromStdString(seen[2]), QStringLiteral("mesh"));
+    QCOMPARE(QString::fromStdString(exe), QString::fromStdString(self.string()));
+  }
+
+  // The reason for the above: with three threads allocating, forked children of an
+  // AddressSanitizer build hung on the allocator's lock (2 of 120 jobs, each until its
+  // deadline; CI's sanitizer stage lost tst_review that way). Every job must finish.
+  void gmshJobsFinishWhileOtherThreadsAllocate() {
+    std::atomic<bool> stop{false};
+    std::vector<std::thread> churn;
+    for (int k = 0; k < 3; ++k)
+      churn.emplace_back([&stop, k] {
+        std::vector<std::unique_ptr<char[]>> keep(64);
+        unsigned s = 1u + unsigned(k);
+        while (!stop) {
+          s = s * 1103515245u + 12345u;
+          keep[s % 64].reset(new char[16 + (s >> 8) % 5000]);
+        }
+      });
+    QStringList failed;
+    const int jobs = 12;
+    for (int i = 0; i < jobs; ++i) {
+      try {
+        const TetMesh m = gmsh_tetrahedralize(cube_vertices(), cube_triangles(), 0.03, 30.0, {});
+        if (m.num_tets() < 6) failed << QStringLiteral("%1: %2 tetrahedra").arg(i).arg(m.num_tets());
+      } catch (const std::exception& e) {
+        failed << QStringLiteral("%1: %2").arg(i).arg(QString::fromStdString(e.what()));
+      }
+    }
+    stop = true;
+    for (auto& t : churn) t.join();
+    QVERIFY2(failed.isEmpty(), qPrintable(failed.join(QStringLiteral("; "))));
   }
 
   // --- model cache ---------------------------------------------------------------
