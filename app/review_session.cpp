@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "replay.h"
 #include "simulation.h"
@@ -36,8 +39,29 @@ std::string one_line(const json& e) {
 }  // namespace
 
 ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path)) {
+  // The workstation records an instructor's change twice: as data for the re-simulation
+  // ("parameter") and as a line of its event log ("instructor", the same text within a
+  // few ms); a trainee's mark likewise ("mark" with its position, and the log's "trainee
+  // mark N"). The list and the timeline show each once: the data's entry.
+  std::vector<std::pair<double, std::string>> data_twins;
   for (const json& e : rec_.events) {
     if (!e.is_object() || !e.contains("t") || !e["t"].is_number()) continue;
+    const std::string kind = e.value("kind", "");
+    if (kind == "parameter" && e.contains("text") && e["text"].is_string())
+      data_twins.emplace_back(e["t"].get<double>(), e["text"].get<std::string>());
+    else if (kind == "mark" && e.contains("mark") && e["mark"].is_number_integer())
+      data_twins.emplace_back(e["t"].get<double>(), "trainee mark " + std::to_string(e["mark"].get<long long>()));
+  }
+  auto is_log_twin = [&](double t, const json& e) {
+    if (!e.contains("text") || !e["text"].is_string()) return false;
+    const std::string& text = e["text"].get_ref<const std::string&>();
+    for (const auto& [td, d] : data_twins)
+      if (d == text && std::abs(td - t) < 0.1) return true;
+    return false;
+  };
+  for (const json& e : rec_.events) {
+    if (!e.is_object() || !e.contains("t") || !e["t"].is_number()) continue;
+    if (e.value("kind", "") == "instructor" && is_log_twin(e["t"].get<double>(), e)) continue;
     ReviewMarker m;
     m.t = e["t"].get<double>();
     m.kind = e.value("kind", "");

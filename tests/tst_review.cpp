@@ -174,6 +174,13 @@ class TstReview : public QObject {
       // chosen language (ui/recorded_text.h).
       QStringList events_en;
       for (int i = 0; i < rw.marker_list()->count(); ++i) events_en << rw.marker_list()->item(i)->text();
+      // Each change and mark once, though the file holds it as data and as a log line
+      // (this script made every change once).
+      QStringList texts;
+      for (const QString& e : events_en) texts << e.section(QStringLiteral("  "), 1);
+      QStringList distinct = texts;
+      distinct.removeDuplicates();
+      QVERIFY2(distinct.size() == texts.size(), qPrintable(QStringLiteral("listed twice: ") + texts.join(QStringLiteral(" | "))));
       QTranslator ja;
       QVERIFY(ja.load(QStringLiteral(":/i18n/palpation_ja.qm")));
       QCoreApplication::installTranslator(&ja);
