@@ -406,7 +406,7 @@ class CpuBackend final : public Backend {
   }
 
   // R v for R given by its columns, and (R - I) v.
-  static V4 rotate(const V4 Rc[3], const T* v) { return Rc[0] * v[0] + Rc[1] * v[1] + Rc[2] * v[2]; }
+  static V4 rotate(const V4 Rc[3], const T* v) { return lanes::mul<T>(Rc, lanes::load3(v)); }
 
   // The element pass over `count` elements index(0..count-1) in three stages: F and its
   // check for each, the rotation extraction of those that moved, four at a time
@@ -473,6 +473,11 @@ class CpuBackend final : public Backend {
     const T* ge = &eg_[12 * es];
     const M3 R = q_[e].toRotationMatrix();
     T* Rk = &ekrot_[9 * es];
+    int thread = 0;
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+#endif
+    const int trash_row = 3 * (m_.num_free() + thread);  // this thread's slot for fixed nodes' rows
     bool update = full;
     if (!update) {
       T change = 0;
@@ -480,11 +485,7 @@ class CpuBackend final : public Backend {
       update = !(change <= tol);
     }
     if (update) {
-      int thread = 0;
-#ifdef _OPENMP
-      thread = omp_get_thread_num();
-#endif
-      const int trash_row = 3 * (m_.num_free() + thread), trash_blk = 9 * (m_.num_blocks() + thread);
+      const int trash_blk = 9 * (m_.num_blocks() + thread);
       int blk[16];
       for (int k = 0; k < 16; ++k) {
         const int v = eblk_[16 * es + k];
@@ -523,11 +524,6 @@ class CpuBackend final : public Backend {
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) F(i, j) = Fc[j][i];
     const M3 RS = -vol * (R * fem::linear_stress<T>(R.transpose() * F - M3::Identity(), lambda_[e], mu_[e]));
-    int thread = 0;
-#ifdef _OPENMP
-    thread = omp_get_thread_num();
-#endif
-    const int trash_row = 3 * (m_.num_free() + thread);
     for (int a = 0; a < 4; ++a) {
       const int v = erow_[4 * es + a];
       T* bb = &b_[std::size_t(v < 0 ? trash_row : v)];

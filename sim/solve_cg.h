@@ -81,10 +81,7 @@ void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, b
     if (k < end) acc += block(b, x + 3 * c[k]);
     acc += acc2;
     if (A.diag) {
-      const T* __restrict d = A.diag + 9 * std::size_t(i);
-      const T* __restrict xx = x + 3 * i;
-      const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
-      acc = A.scale * acc + (load4(d) * x0 + load4(d + 3) * x1 + load4(d + 6) * x2);
+      acc = A.scale * acc + block(A.diag + 9 * std::size_t(i), x + 3 * i);
     } else if (A.scale != T(1)) {
       acc *= A.scale;
     }
