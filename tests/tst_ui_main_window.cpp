@@ -212,6 +212,43 @@ class TstUiMainWindow : public QObject {
     QVERIFY(ws.applied_young() == before);
   }
 
+  // An instructor working in Japanese: the undo stack and the tumour list speak Japanese,
+  // while the simulation's event log (and so the recording, data that a review
+  // translates) gets English.
+  void changes_are_logged_in_english_in_japanese() {
+    auto& ws = w_->workstation();
+    ui::TumourEditor* ed = w_->editor();
+    QVERIFY(set_language(QStringLiteral("ja")));
+    const std::size_t events0 = ws.events().size();
+    QVERIFY(ed->add_shape(QStringLiteral("sphere"), Eigen::Vector3d(0.10, 0.02, 0.02), Eigen::Vector3d::Constant(0.01),
+                          300000.0) > 0);
+    ed->set_brush(0.01, 0.01, 200000.0);
+    ed->begin_stroke(false);
+    QVERIFY(ed->dab(Eigen::Vector3d(0.12, -0.02, 0.06), Eigen::Vector3d::UnitZ()) > 0);
+    ed->end_stroke();
+    QVERIFY(synced());
+    const QString add = ed->undo_stack()->text(ed->undo_stack()->index() - 2);
+    const QString stroke = ed->undo_stack()->text(ed->undo_stack()->index() - 1);
+    QVERIFY2(add.startsWith(QStringLiteral("腫瘍を追加: 球")), qPrintable(add));
+    QVERIFY2(stroke.startsWith(QStringLiteral("描画ストローク")), qPrintable(stroke));
+    QVERIFY2(ed->tumour_names().last().contains(QStringLiteral("描画")), qPrintable(ed->tumour_names().join(QLatin1Char('|'))));
+    ed->undo_stack()->undo();  // the stroke
+    ed->undo_stack()->undo();  // the tumour
+    QVERIFY(synced());
+    QVERIFY(set_language(QStringLiteral("en")));
+    QStringList logged;
+    const auto events = ws.events();
+    for (std::size_t i = events0; i < events.size(); ++i)
+      if (events[i].kind == "material") logged << QString::fromStdString(events[i].text);
+    QVERIFY2(logged.size() == 5, qPrintable(logged.join(QStringLiteral(" | "))));
+    QVERIFY2(logged[0].startsWith(QLatin1String("Add tumour: Sphere at (10.0, 2.0, 2.0) cm, 300 kPa")), qPrintable(logged[0]));
+    QCOMPARE(logged[1], QStringLiteral("Paint"));  // the dab, applied at once
+    QVERIFY2(logged[2].startsWith(QLatin1String("Paint stroke (")) && logged[2].endsWith(QLatin1String(" elements)")),
+             qPrintable(logged[2]));
+    QVERIFY2(logged[3].startsWith(QLatin1String("Undo: Paint stroke (")), qPrintable(logged[3]));
+    QVERIFY2(logged[4].startsWith(QLatin1String("Undo: Add tumour: Sphere at")), qPrintable(logged[4]));
+  }
+
   // The brush through the real mouse path: pick on the 3-D view, drag, release.
   void paint_with_the_mouse() {
     ui::VtkView* v = w_->view();

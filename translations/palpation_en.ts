@@ -61,7 +61,6 @@
     <name>QObject</name>
     <message>
         <location filename="../ui/recorded_text.cpp" line="19"/>
-        <location filename="../ui/tumour_editor.cpp" line="43"/>
         <source>Undo: %1</source>
         <translation type="unfinished"></translation>
     </message>
@@ -422,354 +421,364 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="128"/>
+        <location filename="../ui/main_window.cpp" line="132"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="138"/>
+        <location filename="../ui/main_window.cpp" line="142"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="191"/>
+        <location filename="../ui/main_window.cpp" line="202"/>
         <source>This session is not recorded: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="193"/>
+        <location filename="../ui/main_window.cpp" line="204"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="195"/>
+        <location filename="../ui/main_window.cpp" line="206"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="241"/>
+        <location filename="../ui/main_window.cpp" line="252"/>
         <source>no patient library is open: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="274"/>
+        <location filename="../ui/main_window.cpp" line="286"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="274"/>
+        <location filename="../ui/main_window.cpp" line="286"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="280"/>
+        <location filename="../ui/main_window.cpp" line="292"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, recorded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="312"/>
+        <location filename="../ui/main_window.cpp" line="324"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="325"/>
+        <location filename="../ui/main_window.cpp" line="337"/>
         <source>Open a session recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="326"/>
+        <location filename="../ui/main_window.cpp" line="338"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="329"/>
+        <location filename="../ui/main_window.cpp" line="341"/>
         <source>Cannot open the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="333"/>
+        <location filename="../ui/main_window.cpp" line="345"/>
         <source>Save screenshot</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="333"/>
+        <location filename="../ui/main_window.cpp" line="345"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="363"/>
-        <location filename="../ui/main_window.cpp" line="458"/>
+        <location filename="../ui/main_window.cpp" line="375"/>
+        <location filename="../ui/main_window.cpp" line="480"/>
         <source>Stereo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="373"/>
+        <location filename="../ui/main_window.cpp" line="385"/>
         <source>Eye separation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="373"/>
+        <location filename="../ui/main_window.cpp" line="385"/>
         <source>Eye angle (degrees):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="444"/>
+        <location filename="../ui/main_window.cpp" line="466"/>
         <source>Palpation Trainer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="445"/>
+        <location filename="../ui/main_window.cpp" line="467"/>
         <source>&amp;File</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="446"/>
+        <location filename="../ui/main_window.cpp" line="468"/>
         <source>&amp;Open recording...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="447"/>
+        <location filename="../ui/main_window.cpp" line="469"/>
         <source>Mark lump here (M)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="448"/>
+        <location filename="../ui/main_window.cpp" line="470"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="449"/>
+        <location filename="../ui/main_window.cpp" line="471"/>
         <source>Save &amp;screenshot...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="450"/>
+        <location filename="../ui/main_window.cpp" line="472"/>
         <source>&amp;Quit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="451"/>
+        <location filename="../ui/main_window.cpp" line="473"/>
         <source>&amp;Edit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="452"/>
+        <location filename="../ui/main_window.cpp" line="474"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="453"/>
+        <location filename="../ui/main_window.cpp" line="475"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="454"/>
+        <location filename="../ui/main_window.cpp" line="476"/>
         <source>&amp;View</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="455"/>
+        <location filename="../ui/main_window.cpp" line="477"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="456"/>
+        <location filename="../ui/main_window.cpp" line="478"/>
         <source>Oblique</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="456"/>
+        <location filename="../ui/main_window.cpp" line="478"/>
         <source>Top</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="456"/>
+        <location filename="../ui/main_window.cpp" line="478"/>
         <source>Side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="456"/>
+        <location filename="../ui/main_window.cpp" line="478"/>
         <source>Front</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="459"/>
+        <location filename="../ui/main_window.cpp" line="481"/>
         <source>Mono</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="459"/>
+        <location filename="../ui/main_window.cpp" line="481"/>
         <source>Anaglyph (red/cyan)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="459"/>
+        <location filename="../ui/main_window.cpp" line="481"/>
         <source>Side by side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="459"/>
+        <location filename="../ui/main_window.cpp" line="481"/>
         <source>Interlaced</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="459"/>
+        <location filename="../ui/main_window.cpp" line="481"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="461"/>
+        <location filename="../ui/main_window.cpp" line="483"/>
         <source>Eye separation...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="462"/>
+        <location filename="../ui/main_window.cpp" line="484"/>
         <source>Mirrored (half-mirror display)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="463"/>
+        <location filename="../ui/main_window.cpp" line="485"/>
+        <source>Fast rendering (software OpenGL)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="486"/>
+        <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="488"/>
         <source>Displacement colour map</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="464"/>
+        <location filename="../ui/main_window.cpp" line="489"/>
         <source>Stress colour map (von Mises)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="465"/>
+        <location filename="../ui/main_window.cpp" line="490"/>
         <source>Show tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="466"/>
+        <location filename="../ui/main_window.cpp" line="491"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="467"/>
+        <location filename="../ui/main_window.cpp" line="492"/>
         <source>&amp;Mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="468"/>
+        <location filename="../ui/main_window.cpp" line="493"/>
         <source>Trainee mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="469"/>
+        <location filename="../ui/main_window.cpp" line="494"/>
         <source>Instructor mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="470"/>
+        <location filename="../ui/main_window.cpp" line="495"/>
         <source>Tools</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="471"/>
+        <location filename="../ui/main_window.cpp" line="496"/>
         <source>Camera / scripted hand</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="472"/>
+        <location filename="../ui/main_window.cpp" line="497"/>
         <source>Palpate with the mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="589"/>
+        <location filename="../ui/main_window.cpp" line="614"/>
         <source>Not recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="590"/>
+        <location filename="../ui/main_window.cpp" line="615"/>
         <source>Recording stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="591"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>Recording (%1 marks)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="113"/>
-        <location filename="../ui/main_window.cpp" line="473"/>
+        <location filename="../ui/main_window.cpp" line="117"/>
+        <location filename="../ui/main_window.cpp" line="498"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="474"/>
+        <location filename="../ui/main_window.cpp" line="499"/>
         <source>Tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="475"/>
+        <location filename="../ui/main_window.cpp" line="500"/>
         <source>Forces</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="476"/>
+        <location filename="../ui/main_window.cpp" line="501"/>
         <source>Simulation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="502"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="539"/>
+        <location filename="../ui/main_window.cpp" line="564"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="579"/>
+        <location filename="../ui/main_window.cpp" line="604"/>
         <source>Backend: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="579"/>
+        <location filename="../ui/main_window.cpp" line="604"/>
         <source>Backend: %1 (fallback)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="581"/>
+        <location filename="../ui/main_window.cpp" line="606"/>
         <source>Simulation: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="582"/>
+        <location filename="../ui/main_window.cpp" line="607"/>
         <source>Haptic: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="584"/>
+        <location filename="../ui/main_window.cpp" line="609"/>
         <source>mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="585"/>
+        <location filename="../ui/main_window.cpp" line="610"/>
         <source>simulated HandHIRO</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="586"/>
+        <location filename="../ui/main_window.cpp" line="611"/>
         <source>Device: %1, %2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="586"/>
+        <location filename="../ui/main_window.cpp" line="611"/>
         <source>connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="586"/>
+        <location filename="../ui/main_window.cpp" line="611"/>
         <source>not connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="587"/>
+        <location filename="../ui/main_window.cpp" line="612"/>
         <source>View: %1 fps</source>
         <translation type="unfinished"></translation>
     </message>
@@ -855,137 +864,137 @@
 <context>
     <name>palpation::ui::RecordedText</name>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="41"/>
+        <location filename="../ui/recorded_text.cpp" line="43"/>
         <source>device: mouse palpation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="42"/>
+        <location filename="../ui/recorded_text.cpp" line="44"/>
         <source>device: scripted hand</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="43"/>
+        <location filename="../ui/recorded_text.cpp" line="45"/>
         <source>trainee mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="44"/>
+        <location filename="../ui/recorded_text.cpp" line="46"/>
         <source>instructor mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="45"/>
+        <location filename="../ui/recorded_text.cpp" line="47"/>
         <source>solver/contact parameters changed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="49"/>
+        <location filename="../ui/recorded_text.cpp" line="51"/>
         <source>trainee mark %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="50"/>
+        <location filename="../ui/recorded_text.cpp" line="52"/>
         <source>trainee mark %1 at (%2, %3, %4) cm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="52"/>
+        <location filename="../ui/recorded_text.cpp" line="54"/>
         <source>: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="56"/>
+        <location filename="../ui/recorded_text.cpp" line="58"/>
         <source>patient loaded: %1 nodes, %2 tetrahedra, backend %3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="57"/>
+        <location filename="../ui/recorded_text.cpp" line="59"/>
         <source>loading patient: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="58"/>
+        <location filename="../ui/recorded_text.cpp" line="60"/>
         <source>patient not loaded: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="59"/>
+        <location filename="../ui/recorded_text.cpp" line="61"/>
         <source>simulation stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="61"/>
+        <location filename="../ui/recorded_text.cpp" line="63"/>
         <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="63"/>
+        <location filename="../ui/recorded_text.cpp" line="65"/>
         <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="64"/>
+        <location filename="../ui/recorded_text.cpp" line="66"/>
         <source>change: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="77"/>
+        <location filename="../ui/recorded_text.cpp" line="79"/>
         <source>small</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="78"/>
+        <location filename="../ui/recorded_text.cpp" line="80"/>
         <source>medium</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="79"/>
+        <location filename="../ui/recorded_text.cpp" line="81"/>
         <source>large</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="80"/>
+        <location filename="../ui/recorded_text.cpp" line="82"/>
         <source>wide and flat</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="81"/>
+        <location filename="../ui/recorded_text.cpp" line="83"/>
         <source>narrow and projecting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="82"/>
+        <location filename="../ui/recorded_text.cpp" line="84"/>
         <source>Healthy breast, %1 (%2 mL), no tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="83"/>
+        <location filename="../ui/recorded_text.cpp" line="85"/>
         <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="86"/>
+        <location filename="../ui/recorded_text.cpp" line="88"/>
         <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <location filename="../ui/recorded_text.cpp" line="94"/>
         <source>soft</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <location filename="../ui/recorded_text.cpp" line="94"/>
         <source>firm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="92"/>
+        <location filename="../ui/recorded_text.cpp" line="94"/>
         <source>hard</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/recorded_text.cpp" line="93"/>
+        <location filename="../ui/recorded_text.cpp" line="95"/>
         <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1257,92 +1266,92 @@
 <context>
     <name>palpation::ui::TumourEditor</name>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="11"/>
+        <location filename="../ui/tumour_editor.cpp" line="12"/>
         <source>Tumour (paper, 107 kPa)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="11"/>
+        <location filename="../ui/tumour_editor.cpp" line="12"/>
         <source>Ueda et al., paper section 4.1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="12"/>
+        <location filename="../ui/tumour_editor.cpp" line="13"/>
         <source>Invasive ductal carcinoma (Krouskop, 5%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="12"/>
+        <location filename="../ui/tumour_editor.cpp" line="13"/>
         <source>Krouskop et al. 1998: 93-112 kPa at 5% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="13"/>
+        <location filename="../ui/tumour_editor.cpp" line="14"/>
         <source>Invasive ductal carcinoma (Krouskop, 20%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="13"/>
+        <location filename="../ui/tumour_editor.cpp" line="14"/>
         <source>Krouskop et al. 1998: 460-558 kPa at 20% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="14"/>
+        <location filename="../ui/tumour_editor.cpp" line="15"/>
         <source>Fibrous tissue (Krouskop, 5%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="14"/>
+        <location filename="../ui/tumour_editor.cpp" line="15"/>
         <source>Krouskop et al. 1998: 96-116 kPa at 5% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="15"/>
+        <location filename="../ui/tumour_editor.cpp" line="16"/>
         <source>DCIS (Krouskop, 20%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="15"/>
+        <location filename="../ui/tumour_editor.cpp" line="16"/>
         <source>Krouskop et al. 1998: 291-307 kPa at 20% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="16"/>
+        <location filename="../ui/tumour_editor.cpp" line="17"/>
         <source>Fibroglandular (Krouskop, 5%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="16"/>
+        <location filename="../ui/tumour_editor.cpp" line="17"/>
         <source>Krouskop et al. 1998: 28-35 kPa at 5% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="17"/>
+        <location filename="../ui/tumour_editor.cpp" line="18"/>
         <source>IDC high grade (Samani)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="17"/>
+        <location filename="../ui/tumour_editor.cpp" line="18"/>
         <source>Samani et al. 2007: 10-43 kPa by grade, small strain</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="18"/>
+        <location filename="../ui/tumour_editor.cpp" line="19"/>
         <source>Fibroadenoma (Samani, 2x fat)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="18"/>
+        <location filename="../ui/tumour_editor.cpp" line="19"/>
         <source>Samani et al. 2007: about 6.4 kPa</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="71"/>
+        <location filename="../ui/tumour_editor.cpp" line="89"/>
         <source>Patient&apos;s tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="78"/>
+        <location filename="../ui/tumour_editor.cpp" line="97"/>
         <source>%1 (%n elements)</source>
         <translation>
             <numerusform>%1 (%n element)</numerusform>
@@ -1350,42 +1359,42 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="120"/>
+        <location filename="../ui/tumour_editor.cpp" line="142"/>
         <source>%1 at (%2, %3, %4) cm, %5 kPa</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="121"/>
+        <location filename="../ui/tumour_editor.cpp" line="139"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="121"/>
+        <location filename="../ui/tumour_editor.cpp" line="140"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="126"/>
+        <location filename="../ui/tumour_editor.cpp" line="149"/>
         <source>Add tumour: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="139"/>
+        <location filename="../ui/tumour_editor.cpp" line="166"/>
         <source>Remove tumour: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="164"/>
+        <location filename="../ui/tumour_editor.cpp" line="194"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="164"/>
+        <location filename="../ui/tumour_editor.cpp" line="195"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="177"/>
+        <location filename="../ui/tumour_editor.cpp" line="208"/>
         <source>Erase stroke (%n elements)</source>
         <translation>
             <numerusform>Erase stroke (%n element)</numerusform>
@@ -1393,7 +1402,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="180"/>
+        <location filename="../ui/tumour_editor.cpp" line="209"/>
         <source>Paint stroke (%n elements)</source>
         <translation>
             <numerusform>Paint stroke (%n element)</numerusform>
@@ -1401,7 +1410,7 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="181"/>
+        <location filename="../ui/tumour_editor.cpp" line="212"/>
         <source>Painted tumour %1, %2 kPa</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1513,22 +1522,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="542"/>
+        <location filename="../ui/vtk_view.cpp" line="580"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="545"/>
+        <location filename="../ui/vtk_view.cpp" line="583"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="741"/>
+        <location filename="../ui/vtk_view.cpp" line="783"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="743"/>
+        <location filename="../ui/vtk_view.cpp" line="785"/>
         <source>the view is not initialised yet</source>
         <translation type="unfinished"></translation>
     </message>

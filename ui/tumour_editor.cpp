@@ -1,5 +1,6 @@
 #include "tumour_editor.h"
 
+#include <QCoreApplication>
 #include <QUndoCommand>
 
 namespace palpation::ui {
@@ -21,27 +22,44 @@ std::vector<TissuePreset> tissue_presets() {
 
 namespace {
 
+// The editor's messages in two languages: the chosen one for the undo stack and the
+// tumour list, English for the simulation's event log and the recording, which keep
+// English as data (a review translates them: ui/recorded_text.h). `source` is marked for
+// lupdate with QT_TRANSLATE_NOOP at the call in TumourEditor's context.
+QString text_in(const char* source, bool english, int n = -1) {
+  if (!english) return QCoreApplication::translate("palpation::ui::TumourEditor", source, nullptr, n);
+  QString s = QString::fromUtf8(source);
+  if (n >= 0) s.replace(QLatin1String("%n"), QString::number(n));
+  return s;
+}
+
 // One change of element moduli, optionally adding or removing a tumour list entry.
 class MaterialCommand : public QUndoCommand {
  public:
-  MaterialCommand(TumourEditor* ed, std::map<int, double> before, std::map<int, double> after, const QString& text)
+  MaterialCommand(TumourEditor* ed, std::map<int, double> before, std::map<int, double> after, const QString& text,
+                  const QString& logged)
       : ed_(ed), before_(std::move(before)), after_(std::move(after)) {
-    setText(text);
+    set_texts(text, logged);
   }
-  void add_entry(int at, const QString& name, std::vector<int> elements, bool remove) {
+  void set_texts(const QString& text, const QString& logged) {
+    setText(text);
+    logged_ = logged;
+  }
+  void add_entry(int at, const QString& name, const QString& english, std::vector<int> elements, bool remove) {
     entry_ = true;
     at_ = at;
     name_ = name;
+    english_ = english;
     elements_ = std::move(elements);
     remove_ = remove;
   }
   void redo() override {
-    ed_->apply(after_, text());
-    if (entry_) remove_ ? ed_->erase_tumour(at_) : ed_->insert_tumour(at_, name_, elements_);
+    ed_->apply(after_, logged_);
+    if (entry_) remove_ ? ed_->erase_tumour(at_) : ed_->insert_tumour(at_, name_, english_, elements_);
   }
   void undo() override {
-    ed_->apply(before_, QObject::tr("Undo: %1").arg(text()));
-    if (entry_) remove_ ? ed_->insert_tumour(at_, name_, elements_) : ed_->erase_tumour(at_);
+    ed_->apply(before_, QStringLiteral("Undo: %1").arg(logged_));  // English: see text_in()
+    if (entry_) remove_ ? ed_->insert_tumour(at_, name_, english_, elements_) : ed_->erase_tumour(at_);
   }
 
  private:
@@ -49,7 +67,7 @@ class MaterialCommand : public QUndoCommand {
   std::map<int, double> before_, after_;
   bool entry_ = false, remove_ = false;
   int at_ = 0;
-  QString name_;
+  QString name_, english_, logged_;
   std::vector<int> elements_;
 };
 
@@ -68,7 +86,8 @@ void TumourEditor::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
     std::vector<int> stiff;
     for (std::size_t e = 0; e < young_.size(); ++e)
       if (young_[e] > g_->tissue_young * 1.2) stiff.push_back(int(e));
-    if (!stiff.empty()) tumours_.push_back({tr("Patient's tumour"), stiff});
+    const char* own = QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Patient's tumour");
+    if (!stiff.empty()) tumours_.push_back({text_in(own, false), text_in(own, true), stiff});
   }
   emit changed();
 }
@@ -91,9 +110,9 @@ void TumourEditor::apply(const std::map<int, double>& young, const QString& text
   emit changed();
 }
 
-void TumourEditor::insert_tumour(int at, const QString& name, const std::vector<int>& elements) {
+void TumourEditor::insert_tumour(int at, const QString& name, const QString& english, const std::vector<int>& elements) {
   at = std::clamp(at, 0, int(tumours_.size()));
-  tumours_.insert(tumours_.begin() + at, Tumour{name, elements});
+  tumours_.insert(tumours_.begin() + at, Tumour{name, english, elements});
   emit changed();
 }
 
@@ -117,14 +136,21 @@ int TumourEditor::add_shape(const QString& shape, const Eigen::Vector3d& centre,
     elements.push_back(int(e));
   }
   if (elements.empty()) return 0;
-  const QString name = tr("%1 at (%2, %3, %4) cm, %5 kPa")
-                           .arg(shape == QLatin1String("sphere") ? tr("Sphere") : tr("Ellipsoid"))
-                           .arg(centre.x() * 100, 0, 'f', 1)
-                           .arg(centre.y() * 100, 0, 'f', 1)
-                           .arg(centre.z() * 100, 0, 'f', 1)
-                           .arg(young / 1000, 0, 'f', 0);
-  auto* c = new MaterialCommand(this, std::move(before), std::move(after), tr("Add tumour: %1").arg(name));
-  c->add_entry(int(tumours_.size()), name, elements, false);
+  const char* kind = shape == QLatin1String("sphere") ? QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Sphere")
+                                                     : QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Ellipsoid");
+  auto name_in = [&](bool english) {
+    return text_in(QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "%1 at (%2, %3, %4) cm, %5 kPa"), english)
+        .arg(text_in(kind, english))
+        .arg(centre.x() * 100, 0, 'f', 1)
+        .arg(centre.y() * 100, 0, 'f', 1)
+        .arg(centre.z() * 100, 0, 'f', 1)
+        .arg(young / 1000, 0, 'f', 0);
+  };
+  const char* add = QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Add tumour: %1");
+  const QString name = name_in(false), english = name_in(true);
+  auto* c = new MaterialCommand(this, std::move(before), std::move(after), text_in(add, false).arg(name),
+                                text_in(add, true).arg(english));
+  c->add_entry(int(tumours_.size()), name, english, elements, false);
   undo_.push(c);
   return int(elements.size());
 }
@@ -136,8 +162,10 @@ void TumourEditor::remove_tumour(int i) {
     before[e] = young_[e];
     after[e] = g_->tissue_young;
   }
-  auto* c = new MaterialCommand(this, std::move(before), std::move(after), tr("Remove tumour: %1").arg(tumours_[i].name));
-  c->add_entry(i, tumours_[i].name, tumours_[i].elements, true);
+  const Tumour& t = tumours_[std::size_t(i)];
+  auto* c = new MaterialCommand(this, std::move(before), std::move(after), tr("Remove tumour: %1").arg(t.name),
+                                QStringLiteral("Remove tumour: %1").arg(t.english));  // English: see text_in()
+  c->add_entry(i, t.name, t.english, t.elements, true);
   undo_.push(c);
 }
 
@@ -161,7 +189,11 @@ int TumourEditor::dab(const Eigen::Vector3d& point, const Eigen::Vector3d& norma
     stroke_new_[id] = target;
     now[id] = target;
   }
-  if (!now.empty()) apply(now, erase_ ? tr("Erase") : tr("Paint"));
+  // One dab is logged, never listed in the undo stack: English only (review translates it).
+  if (!now.empty())
+    apply(now, text_in(erase_ ? QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Erase")
+                              : QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Paint"),
+                       /*english=*/true));
   return int(now.size());
 }
 
@@ -171,17 +203,17 @@ void TumourEditor::end_stroke() {
   if (stroke_new_.empty()) return;
   std::vector<int> elements;
   for (const auto& [e, E] : stroke_new_) elements.push_back(e);
-  QString text;
-  auto* c = new MaterialCommand(this, stroke_old_, stroke_new_, QString());
-  if (erase_) {
-    text = tr("Erase stroke (%n elements)", nullptr, int(elements.size()));
-  } else {
+  const int n = int(elements.size());
+  auto* c = new MaterialCommand(this, stroke_old_, stroke_new_, QString(), QString());
+  const char* stroke = erase_ ? QT_TRANSLATE_N_NOOP("palpation::ui::TumourEditor", "Erase stroke (%n elements)")
+                              : QT_TRANSLATE_N_NOOP("palpation::ui::TumourEditor", "Paint stroke (%n elements)");
+  if (!erase_) {
     ++painted_count_;
-    text = tr("Paint stroke (%n elements)", nullptr, int(elements.size()));
-    c->add_entry(int(tumours_.size()), tr("Painted tumour %1, %2 kPa").arg(painted_count_).arg(brush_young_ / 1000, 0, 'f', 0),
-                 elements, false);
+    const char* painted = QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Painted tumour %1, %2 kPa");
+    auto name_in = [&](bool english) { return text_in(painted, english).arg(painted_count_).arg(brush_young_ / 1000, 0, 'f', 0); };
+    c->add_entry(int(tumours_.size()), name_in(false), name_in(true), elements, false);
   }
-  c->setText(text);
+  c->set_texts(text_in(stroke, false, n), text_in(stroke, true, n));
   // push() calls redo(): the stroke is already applied, re-applying the same values is
   // harmless and keeps undo/redo symmetric.
   undo_.push(c);
