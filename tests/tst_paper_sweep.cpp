@@ -17,16 +17,27 @@ namespace {
 
 sim::Scenario sweep(const std::string& name) {
   sim::Scenario s = sim::builtin_scenario(name);
-  // The coarse breast by default (CI has two cores); PALPATION_SWEEP_RESOLUTION=paper
-  // runs the paper's mesh size.
+  // A 7.5 mm edge by default (3,079 nodes, 14,559 tetrahedra: between "coarse" and
+  // "paper", 5.7 ms a step, so the two 24 s sweeps take about 2.3 minutes on CI's two
+  // cores); PALPATION_SWEEP_RESOLUTION names another level (paper: the paper's mesh).
+  // PALPATION_LIGHT_TESTS (the sanitizer stage of .ci/run): the coarse mesh and the first
+  // pass only (6 s of the 24); the full sweep runs in the normal build.
+  const char* light = std::getenv("PALPATION_LIGHT_TESTS");
+  const bool is_light = light && *light && *light != '0';
   const char* env = std::getenv("PALPATION_SWEEP_RESOLUTION");
-  s.patient.resolution = env && *env ? env : "coarse";
-  s.patient.edge = *sim::resolution_edge("breast", s.patient.resolution);
+  if (env && *env) {
+    s.patient.resolution = env;
+    s.patient.edge = *sim::resolution_edge("breast", s.patient.resolution);
+  } else if (is_light) {
+    s.patient.resolution = "coarse";
+    s.patient.edge = *sim::resolution_edge("breast", "coarse");
+  } else {
+    s.patient.resolution.clear();  // a numeric edge, as the scenario format keeps it
+    s.patient.edge = 0.0075;
+  }
   s.backend = "cpu";
   s.params.solver.threads = 1;  // the two runs go in parallel, one core each
-  // PALPATION_LIGHT_TESTS (the sanitizer stage of .ci/run): the first pass only (6 s of
-  // the 24), a quarter of the work; the full sweep runs in the normal build.
-  if (const char* light = std::getenv("PALPATION_LIGHT_TESTS"); light && *light && *light != '0') s.duration = 6.0;
+  if (is_light) s.duration = 6.0;
   return s;
 }
 
@@ -35,14 +46,15 @@ sim::Scenario sweep(const std::string& name) {
 class TestPaperSweep : public QObject {
   Q_OBJECT
  private slots:
-  // Asserted on the coarse mesh: the sweep stays finite with bounded forces, the four
-  // passes are found, at least half of them have their largest push within 1 cm of the
-  // tumour, and the pushes over the tumour (within 1.2 cm of x = 0.125 m) are at least
-  // 15% stronger with it than without. Measured (docs/benchmarks.md, "Paper sweep"): on
-  // the coarse mesh 2 of 4 passes peak within 1 cm (the others 1.2 cm off: the tumour
-  // spans two or three coarse elements) and the ratio is 1.32-1.37; on the paper and
-  // fine meshes (GPU) all 4 passes peak within 4 mm, ratio 1.29-1.47. The thresholds
-  // leave room for Gmsh's meshes differing from run to run.
+  // Asserted on the 7.5 mm mesh: the sweep stays finite with bounded forces, the four
+  // passes are found, every one has its largest push within 1 cm of the tumour (the
+  // issue's criterion), and the pushes over the tumour (within 1.2 cm of x = 0.125 m)
+  // are at least 15% stronger with it than without. Measured (docs/benchmarks.md, "Paper
+  // sweep"): on this mesh all 4 passes peak 4.2-4.6 mm from the tumour, ratio 1.25; on
+  // the paper mesh all 4 within 4 mm, ratio 1.25-1.32; on the coarse mesh only 2 of 4
+  // (the others 1.2 cm off: the tumour spans two or three coarse elements), which is why
+  // CI does not sweep the coarse mesh. Pushes are 4 mm apart, so a peak one push further
+  // off (Gmsh's meshes differ a little from run to run) still passes.
   void tumourRaisesTheForceOverIt() {
     const sim::Scenario with = sweep("paper-sweep"), without = sweep("paper-sweep-no-tumour");
     sim::patient_mesh(with);  // mesh once (cached) before the two runs share it
@@ -64,7 +76,7 @@ class TestPaperSweep : public QObject {
       if (std::abs(p.x - 0.125) <= 0.01) ++within;
     }
     qInfo("passes peaking within 1 cm of the tumour: %d of %d", within, int(at.passes.size()));
-    if (!light) QVERIFY2(within >= 2, qPrintable(QString::number(within)));
+    if (!light) QVERIFY2(within == 4, qPrintable(QString::number(within)));
     auto mean_over_tumour = [](const app::SweepAnalysis& a) {
       double sum = 0;
       int n = 0;
