@@ -15,6 +15,7 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QLabel>
+#include <QListWidget>
 #include <QMenu>
 #include <QMenuBar>
 #include <QOpenGLWidget>
@@ -214,7 +215,7 @@ class TstUiMainWindow : public QObject {
 
   // An instructor working in Japanese: the undo stack and the tumour list speak Japanese,
   // while the simulation's event log (and so the recording, data that a review
-  // translates) gets English.
+  // translates) gets English; back in English the list reads English again.
   void changes_are_logged_in_english_in_japanese() {
     auto& ws = w_->workstation();
     ui::TumourEditor* ed = w_->editor();
@@ -232,10 +233,16 @@ class TstUiMainWindow : public QObject {
     QVERIFY2(add.startsWith(QStringLiteral("腫瘍を追加: 球")), qPrintable(add));
     QVERIFY2(stroke.startsWith(QStringLiteral("描画ストローク")), qPrintable(stroke));
     QVERIFY2(ed->tumour_names().last().contains(QStringLiteral("描画")), qPrintable(ed->tumour_names().join(QLatin1Char('|'))));
+    // The tumour list follows a language change (its names are kept in English).
+    QVERIFY(set_language(QStringLiteral("en")));
+    QListWidget* list = w_->tumour_panel()->list;
+    QVERIFY2(list->item(list->count() - 1)->text().startsWith(QLatin1String("Painted tumour ")),
+             qPrintable(list->item(list->count() - 1)->text()));
+    QVERIFY2(list->item(list->count() - 2)->text().startsWith(QLatin1String("Sphere at (10.0, 2.0, 2.0) cm, 300 kPa")),
+             qPrintable(list->item(list->count() - 2)->text()));
     ed->undo_stack()->undo();  // the stroke
     ed->undo_stack()->undo();  // the tumour
     QVERIFY(synced());
-    QVERIFY(set_language(QStringLiteral("en")));
     QStringList logged;
     const auto events = ws.events();
     for (std::size_t i = events0; i < events.size(); ++i)

@@ -1266,92 +1266,92 @@
 <context>
     <name>palpation::ui::TumourEditor</name>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="12"/>
+        <location filename="../ui/tumour_editor.cpp" line="13"/>
         <source>Tumour (paper, 107 kPa)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="12"/>
+        <location filename="../ui/tumour_editor.cpp" line="13"/>
         <source>Ueda et al., paper section 4.1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="13"/>
+        <location filename="../ui/tumour_editor.cpp" line="14"/>
         <source>Invasive ductal carcinoma (Krouskop, 5%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="13"/>
+        <location filename="../ui/tumour_editor.cpp" line="14"/>
         <source>Krouskop et al. 1998: 93-112 kPa at 5% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="14"/>
+        <location filename="../ui/tumour_editor.cpp" line="15"/>
         <source>Invasive ductal carcinoma (Krouskop, 20%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="14"/>
+        <location filename="../ui/tumour_editor.cpp" line="15"/>
         <source>Krouskop et al. 1998: 460-558 kPa at 20% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="15"/>
+        <location filename="../ui/tumour_editor.cpp" line="16"/>
         <source>Fibrous tissue (Krouskop, 5%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="15"/>
+        <location filename="../ui/tumour_editor.cpp" line="16"/>
         <source>Krouskop et al. 1998: 96-116 kPa at 5% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="16"/>
+        <location filename="../ui/tumour_editor.cpp" line="17"/>
         <source>DCIS (Krouskop, 20%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="16"/>
+        <location filename="../ui/tumour_editor.cpp" line="17"/>
         <source>Krouskop et al. 1998: 291-307 kPa at 20% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="17"/>
+        <location filename="../ui/tumour_editor.cpp" line="18"/>
         <source>Fibroglandular (Krouskop, 5%)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="17"/>
+        <location filename="../ui/tumour_editor.cpp" line="18"/>
         <source>Krouskop et al. 1998: 28-35 kPa at 5% precompression</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="18"/>
+        <location filename="../ui/tumour_editor.cpp" line="19"/>
         <source>IDC high grade (Samani)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="18"/>
+        <location filename="../ui/tumour_editor.cpp" line="19"/>
         <source>Samani et al. 2007: 10-43 kPa by grade, small strain</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="19"/>
+        <location filename="../ui/tumour_editor.cpp" line="20"/>
         <source>Fibroadenoma (Samani, 2x fat)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="19"/>
+        <location filename="../ui/tumour_editor.cpp" line="20"/>
         <source>Samani et al. 2007: about 6.4 kPa</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="89"/>
+        <location filename="../ui/tumour_editor.cpp" line="90"/>
         <source>Patient&apos;s tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="97"/>
+        <location filename="../ui/tumour_editor.cpp" line="98"/>
         <source>%1 (%n elements)</source>
         <translation>
             <numerusform>%1 (%n element)</numerusform>
@@ -1364,12 +1364,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="139"/>
+        <location filename="../ui/tumour_editor.cpp" line="140"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="140"/>
+        <location filename="../ui/tumour_editor.cpp" line="141"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1379,22 +1379,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="166"/>
+        <location filename="../ui/tumour_editor.cpp" line="164"/>
         <source>Remove tumour: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="194"/>
+        <location filename="../ui/tumour_editor.cpp" line="191"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="195"/>
+        <location filename="../ui/tumour_editor.cpp" line="192"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="208"/>
+        <location filename="../ui/tumour_editor.cpp" line="204"/>
         <source>Erase stroke (%n elements)</source>
         <translation>
             <numerusform>Erase stroke (%n element)</numerusform>
@@ -1402,7 +1402,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="209"/>
+        <location filename="../ui/tumour_editor.cpp" line="205"/>
         <source>Paint stroke (%n elements)</source>
         <translation>
             <numerusform>Paint stroke (%n element)</numerusform>
@@ -1410,7 +1410,7 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="212"/>
+        <location filename="../ui/tumour_editor.cpp" line="209"/>
         <source>Painted tumour %1, %2 kPa</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1522,22 +1522,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="580"/>
+        <location filename="../ui/vtk_view.cpp" line="579"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="583"/>
+        <location filename="../ui/vtk_view.cpp" line="582"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="783"/>
+        <location filename="../ui/vtk_view.cpp" line="775"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="785"/>
+        <location filename="../ui/vtk_view.cpp" line="777"/>
         <source>the view is not initialised yet</source>
         <translation type="unfinished"></translation>
     </message>

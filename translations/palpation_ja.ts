@@ -1263,92 +1263,92 @@
 <context>
     <name>palpation::ui::TumourEditor</name>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="12"/>
+        <location filename="../ui/tumour_editor.cpp" line="13"/>
         <source>Tumour (paper, 107 kPa)</source>
         <translation>腫瘍（論文、107 kPa）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="12"/>
+        <location filename="../ui/tumour_editor.cpp" line="13"/>
         <source>Ueda et al., paper section 4.1</source>
         <translation>上田ら、論文 4.1 節</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="13"/>
+        <location filename="../ui/tumour_editor.cpp" line="14"/>
         <source>Invasive ductal carcinoma (Krouskop, 5%)</source>
         <translation>浸潤性乳管癌（Krouskop、5%）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="13"/>
+        <location filename="../ui/tumour_editor.cpp" line="14"/>
         <source>Krouskop et al. 1998: 93-112 kPa at 5% precompression</source>
         <translation>Krouskop ら 1998: 5% 予圧縮で 93-112 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="14"/>
+        <location filename="../ui/tumour_editor.cpp" line="15"/>
         <source>Invasive ductal carcinoma (Krouskop, 20%)</source>
         <translation>浸潤性乳管癌（Krouskop、20%）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="14"/>
+        <location filename="../ui/tumour_editor.cpp" line="15"/>
         <source>Krouskop et al. 1998: 460-558 kPa at 20% precompression</source>
         <translation>Krouskop ら 1998: 20% 予圧縮で 460-558 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="15"/>
+        <location filename="../ui/tumour_editor.cpp" line="16"/>
         <source>Fibrous tissue (Krouskop, 5%)</source>
         <translation>線維組織（Krouskop、5%）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="15"/>
+        <location filename="../ui/tumour_editor.cpp" line="16"/>
         <source>Krouskop et al. 1998: 96-116 kPa at 5% precompression</source>
         <translation>Krouskop ら 1998: 5% 予圧縮で 96-116 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="16"/>
+        <location filename="../ui/tumour_editor.cpp" line="17"/>
         <source>DCIS (Krouskop, 20%)</source>
         <translation>DCIS（Krouskop、20%）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="16"/>
+        <location filename="../ui/tumour_editor.cpp" line="17"/>
         <source>Krouskop et al. 1998: 291-307 kPa at 20% precompression</source>
         <translation>Krouskop ら 1998: 20% 予圧縮で 291-307 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="17"/>
+        <location filename="../ui/tumour_editor.cpp" line="18"/>
         <source>Fibroglandular (Krouskop, 5%)</source>
         <translation>線維腺組織（Krouskop、5%）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="17"/>
+        <location filename="../ui/tumour_editor.cpp" line="18"/>
         <source>Krouskop et al. 1998: 28-35 kPa at 5% precompression</source>
         <translation>Krouskop ら 1998: 5% 予圧縮で 28-35 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="18"/>
+        <location filename="../ui/tumour_editor.cpp" line="19"/>
         <source>IDC high grade (Samani)</source>
         <translation>高悪性度 IDC（Samani）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="18"/>
+        <location filename="../ui/tumour_editor.cpp" line="19"/>
         <source>Samani et al. 2007: 10-43 kPa by grade, small strain</source>
         <translation>Samani ら 2007: 悪性度により 10-43 kPa、微小ひずみ</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="19"/>
+        <location filename="../ui/tumour_editor.cpp" line="20"/>
         <source>Fibroadenoma (Samani, 2x fat)</source>
         <translation>線維腺腫（Samani、脂肪の 2 倍）</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="19"/>
+        <location filename="../ui/tumour_editor.cpp" line="20"/>
         <source>Samani et al. 2007: about 6.4 kPa</source>
         <translation>Samani ら 2007: 約 6.4 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="89"/>
+        <location filename="../ui/tumour_editor.cpp" line="90"/>
         <source>Patient&apos;s tumour</source>
         <translation>患者の腫瘍</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="97"/>
+        <location filename="../ui/tumour_editor.cpp" line="98"/>
         <source>%1 (%n elements)</source>
         <translation>
             <numerusform>%1（%n 要素）</numerusform>
@@ -1360,12 +1360,12 @@
         <translation>%1 (%2, %3, %4) cm、%5 kPa</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="139"/>
+        <location filename="../ui/tumour_editor.cpp" line="140"/>
         <source>Sphere</source>
         <translation>球</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="140"/>
+        <location filename="../ui/tumour_editor.cpp" line="141"/>
         <source>Ellipsoid</source>
         <translation>楕円体</translation>
     </message>
@@ -1375,36 +1375,36 @@
         <translation>腫瘍を追加: %1</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="166"/>
+        <location filename="../ui/tumour_editor.cpp" line="164"/>
         <source>Remove tumour: %1</source>
         <translation>腫瘍を削除: %1</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="194"/>
+        <location filename="../ui/tumour_editor.cpp" line="191"/>
         <source>Erase</source>
         <translation>消去</translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="195"/>
+        <location filename="../ui/tumour_editor.cpp" line="192"/>
         <source>Paint</source>
         <translation>描画</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="208"/>
+        <location filename="../ui/tumour_editor.cpp" line="204"/>
         <source>Erase stroke (%n elements)</source>
         <translation>
             <numerusform>消去ストローク（%n 要素）</numerusform>
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="209"/>
+        <location filename="../ui/tumour_editor.cpp" line="205"/>
         <source>Paint stroke (%n elements)</source>
         <translation>
             <numerusform>描画ストローク（%n 要素）</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/tumour_editor.cpp" line="212"/>
+        <location filename="../ui/tumour_editor.cpp" line="209"/>
         <source>Painted tumour %1, %2 kPa</source>
         <translation>描画した腫瘍 %1、%2 kPa</translation>
     </message>
@@ -1516,22 +1516,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="580"/>
+        <location filename="../ui/vtk_view.cpp" line="579"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation>このプラットフォーム（%1）ではネイティブウィンドウの OpenGL コンテキストを作れません</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="583"/>
+        <location filename="../ui/vtk_view.cpp" line="582"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation>このディスプレイの OpenGL（%1）にはステレオバッファがありません。クアッドバッファ立体視にはステレオ対応の GPU、ドライバ、ディスプレイが必要です</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="783"/>
+        <location filename="../ui/vtk_view.cpp" line="775"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation>クアッドバッファ立体視は使えません: %1。代わりにアナグリフ（赤青メガネ）で表示します。サイドバイサイドとインターレースも使えます。</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="785"/>
+        <location filename="../ui/vtk_view.cpp" line="777"/>
         <source>the view is not initialised yet</source>
         <translation>ビューがまだ初期化されていません</translation>
     </message>

@@ -1,7 +1,8 @@
 #include "tumour_editor.h"
 
-#include <QCoreApplication>
 #include <QUndoCommand>
+
+#include "recorded_text.h"
 
 namespace palpation::ui {
 
@@ -22,44 +23,44 @@ std::vector<TissuePreset> tissue_presets() {
 
 namespace {
 
-// The editor's messages in two languages: the chosen one for the undo stack and the
-// tumour list, English for the simulation's event log and the recording, which keep
-// English as data (a review translates them: ui/recorded_text.h). `source` is marked for
-// lupdate with QT_TRANSLATE_NOOP at the call in TumourEditor's context.
-QString text_in(const char* source, bool english, int n = -1) {
-  if (!english) return QCoreApplication::translate("palpation::ui::TumourEditor", source, nullptr, n);
+// The editor keeps its texts (change names, tumour names) in English only: they go to
+// the simulation's event log and the recording as data, and are shown in the chosen
+// language through RecordedText (ui/recorded_text.h), as a review shows them. The
+// sources are marked for lupdate with QT_TRANSLATE_NOOP in TumourEditor's context, whose
+// catalogue entries RecordedText translates with.
+QString english(const char* source, int n = -1) {
   QString s = QString::fromUtf8(source);
   if (n >= 0) s.replace(QLatin1String("%n"), QString::number(n));
   return s;
 }
+QString shown(const QString& english_text) { return RecordedText::event(english_text.toStdString()); }
 
 // One change of element moduli, optionally adding or removing a tumour list entry.
 class MaterialCommand : public QUndoCommand {
  public:
-  MaterialCommand(TumourEditor* ed, std::map<int, double> before, std::map<int, double> after, const QString& text,
-                  const QString& logged)
+  MaterialCommand(TumourEditor* ed, std::map<int, double> before, std::map<int, double> after, const QString& logged)
       : ed_(ed), before_(std::move(before)), after_(std::move(after)) {
-    set_texts(text, logged);
+    set_logged(logged);
   }
-  void set_texts(const QString& text, const QString& logged) {
-    setText(text);
+  // The English text (logged) and the undo stack's (shown: the chosen language).
+  void set_logged(const QString& logged) {
     logged_ = logged;
+    setText(shown(logged));
   }
-  void add_entry(int at, const QString& name, const QString& english, std::vector<int> elements, bool remove) {
+  void add_entry(int at, const QString& name, std::vector<int> elements, bool remove) {
     entry_ = true;
     at_ = at;
     name_ = name;
-    english_ = english;
     elements_ = std::move(elements);
     remove_ = remove;
   }
   void redo() override {
     ed_->apply(after_, logged_);
-    if (entry_) remove_ ? ed_->erase_tumour(at_) : ed_->insert_tumour(at_, name_, english_, elements_);
+    if (entry_) remove_ ? ed_->erase_tumour(at_) : ed_->insert_tumour(at_, name_, elements_);
   }
   void undo() override {
-    ed_->apply(before_, QStringLiteral("Undo: %1").arg(logged_));  // English: see text_in()
-    if (entry_) remove_ ? ed_->insert_tumour(at_, name_, english_, elements_) : ed_->erase_tumour(at_);
+    ed_->apply(before_, QStringLiteral("Undo: %1").arg(logged_));  // English: see english()
+    if (entry_) remove_ ? ed_->insert_tumour(at_, name_, elements_) : ed_->erase_tumour(at_);
   }
 
  private:
@@ -67,7 +68,7 @@ class MaterialCommand : public QUndoCommand {
   std::map<int, double> before_, after_;
   bool entry_ = false, remove_ = false;
   int at_ = 0;
-  QString name_, english_, logged_;
+  QString name_, logged_;  // English
   std::vector<int> elements_;
 };
 
@@ -87,14 +88,14 @@ void TumourEditor::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
     for (std::size_t e = 0; e < young_.size(); ++e)
       if (young_[e] > g_->tissue_young * 1.2) stiff.push_back(int(e));
     const char* own = QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Patient's tumour");
-    if (!stiff.empty()) tumours_.push_back({text_in(own, false), text_in(own, true), stiff});
+    if (!stiff.empty()) tumours_.push_back({english(own), stiff});
   }
   emit changed();
 }
 
 QStringList TumourEditor::tumour_names() const {
   QStringList l;
-  for (const auto& t : tumours_) l << tr("%1 (%n elements)", nullptr, int(t.elements.size())).arg(t.name);
+  for (const auto& t : tumours_) l << tr("%1 (%n elements)", nullptr, int(t.elements.size())).arg(shown(t.name));
   return l;
 }
 
@@ -110,9 +111,9 @@ void TumourEditor::apply(const std::map<int, double>& young, const QString& text
   emit changed();
 }
 
-void TumourEditor::insert_tumour(int at, const QString& name, const QString& english, const std::vector<int>& elements) {
+void TumourEditor::insert_tumour(int at, const QString& name, const std::vector<int>& elements) {
   at = std::clamp(at, 0, int(tumours_.size()));
-  tumours_.insert(tumours_.begin() + at, Tumour{name, english, elements});
+  tumours_.insert(tumours_.begin() + at, Tumour{name, elements});
   emit changed();
 }
 
@@ -138,19 +139,15 @@ int TumourEditor::add_shape(const QString& shape, const Eigen::Vector3d& centre,
   if (elements.empty()) return 0;
   const char* kind = shape == QLatin1String("sphere") ? QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Sphere")
                                                      : QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Ellipsoid");
-  auto name_in = [&](bool english) {
-    return text_in(QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "%1 at (%2, %3, %4) cm, %5 kPa"), english)
-        .arg(text_in(kind, english))
-        .arg(centre.x() * 100, 0, 'f', 1)
-        .arg(centre.y() * 100, 0, 'f', 1)
-        .arg(centre.z() * 100, 0, 'f', 1)
-        .arg(young / 1000, 0, 'f', 0);
-  };
-  const char* add = QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Add tumour: %1");
-  const QString name = name_in(false), english = name_in(true);
-  auto* c = new MaterialCommand(this, std::move(before), std::move(after), text_in(add, false).arg(name),
-                                text_in(add, true).arg(english));
-  c->add_entry(int(tumours_.size()), name, english, elements, false);
+  const QString name = english(QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "%1 at (%2, %3, %4) cm, %5 kPa"))
+                           .arg(english(kind))
+                           .arg(centre.x() * 100, 0, 'f', 1)
+                           .arg(centre.y() * 100, 0, 'f', 1)
+                           .arg(centre.z() * 100, 0, 'f', 1)
+                           .arg(young / 1000, 0, 'f', 0);
+  auto* c = new MaterialCommand(this, std::move(before), std::move(after),
+                                english(QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Add tumour: %1")).arg(name));
+  c->add_entry(int(tumours_.size()), name, elements, false);
   undo_.push(c);
   return int(elements.size());
 }
@@ -163,9 +160,9 @@ void TumourEditor::remove_tumour(int i) {
     after[e] = g_->tissue_young;
   }
   const Tumour& t = tumours_[std::size_t(i)];
-  auto* c = new MaterialCommand(this, std::move(before), std::move(after), tr("Remove tumour: %1").arg(t.name),
-                                QStringLiteral("Remove tumour: %1").arg(t.english));  // English: see text_in()
-  c->add_entry(i, t.name, t.english, t.elements, true);
+  auto* c = new MaterialCommand(this, std::move(before), std::move(after),
+                                english(QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Remove tumour: %1")).arg(t.name));
+  c->add_entry(i, t.name, t.elements, true);
   undo_.push(c);
 }
 
@@ -189,11 +186,10 @@ int TumourEditor::dab(const Eigen::Vector3d& point, const Eigen::Vector3d& norma
     stroke_new_[id] = target;
     now[id] = target;
   }
-  // One dab is logged, never listed in the undo stack: English only (review translates it).
+  // One dab is logged, never listed in the undo stack.
   if (!now.empty())
-    apply(now, text_in(erase_ ? QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Erase")
-                              : QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Paint"),
-                       /*english=*/true));
+    apply(now, english(erase_ ? QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Erase")
+                              : QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Paint")));
   return int(now.size());
 }
 
@@ -204,16 +200,18 @@ void TumourEditor::end_stroke() {
   std::vector<int> elements;
   for (const auto& [e, E] : stroke_new_) elements.push_back(e);
   const int n = int(elements.size());
-  auto* c = new MaterialCommand(this, stroke_old_, stroke_new_, QString(), QString());
+  auto* c = new MaterialCommand(this, stroke_old_, stroke_new_, QString());
   const char* stroke = erase_ ? QT_TRANSLATE_N_NOOP("palpation::ui::TumourEditor", "Erase stroke (%n elements)")
                               : QT_TRANSLATE_N_NOOP("palpation::ui::TumourEditor", "Paint stroke (%n elements)");
   if (!erase_) {
     ++painted_count_;
-    const char* painted = QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Painted tumour %1, %2 kPa");
-    auto name_in = [&](bool english) { return text_in(painted, english).arg(painted_count_).arg(brush_young_ / 1000, 0, 'f', 0); };
-    c->add_entry(int(tumours_.size()), name_in(false), name_in(true), elements, false);
+    c->add_entry(int(tumours_.size()),
+                 english(QT_TRANSLATE_NOOP("palpation::ui::TumourEditor", "Painted tumour %1, %2 kPa"))
+                     .arg(painted_count_)
+                     .arg(brush_young_ / 1000, 0, 'f', 0),
+                 elements, false);
   }
-  c->set_texts(text_in(stroke, false, n), text_in(stroke, true, n));
+  c->set_logged(english(stroke, n));
   // push() calls redo(): the stroke is already applied, re-applying the same values is
   // harmless and keeps undo/redo symmetric.
   undo_.push(c);

@@ -59,7 +59,7 @@ class TumourEditor : public QObject {
 
   /// Sets elements' moduli in the document and the simulation (undo commands use it).
   void apply(const std::map<int, double>& young, const QString& text);
-  void insert_tumour(int at, const QString& name, const QString& english, const std::vector<int>& elements);
+  void insert_tumour(int at, const QString& name, const std::vector<int>& elements);
   void erase_tumour(int at);
 
  signals:
@@ -70,8 +70,7 @@ class TumourEditor : public QObject {
   std::shared_ptr<const app::PatientGeometry> g_;
   std::vector<double> young_;
   struct Tumour {
-    QString name;     // in the language it was made in (the list)
-    QString english;  // for the event log and the recording
+    QString name;  // English (shown through RecordedText: tumour_names())
     std::vector<int> elements;
   };
   std::vector<Tumour> tumours_;
