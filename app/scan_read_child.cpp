@@ -213,14 +213,12 @@ SurfaceMesh read_in_child(const std::string& path, const Limits& lim, const std:
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(path + ": the scan reader could not be started (" + e.what() + ")");
   }
-  const bool stopped = o.cancelled, timed_out = o.timed_out, too_long = o.too_long;
+  if (o.cancelled) throw std::runtime_error("cancelled");
   const int status = o.status;
   const rusage& ru = o.usage;
-  const std::string& buf = o.output;
-  if (stopped) throw std::runtime_error("cancelled");
   const double cpu = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   char num[64];
-  if (timed_out) {
+  if (o.timed_out) {
     std::snprintf(num, sizeof num, "%.0f", lim.wall_seconds);
     throw ImportError(path + ": the scan reader did not finish within " + num + " s (stopped): a malformed or hostile file?");
   }
@@ -238,7 +236,7 @@ SurfaceMesh read_in_child(const std::string& path, const Limits& lim, const std:
   Kind kind = kFailed;
   SurfaceMesh s;
   std::string text;
-  if (too_long || !decode(buf, kind, s, text)) {
+  if (o.too_long || !decode(o.output, kind, s, text)) {
     std::snprintf(num, sizeof num, "%d", WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     throw ImportError(path + ": the scan reader stopped without a result (exit status " + num + "): a malformed or hostile file?");
   }

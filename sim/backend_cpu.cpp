@@ -435,7 +435,11 @@ class CpuBackend final : public Backend {
       fem::extract_rotation4<T>(A, q);
       for (int l = 0; l < 4 && k0 + l < n; ++l) q_[moved[k0 + l]] = Eigen::Quaternion<T>(q[0][l], q[1][l], q[2][l], q[3][l]);
     }
-    for (int k = 0; k < n; ++k) element(moved[k], Fm[k], full, kept, tol);
+    int thread = 0;  // this thread's trash slot for fixed nodes' rows and blocks
+#ifdef _OPENMP
+    thread = omp_get_thread_num();
+#endif
+    for (int k = 0; k < n; ++k) element(moved[k], Fm[k], full, kept, tol, thread);
   }
 
   // F = sum_a x_a g_a^T of element e into Fc (columns); true when its rotation is to be
@@ -468,16 +472,12 @@ class CpuBackend final : public Backend {
 
   // Element e after its rotation q_[e] was re-extracted for F (columns Fc): its blocks
   // re-rotated if R moved more than tol from theirs, and at tolerance 0 its force.
-  void element(int e, const V4 Fc[3], bool full, bool kept, T tol) {
+  void element(int e, const V4 Fc[3], bool full, bool kept, T tol, int thread) {
     const std::size_t es = std::size_t(e);
     const T* ge = &eg_[12 * es];
     const M3 R = q_[e].toRotationMatrix();
     T* Rk = &ekrot_[9 * es];
-    int thread = 0;
-#ifdef _OPENMP
-    thread = omp_get_thread_num();
-#endif
-    const int trash_row = 3 * (m_.num_free() + thread);  // this thread's slot for fixed nodes' rows
+    const int trash_row = 3 * (m_.num_free() + thread);
     bool update = full;
     if (!update) {
       T change = 0;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <utility>
 
@@ -672,15 +671,8 @@ void VtkView::show_snapshot(const app::RenderSnapshot& s) {
   timer.start();
   bool changed = false;
   if (geometry_ && s.model_generation == geometry_->generation && s.positions.size() == geometry_->rest.size() * 3) {
-    const bool moved = shown_positions_.size() != s.positions.size() ||
-                       (!s.positions.empty() &&
-                        std::memcmp(shown_positions_.data(), s.positions.data(), s.positions.size() * sizeof(float)) != 0);
-    // (memcmp only on non-empty arrays: an empty vector's data() may be null, which
-    // memcmp must not be given even for 0 bytes; UBSan stops on it.)
-    const bool stress = colour_map_ == ColourMap::Stress &&
-                        (shown_stress_.size() != s.von_mises.size() ||
-                         (!s.von_mises.empty() &&
-                          std::memcmp(shown_stress_.data(), s.von_mises.data(), s.von_mises.size() * sizeof(float)) != 0));
+    const bool moved = shown_positions_ != s.positions;
+    const bool stress = colour_map_ == ColourMap::Stress && shown_stress_ != s.von_mises;
     if (moved) {
       shown_positions_ = s.positions;
       float* p = static_cast<float*>(points_->GetVoidPointer(0));
