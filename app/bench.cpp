@@ -19,113 +19,13 @@
 #include "plot_png.h"
 #include "scenario.h"
 #include "simulation.h"
+#include "trace.h"
 
 namespace palpation::app {
 
 namespace {
 
 using clock_type = std::chrono::steady_clock;
-
-// The series a run produces, for error measurement.
-struct Trace {
-  std::vector<double> force;                   // (steps x fingers x 3) filtered finger force
-  std::vector<std::vector<double>> disp;       // (snapshots) x (nnode x 3) displacement
-  std::vector<double> step_ms;                 // (steps)
-  std::vector<int> iterations;                 // (steps)
-  bool finite = true;
-};
-
-std::vector<int> snapshot_steps(int steps) { return {steps / 4, steps / 2, 3 * steps / 4, steps}; }
-
-Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::string& backend, int steps,
-                bool keep_disp) {
-  auto b = sim::make_named_backend(backend, model, s.params);
-  const int nf = static_cast<int>(s.fingers.size());
-  std::vector<sim::FingerInput> in(nf);
-  std::vector<sim::FingerOutput> out(nf);
-  for (int f = 0; f < nf; ++f) in[f].radius = s.fingers[f].radius;
-  Trace tr;
-  tr.force.reserve(std::size_t(steps) * nf * 3);
-  const auto snaps = snapshot_steps(steps);
-  std::vector<double> x;
-  for (int k = 1; k <= steps; ++k) {
-    const double t = k * s.params.solver.dt;
-    for (int f = 0; f < nf; ++f) s.fingers[f].sample(t, in[f].position, in[f].velocity);
-    const auto a = clock_type::now();
-    const sim::StepStats st = b->step(in, out);
-    tr.step_ms.push_back(std::chrono::duration<double, std::milli>(clock_type::now() - a).count());
-    tr.iterations.push_back(st.cg_iterations);
-    tr.finite = tr.finite && st.finite;
-    for (int f = 0; f < nf; ++f)
-      for (int c = 0; c < 3; ++c) tr.force.push_back(out[f].force[c]);
-    if (keep_disp && std::find(snaps.begin(), snaps.end(), k) != snaps.end()) {
-      b->positions(x);
-      for (int i = 0; i < model.num_nodes(); ++i)
-        for (int c = 0; c < 3; ++c) x[3 * i + c] -= model.rest[i][c];
-      tr.disp.push_back(x);
-    }
-  }
-  return tr;
-}
-
-double rel_l2(const std::vector<double>& a, const std::vector<double>& ref) {
-  double num = 0, den = 0;
-  for (std::size_t i = 0; i < a.size() && i < ref.size(); ++i) {
-    num += (a[i] - ref[i]) * (a[i] - ref[i]);
-    den += ref[i] * ref[i];
-  }
-  if (a.size() != ref.size()) return INFINITY;
-  return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
-}
-
-double disp_error(const Trace& a, const Trace& ref) {
-  double num = 0, den = 0;
-  for (std::size_t s = 0; s < a.disp.size() && s < ref.disp.size(); ++s)
-    for (std::size_t i = 0; i < ref.disp[s].size(); ++i) {
-      num += (a.disp[s][i] - ref.disp[s][i]) * (a.disp[s][i] - ref.disp[s][i]);
-      den += ref.disp[s][i] * ref.disp[s][i];
-    }
-  return den > 0 ? std::sqrt(num / den) : std::sqrt(num);
-}
-
-// Reference traces cached as raw doubles: header (magic, steps, sizes) + data + FNV sum.
-bool load_ref(const std::string& path, Trace& tr) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::uint64_t nforce = 0, nsnap = 0, nsnapsize = 0;
-  char magic[8];
-  in.read(magic, 8);
-  if (!in || std::memcmp(magic, "PALPREF1", 8) != 0) return false;
-  in.read(reinterpret_cast<char*>(&nforce), 8);
-  in.read(reinterpret_cast<char*>(&nsnap), 8);
-  in.read(reinterpret_cast<char*>(&nsnapsize), 8);
-  if (!in || nforce > (1ull << 30) || nsnap > 64 || nsnapsize > (1ull << 30)) return false;
-  tr.force.resize(nforce);
-  in.read(reinterpret_cast<char*>(tr.force.data()), std::streamsize(nforce * 8));
-  tr.disp.assign(nsnap, std::vector<double>(nsnapsize));
-  for (auto& d : tr.disp) in.read(reinterpret_cast<char*>(d.data()), std::streamsize(nsnapsize * 8));
-  std::uint64_t sum = 0;
-  in.read(reinterpret_cast<char*>(&sum), 8);
-  if (!in) return false;
-  std::uint64_t h = sim::key_hash(std::string(reinterpret_cast<const char*>(tr.force.data()), tr.force.size() * 8));
-  return h == sum;
-}
-
-void save_ref(const std::string& path, const Trace& tr) {
-  const std::string tmp = path + ".tmp";
-  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-  const std::uint64_t nforce = tr.force.size(), nsnap = tr.disp.size(), nsz = tr.disp.empty() ? 0 : tr.disp[0].size();
-  out.write("PALPREF1", 8);
-  out.write(reinterpret_cast<const char*>(&nforce), 8);
-  out.write(reinterpret_cast<const char*>(&nsnap), 8);
-  out.write(reinterpret_cast<const char*>(&nsz), 8);
-  out.write(reinterpret_cast<const char*>(tr.force.data()), std::streamsize(nforce * 8));
-  for (const auto& d : tr.disp) out.write(reinterpret_cast<const char*>(d.data()), std::streamsize(nsz * 8));
-  const std::uint64_t sum = sim::key_hash(std::string(reinterpret_cast<const char*>(tr.force.data()), tr.force.size() * 8));
-  out.write(reinterpret_cast<const char*>(&sum), 8);
-  out.close();
-  if (out) std::filesystem::rename(tmp, path);
-}
 
 std::string now_iso() {
   std::time_t now = std::time(nullptr);
@@ -195,11 +95,11 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
         << opt.steps;
     const std::string ref_path = (std::filesystem::path(sim::cache_dir()) / (key.str() + ".bin")).string();
     Trace ref;
-    if (!load_ref(ref_path, ref)) {
+    if (!load_trace(ref_path, ref)) {
       std::fprintf(stderr, "bench: computing the reference for %s on %s (cached in %s)\n", level.c_str(),
                    ref_backend.c_str(), ref_path.c_str());
-      ref = run_trace(sref, model, ref_backend, opt.steps, true);
-      save_ref(ref_path, ref);
+      ref = run_trace(sref, model, ref_backend, opt.steps);
+      save_trace(ref_path, ref);
     }
 
     // The GPU floor of this mesh (bytes and barriers of one CG iteration, bandwidth and
@@ -224,11 +124,11 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
           sp.params.solver.cg_tolerance = set.tolerance;
           sp.params.solver.cg_max_iterations = set.max_iterations;
           // Float cannot reach 1e-10: the cap decides; skip loose float points that add nothing.
-          Trace tr = run_trace(sp, model, backend, opt.steps, true);
+          Trace tr = run_trace(sp, model, backend, opt.steps);
           std::vector<double> timed(tr.step_ms.begin() + std::min<std::size_t>(opt.warmup, tr.step_ms.size()), tr.step_ms.end());
           std::vector<double> its(tr.iterations.begin(), tr.iterations.end());
           const double med = percentile(timed, 50), p99 = percentile(timed, 99);
-          const double ferr = rel_l2(tr.force, ref.force), derr = disp_error(tr, ref);
+          const double ferr = rel_l2(tr.force, ref.force), derr = displacement_error(tr, ref, model);
           const int itmax = its.empty() ? 0 : int(*std::max_element(its.begin(), its.end()));
           double floor_ms = 0, x_floor = 0;
           if (backend.rfind("cuda", 0) == 0 && floors.count(prec)) {

@@ -5,7 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "scenario.h"  // sim::ScenarioError: bad input -> exit code 2
+#include "json_reader.h"  // sim::ScenarioError: bad input -> exit code 2
 
 namespace palpation::app {
 
@@ -21,52 +21,17 @@ json joint_json(const dv::JointSpec& j) {
               {"max_torque", j.max_torque}};
 }
 
-class Reader {
+// The device configuration's fields beside the common ones (sim/json_reader.h); keys
+// starting with "_" are comments.
+class Reader : public sim::JsonReader {
  public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-  [[noreturn]] void fail(const std::string& field, const std::string& why) const {
-    throw sim::ScenarioError(source_ + ": " + (field.empty() ? std::string("(top level)") : field) + ": " + why);
-  }
-  static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
-  void only_keys(const json& o, const std::string& field, std::initializer_list<const char*> keys) const {
-    if (!o.is_object()) fail(field, "must be an object");
-    std::set<std::string> allowed(keys.begin(), keys.end());
-    for (auto it = o.begin(); it != o.end(); ++it)
-      if (!allowed.count(it.key()) && it.key().rfind('_', 0) != 0) {
-        std::string list;
-        for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(join(field, it.key()), "unknown key (allowed: " + list + ")");
-      }
-  }
-  double number(const json& v, const std::string& field) const {
-    if (!v.is_number()) fail(field, "must be a number, got " + std::string(v.type_name()));
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(field, "must be finite");
-    return d;
-  }
-  double positive(const json& v, const std::string& field) const {
-    const double d = number(v, field);
-    if (!(d > 0)) fail(field, "must be > 0");
-    return d;
-  }
-  double non_negative(const json& v, const std::string& field) const {
-    const double d = number(v, field);
-    if (d < 0) fail(field, "must be >= 0");
-    return d;
-  }
-  dv::Vec3 vec3(const json& v, const std::string& field) const {
-    if (!v.is_array() || v.size() != 3) fail(field, "must be an array of 3 numbers");
-    return {number(v[0], field + "[0]"), number(v[1], field + "[1]"), number(v[2], field + "[2]")};
-  }
+  explicit Reader(std::string source) : JsonReader(std::move(source), true) {}
+  dv::Vec3 vec3(const json& v, const std::string& field) const { return triple<dv::Vec3>(v, field); }
   dv::Vec3 unit(const json& v, const std::string& field) const {
     dv::Vec3 a = vec3(v, field);
     const double n = dv::norm(a);
     if (!(n > 1e-9)) fail(field, "must be a non-zero axis");
     return a * (1.0 / n);
-  }
-  template <class F>
-  void opt(const json& o, const char* key, const std::string& field, F&& f) const {
-    if (o.contains(key)) f(o.at(key), join(field, key));
   }
   dv::JointSpec joint(const json& v, const std::string& field, dv::JointSpec j) const {
     only_keys(v, field, {"offset", "axis", "limits", "max_torque"});
@@ -81,9 +46,6 @@ class Reader {
     opt(v, "max_torque", field, [&](const json& x, const std::string& f) { j.max_torque = positive(x, f); });
     return j;
   }
-
- private:
-  std::string source_;
 };
 
 }  // namespace

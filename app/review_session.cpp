@@ -10,6 +10,7 @@
 
 #include "replay.h"
 #include "simulation.h"
+#include "simulation_loop.h"
 
 namespace palpation::app {
 
@@ -171,7 +172,7 @@ void ReviewSession::run_steps(const std::string& backend) {
   auto build = [&](const sim::Scenario& sc) {
     auto sim = std::make_unique<sim::Simulation>(sc);
     sim->reset();
-    configure_workstation_threads(*sim);
+    configure_realtime_threads(*sim);
     return sim;
   };
   std::unique_ptr<sim::Simulation> simulation = build(s);
@@ -214,25 +215,9 @@ void ReviewSession::run_steps(const std::string& backend) {
       in[std::size_t(k)].radius = fi.radius;
       in[std::size_t(k)].active = fi.active;
     }
-    sim::Backend& be = simulation->backend();
-    if (be.params().solver.dt != st.h) {
-      sim::SimParams p = be.params();
-      p.solver.dt = st.h;
-      be.set_params(p);
-    }
-    // As the workstation's simulation thread: a backend error falls back to the CPU from
-    // rest, the divergence guard resets the body (app/workstation.cpp, sim_main).
-    sim::StepStats ss;
-    try {
-      ss = be.step(in, out);
-    } catch (const std::exception& e) {
-      if (!simulation->fall_back_to_cpu(e.what())) throw;
-      ss = simulation->backend().step(in, out);
-    }
-    const sim::DivergenceCheck& chk = simulation->check_divergence(ss, out);
-    bool ok = !chk.diverged;
-    for (const auto& o : out) ok = ok && o.force.allFinite() && o.stiffness.allFinite();
-    if (!ok && !chk.diverged) simulation->backend().reset();
+    // The workstation's guarded step (sim::Simulation::advance): a backend error falls
+    // back to the CPU from rest, the divergence guard resets the body.
+    const bool ok = simulation->advance(in, out, st.h).ok;
     for (int k = 0; k < nf; ++k) {
       f[std::size_t(k)] = ok ? Eigen::Vector3d(out[std::size_t(k)].force) : Eigen::Vector3d::Zero();
       resim_f_[i * std::size_t(nf) + std::size_t(k)] = f[std::size_t(k)];

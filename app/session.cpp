@@ -17,13 +17,10 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <spawn.h>
-#include <csignal>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
 #include "device_bridge.h"
+#include "device_factory.h"
 #include "handhiro_emulator.h"
 #include "handhiro_link.h"
 #include "recording.h"
@@ -31,8 +28,7 @@
 #include "scripted_device.h"
 #include "sim_fingers.h"
 #include "simulation.h"
-
-extern char** environ;
+#include "simulation_loop.h"
 
 namespace palpation::app {
 
@@ -41,16 +37,12 @@ using nlohmann::json;
 
 namespace {
 
-// The simulation thread: newest poses -> step -> publish the local contact models.
+// The simulation thread (app/simulation_loop.h) and the figures loop.json reports of it.
 class SimulationThread {
  public:
-  /// coupling_stiffness > 0: virtual coupling (the simulated fingertip is the proxy, see
-  /// device/contact_model.h couple()); 0: the simulated fingertip is the device's.
   SimulationThread(sim::Simulation& simulation, dv::TripleBuffer<dv::PoseFrame>& poses,
-                   dv::TripleBuffer<dv::ContactFrame>& contacts, const DeviceConfig& cfg, bool realtime, double max_dt,
-                   double coupling_stiffness)
-      : sim_(simulation), poses_(poses), contacts_(contacts), cfg_(cfg), realtime_(realtime), max_dt_(max_dt),
-        kc_(coupling_stiffness) {}
+                   dv::TripleBuffer<dv::ContactFrame>& contacts, SimulationLoopOptions opt)
+      : sim_(simulation), loop_(poses, contacts, std::move(opt)) {}
   ~SimulationThread() { stop(); }
 
   void start() {
@@ -72,168 +64,34 @@ class SimulationThread {
 
  private:
   void run() {
-    const sim::Scenario& s = sim_.scenario();
-    const int nf = int(s.fingers.size());
-    const auto& reg = cfg_.hand.registration;
-    std::vector<sim::FingerInput> in(nf);
-    std::vector<sim::FingerOutput> out(nf);
-    std::vector<Eigen::Vector3d> x0(nf);
-    for (int k = 0; k < nf; ++k) in[k].radius = s.fingers[k].radius;
-    sim::Backend* be = &sim_.backend();
-    sim::SimParams params = be->params();
-    // On a small machine the haptic (and emulator) threads need a core of their own:
-    // OpenMP teams that must all be scheduled at every barrier then cost far more than
-    // they save. solver.threads = 0 (auto) becomes 1 there.
-    if (params.solver.threads == 0 && std::thread::hardware_concurrency() <= 3) {
-      params.solver.threads = 1;
-      be->set_params(params);
-    }
-    const double dt = s.params.solver.dt;
+    configure_realtime_threads(sim_);
     step_ms.reserve(1 << 16);
     dt_ms.reserve(1 << 16);
     cg_iterations.reserve(1 << 16);
-    std::int64_t prev_start = 0;
-    std::uint64_t seq = 0;
-    while (!stop_.load(std::memory_order_acquire)) {
-      poses_.update();
-      const dv::PoseFrame& pf = poses_.read();
-      if (pf.tick == 0) {
-        dv::sleep_until_ns(dv::monotonic_ns() + 1000000);
-        continue;
-      }
-      std::int64_t now = dv::monotonic_ns();
-      double h = dt;
-      if (prev_start == 0) {
-        first_step_ns = now;
-      } else if (realtime_) {
-        // The tissue keeps wall-clock time: dt = time since the previous step, at least the
-        // scenario's dt (never faster than real time), at most max_dt (implicit Euler is
-        // stable at any dt; the cap bounds the latency one step adds).
-        const std::int64_t due = prev_start + std::int64_t(dt * 1e9);
-        if (now < due) {
-          dv::sleep_until_ns(due);
-          continue;
-        }
-        h = std::min(double(now - prev_start) * 1e-9, max_dt_);
-      } else {
-        // Fixed dt, paced to real time when the FEM is faster.
-        const std::int64_t due = first_step_ns + std::int64_t(sim_time * 1e9);
-        if (now < due) {
-          dv::sleep_until_ns(due);
-          continue;
-        }
-      }
-      const double since = prev_start == 0 ? 0.0 : double(now - prev_start) * 1e-9;
-      prev_start = now;
-      for (int k = 0; k < nf; ++k) {
-        // The simulated fingertip (app/sim_fingers.h, shared with the workstation): with
-        // the virtual coupling, the proxy balanced against this thread's newest contact
-        // model at the newest device position (computed here, not taken from the haptic
-        // loop, whose proxy may still be one model behind); with direct coupling, the
-        // device's fingertip.
-        finger_from_pose(pf, cfg_.finger_map[k], last_[cfg_.finger_map[k]], kc_, reg, since, in[k]);
-        x0[k] = in[k].position;
-      }
-      if (params.solver.dt != h) {
-        params.solver.dt = h;
-        be->set_params(params);
-      }
-      const auto a = std::chrono::steady_clock::now();
-      sim::StepStats st;
-      try {
-        st = be->step(in, out);
-      } catch (const std::exception& e) {
-        // A backend error mid-session (a CUDA error): continue on the CPU from rest. The
-        // haptic loop keeps rendering the last contact model, fades the new one in, and
-        // the safety filter rate-limits whatever differs: no force spike.
-        if (!sim_.fall_back_to_cpu(e.what())) throw;
-        be = &sim_.backend();
-        be->set_params(params);
-        ++fallbacks;
-        st = be->step(in, out);
-      }
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();
+    SimulationLoop::Hooks hooks;
+    hooks.after_step = [this](const LoopStep& ls) {
+      const sim::Simulation::Outcome& r = *ls.outcome;
+      if (steps == 0) first_step_ns = ls.start_ns;
       ++steps;
-      if (st.solved) ++solved;
-      step_ms.push_back(ms);
-      dt_ms.push_back(h * 1e3);
-      cg_iterations.push_back(st.cg_iterations);
-      sim_time += h;
-      // Divergence (design.md section 7: NaN/Inf or an energy blow-up): the check puts the
-      // body back to rest and logs it; no forces until it steps again.
-      const bool ok = !sim_.check_divergence(st, out).diverged;
-      dv::ContactFrame& cf = contacts_.write_slot();
-      cf.fingers = {};
-      if (!ok) {
+      if (r.stats.solved) ++solved;
+      if (r.fell_back) ++fallbacks;
+      if (!r.ok) {
         finite = false;
         ++resets;
-      } else {
-        for (int k = 0; k < nf; ++k)
-          if (in[k].active) cf.fingers[cfg_.finger_map[k]] = contact_model(out[k], x0[k], reg);
       }
-      last_ = cf.fingers;
-      cf.sequence = ++seq;
-      cf.sim_time = sim_time;
-      cf.published_ns = dv::monotonic_ns();
-      contacts_.publish();
-      last_step_ns = cf.published_ns;
-    }
+      step_ms.push_back(ls.step_ms);
+      dt_ms.push_back(ls.h * 1e3);
+      cg_iterations.push_back(r.stats.cg_iterations);
+      sim_time = ls.sim_time;
+      last_step_ns = ls.published_ns;
+    };
+    loop_.run(sim_, stop_, hooks);
   }
 
   sim::Simulation& sim_;
-  dv::TripleBuffer<dv::PoseFrame>& poses_;
-  dv::TripleBuffer<dv::ContactFrame>& contacts_;
-  const DeviceConfig& cfg_;
-  bool realtime_;
-  double max_dt_;
-  double kc_;
-  std::array<dv::FingerContactModel, dv::kMaxFingers> last_{};  // newest published, device frame
+  SimulationLoop loop_;
   std::thread thread_;
   std::atomic<bool> stop_{false};
-};
-
-// handhiro-emulator as a child process (posix_spawn), ended with SIGTERM.
-class ChildProcess {
- public:
-  ~ChildProcess() { end(); }
-  void spawn(const std::vector<std::string>& args) {
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    const int rc = ::posix_spawn(&pid_, args[0].c_str(), nullptr, nullptr, argv.data(), environ);
-    if (rc != 0) {
-      pid_ = -1;
-      throw std::runtime_error(args[0] + ": cannot start the emulator (" + std::strerror(rc) + ")");
-    }
-  }
-  bool alive() {
-    if (pid_ <= 0) return false;
-    int status = 0;
-    const pid_t r = ::waitpid(pid_, &status, WNOHANG);
-    if (r == pid_) {
-      pid_ = -1;
-      return false;
-    }
-    return true;
-  }
-  void end() {
-    if (pid_ <= 0) return;
-    ::kill(pid_, SIGTERM);
-    int status = 0;
-    for (int i = 0; i < 300; ++i) {  // up to 3 s, then SIGKILL
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    ::kill(pid_, SIGKILL);
-    ::waitpid(pid_, &status, 0);
-    pid_ = -1;
-  }
-
- private:
-  pid_t pid_ = -1;
 };
 
 json percentiles(const dv::MicrosecondHistogram& h) {
@@ -316,64 +174,44 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   simulation.reset();
 
   // The device.
-  std::unique_ptr<dv::HapticDevice> dev;
-  std::unique_ptr<dv::HandHiroEmulator> emulator;
-  ChildProcess child;
-  dv::HandHiroLink* link = nullptr;
-  dv::ScriptedDevice* scripted = nullptr;
-  if (opt.device == "scripted") {
-    auto d = std::make_unique<dv::ScriptedDevice>(script, caps);
-    scripted = d.get();
-    dev = std::move(d);
-  } else if (opt.device == "replay") {
-    std::unique_ptr<dv::ReplayDevice> d;
-    try {
-      d = std::make_unique<dv::ReplayDevice>(opt.recording, reg, cfg.finger_map, caps);
-    } catch (const std::runtime_error& e) {
-      throw sim::ScenarioError(e.what());
-    }
-    scripted = d.get();
-    dev = std::move(d);
-  } else {
-    dv::LinkConfig lc = cfg.link;
-    lc.robot_address = "127.0.0.1";
-    lc.bind_address = "127.0.0.1";
-    lc.bind_port = 0;
-    std::string err;
-    if (opt.emulator_exe.empty()) {
-      dv::EmulatorOptions eo;
-      eo.bind_address = "127.0.0.1";
-      eo.port = 0;
-      eo.rigid_hand = opt.rigid_hand;
-      emulator = std::make_unique<dv::HandHiroEmulator>(cfg.hand, script, eo);
-      if (!emulator->open(&err)) throw std::runtime_error("emulator: " + err);
-      lc.robot_port = emulator->port();
-    } else {
-      dv::UdpSocket probe;  // a free loopback port for the child
-      if (!probe.open("127.0.0.1", 0, &err)) throw std::runtime_error("emulator: " + err);
-      lc.robot_port = probe.local_port();
-      probe.close();
-      std::vector<std::string> args{opt.emulator_exe, "--port", std::to_string(lc.robot_port), "--exit-after-idle", "3", "--quiet"};
-      if (!opt.recording.empty()) args.insert(args.end(), {"--recording", opt.recording});
-      else args.insert(args.end(), {"--scenario", opt.scenario_arg.empty() ? s.source : opt.scenario_arg});
-      if (!opt.device_config_path.empty()) args.insert(args.end(), {"--config", opt.device_config_path});
-      if (opt.rigid_hand) args.push_back("--rigid-hand");
-      if (opt.priority > 0) args.insert(args.end(), {"--priority", std::to_string(std::max(1, opt.priority - 10))});
-      child.spawn(args);
-    }
-    auto l = std::make_unique<dv::HandHiroLink>(caps, lc);
-    if (!l->open(&err)) throw std::runtime_error("link: " + err);
-    link = l.get();
-    dev = std::move(l);
+  DeviceRequest req;
+  req.kind = opt.device;
+  req.config = cfg;
+  req.script = script;
+  req.recording = opt.recording;
+  req.rigid_hand = opt.rigid_hand;
+  if (opt.device == "emulator" && !opt.emulator_exe.empty()) {
+    std::vector<std::string>& args = req.emulator_command;
+    args = {opt.emulator_exe, "--exit-after-idle", "3", "--quiet"};
+    if (!opt.recording.empty()) args.insert(args.end(), {"--recording", opt.recording});
+    else args.insert(args.end(), {"--scenario", opt.scenario_arg.empty() ? s.source : opt.scenario_arg});
+    if (!opt.device_config_path.empty()) args.insert(args.end(), {"--config", opt.device_config_path});
+    if (opt.rigid_hand) args.push_back("--rigid-hand");
+    if (opt.priority > 0) args.insert(args.end(), {"--priority", std::to_string(std::max(1, opt.priority - 10))});
   }
+  DeviceWiring wiring = open_device(std::move(req));
+  dv::HapticDevice* dev = wiring.device.get();
+  dv::HandHiroEmulator* emulator = wiring.emulator.get();
+  ChildProcess& child = wiring.child;
+  dv::HandHiroLink* link = wiring.link;
+  dv::ScriptedDevice* scripted = wiring.scripted;
 
   // Hand-offs and the loop.
   dv::TripleBuffer<dv::PoseFrame> poses;
   dv::TripleBuffer<dv::ContactFrame> contacts;
   dv::SpscRing<dv::TickRecord> telemetry(1 << 15);  // 32 s of ticks: the recorder drains every 10 ms
   auto loop = std::make_unique<dv::HapticLoop>(*dev, poses, contacts, &telemetry, cfg.loop);
-  SimulationThread sim_thread(simulation, poses, contacts, cfg, opt.sim_realtime, opt.sim_max_dt,
-                              loop->params().virtual_coupling ? loop->params().coupling_stiffness : 0.0);
+  SimulationLoopOptions lo;
+  for (int k = 0; k < nf; ++k) {
+    lo.finger_map.push_back(cfg.finger_map[std::size_t(k)]);
+    lo.radius.push_back(s.fingers[std::size_t(k)].radius);
+  }
+  lo.registration = reg;
+  lo.dt = s.params.solver.dt;
+  lo.realtime = opt.sim_realtime;
+  lo.max_dt = opt.sim_max_dt;
+  lo.coupling_stiffness = loop->params().virtual_coupling ? loop->params().coupling_stiffness : 0.0;
+  SimulationThread sim_thread(simulation, poses, contacts, std::move(lo));
   PeriodicThread emulator_thread;
   HapticThread haptic(*loop);
 

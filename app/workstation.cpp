@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "device_bridge.h"
+#include "device_factory.h"
 #include "fem_stress.h"
 #include "handhiro_emulator.h"
 #include "handhiro_link.h"
@@ -13,51 +14,9 @@
 #include "rt_clock.h"
 #include "sim_fingers.h"
 #include "simulation.h"
+#include "simulation_loop.h"
 
 namespace palpation::app {
-
-// ---------------------------------------------------------------------------------------
-// WorkstationDevice
-
-WorkstationDevice::WorkstationDevice(dv::HandScript script, dv::DeviceCapabilities caps)
-    : script_(std::move(script)), duration_(script_.duration()), caps_(caps) {}
-
-bool WorkstationDevice::read(std::int64_t now_ns, dv::DeviceState& state) {
-  if (t0_ < 0) t0_ = now_ns;
-  const double dt = prev_ns_ > 0 ? double(now_ns - prev_ns_) * 1e-9 : 0.0;
-  prev_ns_ = now_ns;
-  const Mode mode = this->mode();
-  targets_.update();
-  const Targets& tg = targets_.read();
-  double t = double(now_ns - t0_) * 1e-9;
-  if (duration_ > 0) t = std::fmod(t, duration_);  // the scripted hand palpates in a loop
-  for (int f = 0; f < dv::kMaxFingers; ++f) {
-    dv::FingerState& fs = state.fingers[f];
-    dv::Vec3 p, v;
-    if (mode == Mode::Script) {
-      fs.present = script_.sample(t, f, p, v);
-    } else {
-      fs.present = tg.present[f];
-      p = tg.position[f];
-      v = dt > 0 ? (p - last_pos_[f]) * (1.0 / dt) : dv::Vec3{};
-    }
-    if (fs.present) {
-      fs.position = p;
-      fs.velocity = v;
-      last_pos_[f] = p;
-    }
-    fs.attached = fs.present;
-    fs.torque_limited = false;
-  }
-  state.device_time_ns = now_ns;
-  state.received_ns = now_ns;
-  state.sequence = ++seq_;
-  state.connected = true;
-  state.device_watchdog = false;
-  return true;
-}
-
-void WorkstationDevice::write(std::int64_t, const dv::ForceCommand&) {}
 
 // ---------------------------------------------------------------------------------------
 // Defaults
@@ -104,23 +63,8 @@ dv::HandScript default_hand_script(const DeviceConfig& cfg) {
 // Workstation
 
 namespace {
-/// The linear blend (1 - g) a + g b of two local contact models (F(x) = F0 + K (x - x0)),
-/// exact at every x: expressed about b's x0 (or a's when b has none). g in [0, 1].
-dv::FingerContactModel blended(const dv::FingerContactModel& a, const dv::FingerContactModel& b, double g) {
-  if (!a.valid && !b.valid) return b;
-  dv::FingerContactModel m = b.valid ? b : a;
-  const double wa = a.valid ? 1.0 - g : 0.0, wb = b.valid ? g : 0.0;
-  const dv::Vec3 fa = a.valid ? a.force + a.stiffness * (m.position - a.position) : dv::Vec3{};
-  m.force = fa * wa + (b.valid ? b.force : dv::Vec3{}) * wb;
-  m.stiffness = (a.valid ? a.stiffness : dv::Mat3{}) * wa + (b.valid ? b.stiffness : dv::Mat3{}) * wb;
-  m.contacts = std::max(a.valid ? a.contacts : 0, b.valid ? b.contacts : 0);
-  if (!b.valid || b.contacts == 0) {
-    m.normal = a.normal;
-    m.contact_point = a.contact_point;
-  }
-  m.valid = true;
-  return m;
-}
+/// The fingertip radius of a patient's scenario (m): its first finger's, else 8 mm.
+double finger_radius(const sim::Scenario& s) { return s.fingers.empty() ? 0.008 : s.fingers[0].radius; }
 }  // namespace
 
 std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulation, std::uint64_t generation) {
@@ -145,15 +89,6 @@ std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulati
   return g;
 }
 
-void Workstation::publish_empty(std::uint64_t& seq, double sim_time) {
-  dv::ContactFrame& cf = contacts_.write_slot();
-  cf.fingers = {};
-  cf.sequence = ++seq;
-  cf.sim_time = sim_time;
-  cf.published_ns = dv::monotonic_ns();
-  contacts_.publish();
-}
-
 struct Workstation::Threads {
   HapticThread haptic;
   PeriodicThread emulator;  // the robot side, "emulator" only
@@ -161,49 +96,46 @@ struct Workstation::Threads {
 };
 
 Workstation::Workstation(WorkstationOptions opt) : opt_(std::move(opt)) {
-  const auto& caps = opt_.config.hand.capabilities;
-  device_ = std::make_unique<WorkstationDevice>(default_hand_script(opt_.config), caps);
-  std::string err;
-  if (opt_.device == "emulator") {
-    // As in session.cpp: the emulator on a free loopback port, the link to it.
-    dv::EmulatorOptions eo;
-    eo.bind_address = "127.0.0.1";
-    eo.port = 0;
-    auto em = std::make_unique<dv::HandHiroEmulator>(opt_.config.hand, default_hand_script(opt_.config), eo);
-    if (!em->open(&err)) throw std::runtime_error("emulator: " + err);
-    dv::LinkConfig lc = opt_.config.link;
-    lc.robot_address = "127.0.0.1";
-    lc.robot_port = em->port();
-    lc.bind_address = "127.0.0.1";
-    lc.bind_port = 0;
-    auto link = std::make_unique<dv::HandHiroLink>(caps, lc);
-    if (!link->open(&err)) throw std::runtime_error("link: " + err);
-    emulator_ = std::move(em);
-    link_ = std::move(link);
-  } else if (opt_.device == "handhiro") {
-    dv::LinkConfig lc = opt_.config.link;
-    if (!opt_.robot_address.empty()) lc.robot_address = opt_.robot_address;
-    if (opt_.robot_port > 0) lc.robot_port = std::uint16_t(opt_.robot_port);
-    auto link = std::make_unique<dv::HandHiroLink>(caps, lc);
-    if (!link->open(&err)) throw std::runtime_error("link: " + err);
-    link_ = std::move(link);
-  } else if (opt_.device != "simulated") {
+  if (opt_.device != "simulated" && opt_.device != "emulator" && opt_.device != "handhiro")
     throw std::runtime_error("device: must be simulated, emulator or handhiro, got \"" + opt_.device + "\"");
+  DeviceRequest req;
+  req.kind = opt_.device;
+  req.config = opt_.config;
+  req.script = default_hand_script(opt_.config);
+  req.robot_address = opt_.robot_address;
+  req.robot_port = opt_.robot_port;
+  wiring_ = std::make_unique<DeviceWiring>(open_device(std::move(req)));
+  // The simulated hand exists with every device: the mouse palpates through it.
+  if (wiring_->hand) device_ = wiring_->hand;
+  else {
+    own_hand_ = std::make_unique<dv::SimulatedHand>(default_hand_script(opt_.config), opt_.config.hand.capabilities);
+    device_ = own_hand_.get();
   }
-  dv::HapticDevice& dev = link_ ? *link_ : static_cast<dv::HapticDevice&>(*device_);
+  dv::HapticDevice& dev = *wiring_->device;
   loop_ = std::make_unique<dv::HapticLoop>(dev, poses_, contacts_, &ticks_, opt_.config.loop);
   threads_ = std::make_unique<Threads>(*loop_);
+  // Every device finger is simulated, with the patient's fingertip radius.
+  SimulationLoopOptions lo;
+  for (int d = 0; d < dv::kMaxFingers; ++d) lo.finger_map.push_back(d);
+  lo.radius.assign(dv::kMaxFingers, finger_radius(opt_.scenario));
+  lo.registration = opt_.config.hand.registration;
+  lo.dt = opt_.scenario.params.solver.dt;
+  lo.realtime = true;
+  lo.max_dt = opt_.sim_max_dt;
+  lo.coupling_stiffness = loop_->params().virtual_coupling ? loop_->params().coupling_stiffness : 0.0;
+  lo.spike_guard = opt_.spike_guard;
+  lo.recover_hold_s = opt_.recover_hold_s;
+  lo.recover_hold_max_s = opt_.recover_hold_max_s;
+  lo.recover_blend_s = opt_.recover_blend_s;
+  sim_loop_ = std::make_unique<SimulationLoop>(poses_, contacts_, std::move(lo));
 }
 
 std::string Workstation::device_description() const {
-  if (opt_.device == "emulator") return "HandHIRO emulator (UDP loopback)";
-  if (opt_.device == "handhiro") {
-    const std::string a = opt_.robot_address.empty() ? opt_.config.link.robot_address : opt_.robot_address;
-    const int p = opt_.robot_port > 0 ? opt_.robot_port : opt_.config.link.robot_port;
-    return "HandHIRO at " + a + ":" + std::to_string(p);
-  }
-  return device_->mode() == WorkstationDevice::Mode::Mouse ? "mouse" : "simulated HandHIRO";
+  if (wiring_->hand) return device_->mode() == HandMode::Mouse ? "mouse" : wiring_->description;
+  return wiring_->description;
 }
+
+bool Workstation::simulated_device() const { return wiring_->link == nullptr; }
 
 Workstation::~Workstation() { stop(); }
 
@@ -216,8 +148,8 @@ void Workstation::start() {
   stop_.store(false);
   sim_state_.store(1);
   sim_thread_ = std::thread([this] { sim_main(); });
-  if (emulator_) {
-    dv::HandHiroEmulator* em = emulator_.get();
+  if (wiring_->emulator) {
+    dv::HandHiroEmulator* em = wiring_->emulator.get();
     threads_->emulator.start(std::int64_t(1e6), opt_.haptic_priority > 0 ? std::max(1, opt_.haptic_priority - 10) : 0,
                              [em](std::int64_t now, std::int64_t) { em->tick(now); });
   }
@@ -276,15 +208,6 @@ void apply_params(sim::Simulation& s, const sim::SimParams& p) {
   s.backend().set_params(q);
 }
 
-void configure_workstation_threads(sim::Simulation& s) {
-  sim::SimParams params = s.backend().params();
-  // On a small machine the haptic thread needs a core of its own (see session.cpp).
-  if (params.solver.threads == 0 && std::thread::hardware_concurrency() <= 3) {
-    params.solver.threads = 1;
-    s.backend().set_params(params);
-  }
-}
-
 void Workstation::notify_command(CommandRecord r) {
   r.index = posted_.load();  // the index post() is about to give it
   for (auto& l : command_listeners_) l(r);
@@ -313,7 +236,7 @@ void Workstation::load_patient(const sim::Scenario& s) {
 }
 
 void Workstation::set_mouse_finger(const Eigen::Vector3d& world, bool present) {
-  WorkstationDevice::Targets t;
+  dv::SimulatedHand::Targets t;
   t.present[dv::kIndex] = present;
   t.position[dv::kIndex] = opt_.config.hand.registration.to_device(to_dev(world));
   device_->set_targets(t);
@@ -321,10 +244,10 @@ void Workstation::set_mouse_finger(const Eigen::Vector3d& world, bool present) {
 
 void Workstation::build(const sim::Scenario& s) {
   sim_state_.store(sim_ ? 3 : 1);
-  sim_.reset();
+  // A patient that cannot be built leaves the current one running.
   auto simulation = std::make_unique<sim::Simulation>(s);
   simulation->reset();
-  configure_workstation_threads(*simulation);
+  configure_realtime_threads(*simulation);
   const sim::Model& m = simulation->model();
   const std::uint64_t generation = generation_.load() + 1;
   generation_.store(generation);
@@ -351,223 +274,121 @@ void Workstation::sim_main() {
     return;
   }
   const auto& reg = opt_.config.hand.registration;
-  const double kc = loop_->params().virtual_coupling ? loop_->params().coupling_stiffness : 0.0;
   constexpr int nf = dv::kMaxFingers;
-  std::vector<sim::FingerInput> in(nf);
-  std::vector<sim::FingerOutput> out(nf);
-  std::array<dv::FingerContactModel, nf> last{};
-  // Previous step's simulated force (spike guard). Eigen does not zero-initialise, and
-  // `{}` value-initialises the array but not the vectors in it: fill explicitly.
-  std::array<Eigen::Vector3d, nf> prev_force;
-  prev_force.fill(Eigen::Vector3d::Zero());
-  const double dt = opt_.scenario.params.solver.dt;
-  std::int64_t prev_start = 0, last_snapshot = 0;
+  std::int64_t last_snapshot = 0;
   const auto snapshot_period = std::int64_t(1e9 / std::max(1.0, opt_.snapshot_hz));
-  std::uint64_t seq = 0;
-  double sim_time = 0;
   std::vector<double> xyz;
   sim::StressScratch stress_scratch;
   std::vector<Command> cmds;
-  while (!stop_.load(std::memory_order_acquire)) {
+  SimulationLoop& loop = *sim_loop_;
+  SimulationLoop::Hooks hooks;
+  hooks.between_steps = [&] {
     // Queued commands, between steps.
     {
       std::lock_guard<std::mutex> lk(mu_);
       cmds.swap(queue_);
     }
-    if (!cmds.empty()) {
-      for (auto& c : cmds) {
-        try {
-          c(*sim_);
-        } catch (const std::exception& e) {
-          log_event("error", e.what());
-        }
+    if (cmds.empty()) return;
+    for (auto& c : cmds) {
+      try {
+        c(*sim_);
+      } catch (const std::exception& e) {
+        log_event("error", e.what());
       }
-      const std::uint64_t n = cmds.size();
-      cmds.clear();
-      if (swap_pending_) {
-        swap_pending_ = false;
-        // Patient swap: fade the forces to zero (empty contact models, blended out by the
-        // haptic loop over its blend window), then rebuild. The haptic loop keeps running.
-        sim_state_.store(3);
-        const std::int64_t fade_end = dv::monotonic_ns() + 100000000;  // 100 ms
-        while (dv::monotonic_ns() < fade_end) {
-          publish_empty(seq, sim_time);
-          dv::sleep_until_ns(dv::monotonic_ns() + 2000000);
-        }
-        last = {};
-        prev_force.fill(Eigen::Vector3d::Zero());
-        good_ = held_ = {};
-        recovering_.store(false);
-        sim::Scenario s;
-        {
-          std::lock_guard<std::mutex> lk(mu_);
-          s = opt_.scenario;
-        }
-        try {
-          build(s);
-        } catch (const std::exception& e) {
-          log_event("error", std::string("patient not loaded: ") + e.what());
-          sim_state_.store(2);
-        }
-        prev_start = 0;
-        for (auto& f : in) f.active = false;
+    }
+    const std::uint64_t n = cmds.size();
+    cmds.clear();
+    if (swap_pending_) {
+      swap_pending_ = false;
+      // Patient swap: fade the forces to zero (empty contact models, blended out by the
+      // haptic loop over its blend window), then rebuild. The haptic loop keeps running.
+      sim_state_.store(3);
+      const std::int64_t fade_end = dv::monotonic_ns() + 100000000;  // 100 ms
+      while (dv::monotonic_ns() < fade_end) {
+        loop.publish_empty();
+        dv::sleep_until_ns(dv::monotonic_ns() + 2000000);
       }
+      sim::Scenario s;
       {
         std::lock_guard<std::mutex> lk(mu_);
-        applied_young_ = sim_->model().young;
+        s = opt_.scenario;
       }
-      applied_.fetch_add(n);
-    }
-
-    poses_.update();
-    const dv::PoseFrame& pf = poses_.read();
-    if (pf.tick == 0) {
-      dv::sleep_until_ns(dv::monotonic_ns() + 1000000);
-      continue;
-    }
-    const std::int64_t now = dv::monotonic_ns();
-    double h = dt;
-    if (prev_start != 0) {
-      // Real-time dt as in the session (session.cpp): never faster than the scenario's dt,
-      // at most sim_max_dt.
-      const std::int64_t due = prev_start + std::int64_t(dt * 1e9);
-      if (now < due) {
-        dv::sleep_until_ns(due);
-        continue;
+      try {
+        build(s);
+      } catch (const std::exception& e) {
+        log_event("error", std::string("patient not loaded: ") + e.what());
+        sim_state_.store(2);
       }
-      h = std::min(double(now - prev_start) * 1e-9, opt_.sim_max_dt);
+      loop.restart(*sim_, std::vector<double>(nf, finger_radius(s)));
     }
-    const double since = prev_start == 0 ? 0.0 : double(now - prev_start) * 1e-9;
-    prev_start = now;
-    for (int d = 0; d < nf; ++d) {
-      in[d].radius = opt_.scenario.fingers.empty() ? 0.008 : opt_.scenario.fingers[0].radius;
-      finger_from_pose(pf, d, last[d], kc, reg, since, in[d]);
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      applied_young_ = sim_->model().young;
     }
-    if (sim_->backend().params().solver.dt != h) {
-      sim::SimParams p = sim_->backend().params();
-      p.solver.dt = h;
-      sim_->backend().set_params(p);
-    }
-    const auto a = std::chrono::steady_clock::now();
-    sim::StepStats st;
-    bool fault = false;
-    try {
-      st = sim_->backend().step(in, out);
-    } catch (const std::exception& e) {
-      // A backend error mid-session (a CUDA error, design.md section 7): continue on the
-      // CPU from rest; the forces are held, then blended below (no spike).
-      const std::string why = e.what();
-      if (!sim_->fall_back_to_cpu(why)) {
-        // The CPU backend itself failed: nothing left to step. Fade the forces out.
-        log_event("error", "simulation stopped: " + why);
-        {
-          std::lock_guard<std::mutex> lk(mu_);
-          load_error_ = "simulation stopped: " + why;
-        }
-        sim_state_.store(4);
-        publish_empty(seq, sim_time);
-        return;
-      }
-      fault = true;
+    applied_.fetch_add(n);
+  };
+  hooks.on_fault = [this](const sim::Simulation::Outcome& r) {
+    if (r.fell_back) {
       fallbacks_.fetch_add(1);
       {
         std::lock_guard<std::mutex> lk(mu_);
         backend_name_ = sim_->backend().name();
         safety_note_ = sim_->backend_reason();
       }
-      log_event("fallback", "backend error: " + why + "; continuing on the CPU from rest (forces held, then blended)");
-      st = sim_->backend().step(in, out);
+      log_event("fallback", "backend error: " + r.error + "; continuing on the CPU from rest (forces held, then blended)");
     }
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();
-    sim_time += h;
-    // Divergence guard (design.md section 7, sim::Simulation::check_divergence): NaN/Inf
-    // or an energy blow-up puts the body back to rest, logged.
-    const sim::DivergenceCheck& chk = sim_->check_divergence(st, out);
-    bool ok = !chk.diverged;
-    for (const auto& o : out) ok = ok && o.force.allFinite() && o.stiffness.allFinite();
-    if (!ok) {
-      if (!chk.diverged) sim_->backend().reset();
+    if (!r.ok) {
       divergences_.fetch_add(1);
-      const std::string why = chk.reason.empty() ? std::string("non-finite contact output") : chk.reason;
+      const std::string& reason = sim_->last_check().reason;
+      const std::string why = reason.empty() ? std::string("non-finite contact output") : reason;
       {
         std::lock_guard<std::mutex> lk(mu_);
         safety_note_ = "divergence reset: " + why;
       }
       log_event("reset", "simulation diverged (" + why + "): body reset to rest (forces held, then blended)");
-      fault = true;
     }
-    if (fault) {
-      // Recovery: the body restarted at rest, so its first forces (a fingertip deep in an
-      // undeformed body) are not the ones the hand felt. Hold the last good models while
-      // the new body settles around the fingers, then blend over to the new ones.
-      recover_start_ = now;
-      blend_start_ = 0;
-      settled_for_ = 0;
-      if (!recovering_.load()) held_ = good_;
-      recovering_.store(true);
-    }
-    dv::ContactFrame& cf = contacts_.write_slot();
-    cf.fingers = {};
-    bool steady = ok;
+  };
+  hooks.after_step = [&](const LoopStep& ls) {
+    const sim::StepStats& st = ls.outcome->stats;
+    StepSample ss{double(ls.start_ns - t0_ns_) * 1e-9, ls.sim_time, float(ls.step_ms), st.cg_iterations, st.contacts, ls.h,
+                  applied_.load(), {}, {}};
     for (int d = 0; d < nf; ++d) {
-      if (ok && in[d].active)
-        cf.fingers[d] = contact_model(opt_.spike_guard ? guard_force_spike(out[d], prev_force[d]) : out[d], in[d].position, reg);
-      const Eigen::Vector3d now_f = ok && in[d].active && out[d].contacts > 0 ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
-      // Steady: changing by less than 100 % of itself + 0.5 N per second (at the 10 ms
-      // real-time dt, 1 % + 5 mN per step); judged per second so a small dt does not pass a
-      // body that is still moving.
-      steady = steady && (now_f - prev_force[d]).norm() <= h * (prev_force[d].norm() + 0.5);
-      prev_force[d] = now_f;
-    }
-    if (recovering_.load()) {
-      settled_for_ = steady && !fault ? settled_for_ + h : 0.0;
-      const double t = double(now - recover_start_) * 1e-9;
-      const double hold = std::max(opt_.recover_hold_s, 0.0), blend = std::max(opt_.recover_blend_s, 0.0);
-      const double hold_max = std::max(opt_.recover_hold_max_s, hold);
-      if (blend_start_ == 0 && t >= hold && (settled_for_ >= 0.1 || t >= hold_max || hold_max == 0)) blend_start_ = now;
-      const double tb = blend_start_ == 0 ? -1.0 : double(now - blend_start_) * 1e-9;
-      if (tb < 0) {
-        cf.fingers = held_;
-      } else if (tb < blend) {
-        const double g = tb / blend;
-        for (int d = 0; d < nf; ++d) cf.fingers[d] = blended(held_[d], cf.fingers[d], g);
-      } else {
-        recovering_.store(false);
-      }
-    }
-    if (!recovering_.load()) good_ = cf.fingers;
-    last = cf.fingers;
-    cf.sequence = ++seq;
-    cf.sim_time = sim_time;
-    cf.published_ns = dv::monotonic_ns();
-    contacts_.publish();
-    StepSample ss{double(now - t0_ns_) * 1e-9, sim_time, float(ms), st.cg_iterations, st.contacts, h, applied_.load(), {}, {}};
-    for (int d = 0; d < nf; ++d) {
-      ss.in[d] = in[d];
-      ss.force[d] = ok ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
+      ss.in[d] = ls.in[std::size_t(d)];
+      ss.force[d] = ls.out[std::size_t(d)].force;
     }
     steps_.push(ss);
-
-    if (now - last_snapshot >= snapshot_period) {
-      last_snapshot = now;
-      sim::Backend& be = sim_->backend();
-      be.positions(xyz);
-      RenderSnapshot& rs = snapshots_.write_slot();
-      rs.model_generation = generation_.load();
-      rs.sequence = seq;
-      rs.sim_time = sim_time;
-      rs.positions.resize(xyz.size());
-      for (std::size_t i = 0; i < xyz.size(); ++i) rs.positions[i] = float(xyz[i]);
-      for (int d = 0; d < nf; ++d) {
-        rs.finger_position[d] = to_eigen(reg.to_world(pf.fingers[d].position));
-        rs.finger_force[d] = ok && in[d].active ? Eigen::Vector3d(out[d].force) : Eigen::Vector3d::Zero();
-        rs.finger_active[d] = pf.fingers[d].present;
-      }
-      rs.finger_radius = in[0].radius;
-      if (stress_enabled_.load(std::memory_order_acquire)) sim::nodal_von_mises(sim_->model(), xyz.data(), rs.von_mises, stress_scratch);
-      else rs.von_mises.clear();
-      snapshots_.publish();
+    if (ls.start_ns - last_snapshot < snapshot_period) return;
+    last_snapshot = ls.start_ns;
+    sim::Backend& be = sim_->backend();
+    be.positions(xyz);
+    RenderSnapshot& rs = snapshots_.write_slot();
+    rs.model_generation = generation_.load();
+    rs.sequence = ls.sequence;
+    rs.sim_time = ls.sim_time;
+    rs.positions.resize(xyz.size());
+    for (std::size_t i = 0; i < xyz.size(); ++i) rs.positions[i] = float(xyz[i]);
+    for (int d = 0; d < nf; ++d) {
+      rs.finger_position[d] = to_eigen(reg.to_world(ls.poses->fingers[d].position));
+      rs.finger_force[d] = ls.in[std::size_t(d)].active ? Eigen::Vector3d(ls.out[std::size_t(d)].force) : Eigen::Vector3d::Zero();
+      rs.finger_active[d] = ls.poses->fingers[d].present;
     }
+    rs.finger_radius = ls.in[0].radius;
+    if (stress_enabled_.load(std::memory_order_acquire)) sim::nodal_von_mises(sim_->model(), xyz.data(), rs.von_mises, stress_scratch);
+    else rs.von_mises.clear();
+    snapshots_.publish();
+  };
+  try {
+    loop.run(*sim_, stop_, hooks);
+  } catch (const std::exception& e) {
+    // The CPU backend itself failed: nothing left to step. Fade the forces out.
+    const std::string why = e.what();
+    log_event("error", "simulation stopped: " + why);
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      load_error_ = "simulation stopped: " + why;
+    }
+    sim_state_.store(4);
+    loop.publish_empty();
   }
 }
 
@@ -621,7 +442,7 @@ bool Workstation::poll() {
   stats_.dropped = ticks_.dropped();
   stats_.fallbacks = fallbacks_.load();
   stats_.divergences = divergences_.load();
-  stats_.recovering = recovering_.load();
+  stats_.recovering = sim_loop_->recovering();
   {
     std::lock_guard<std::mutex> lk(mu_);
     stats_.backend = backend_name_;

@@ -1,7 +1,7 @@
 // The workstation's real-time composition (design.md section 3), Qt-free so that the GUI
 // (ui/), the recorder (issue 6) and tests drive the same object:
 //
-//   WorkstationDevice (scripted hand, looped | mouse targets)
+//   device::SimulatedHand (scripted hand, looped | mouse targets)
 //        ^ forces        | poses
 //   haptic thread (1 kHz, app/haptic_thread.h, device::HapticLoop)
 //        | poses (triple buffer)        ^ contact models (triple buffer)
@@ -40,6 +40,7 @@
 #include "haptic_loop.h"
 #include "params.h"
 #include "scenario.h"
+#include "simulated_hand.h"
 #include "spsc_ring.h"
 #include "triple_buffer.h"
 
@@ -55,39 +56,12 @@ struct Model;
 namespace palpation::app {
 
 namespace dv = palpation::device;
+class SimulationLoop;
+struct DeviceWiring;
 
-/// A device for the workstation without a robot: the device fingers either follow a
-/// looped HandScript (the simulated HandHIRO palpating on its own) or targets set by the
-/// GUI (mouse palpation). Non-blocking, lock-free (the GUI writes targets through a triple
-/// buffer), records the last forces for display.
-class WorkstationDevice : public dv::HapticDevice {
- public:
-  enum class Mode { Script, Mouse };
-  WorkstationDevice(dv::HandScript script, dv::DeviceCapabilities caps);
-  dv::DeviceCapabilities capabilities() const override { return caps_; }
-  std::string name() const override { return "simulated HandHIRO"; }
-  bool read(std::int64_t now_ns, dv::DeviceState& state) override;
-  void write(std::int64_t now_ns, const dv::ForceCommand& command) override;
-
-  void set_mode(Mode m) { mode_.store(int(m), std::memory_order_release); }
-  Mode mode() const { return Mode(mode_.load(std::memory_order_acquire)); }
-  /// GUI thread (single producer): where the mouse-driven fingertips should be (device frame).
-  struct Targets {
-    std::array<dv::Vec3, dv::kMaxFingers> position{};
-    std::array<bool, dv::kMaxFingers> present{};
-  };
-  void set_targets(const Targets& t) { targets_.publish(t); }
-
- private:
-  dv::HandScript script_;
-  double duration_ = 0;
-  dv::DeviceCapabilities caps_;
-  std::atomic<int> mode_{0};
-  dv::TripleBuffer<Targets> targets_;
-  std::array<dv::Vec3, dv::kMaxFingers> last_pos_{};
-  std::int64_t t0_ = -1, prev_ns_ = 0;
-  std::uint32_t seq_ = 0;
-};
+/// The simulated hand's two modes: palpating on its own (a looped script) or following
+/// the mouse.
+using HandMode = dv::SimulatedHand::Mode;
 
 /// What the GUI draws: the deformed nodes and the fingertips, world frame.
 struct RenderSnapshot {
@@ -141,9 +115,6 @@ struct CommandRecord {
 /// The commands' effects, shared with the review's re-simulation (app/review_session.h).
 void apply_element_young(sim::Simulation& s, const std::vector<std::pair<int, double>>& changes);
 void apply_params(sim::Simulation& s, const sim::SimParams& p);
-/// The solver threads the workstation gives a new simulation (one on a machine of 3
-/// cores or fewer, so that the haptic thread keeps a core).
-void configure_workstation_threads(sim::Simulation& s);
 
 struct Event {
   double t = 0;             // s since start()
@@ -188,7 +159,7 @@ struct LiveStats {
 
 struct WorkstationOptions {
   sim::Scenario scenario;              // patient, tissue, inclusions, solver; fingers unused
-  /// "simulated": WorkstationDevice (scripted hand or mouse); "emulator": the HandHIRO
+  /// "simulated": device::SimulatedHand (scripted hand or mouse); "emulator": the HandHIRO
   /// protocol over loopback UDP to an in-process handhiro-emulator driven by the same
   /// scripted hand; "handhiro": the UDP link to a robot at robot_address:robot_port.
   std::string device = "simulated";
@@ -260,10 +231,10 @@ class Workstation {
   // Device ---------------------------------------------------------------------------
   /// The simulated device (scripted hand / mouse targets). With "emulator" or "handhiro"
   /// it exists but the loop talks to the link instead.
-  WorkstationDevice& device() { return *device_; }
+  dv::SimulatedHand& device() { return *device_; }
   /// What the haptic loop talks to, in words.
   std::string device_description() const;
-  bool simulated_device() const { return link_ == nullptr; }
+  bool simulated_device() const;
   /// The stress colour map: the simulation thread adds nodal von Mises stress to the
   /// render snapshots while on (0.36 ms per snapshot on the coarse breast, 3.7 ms on the
   /// paper mesh; docs/gui.md).
@@ -290,9 +261,9 @@ class Workstation {
   void build(const sim::Scenario& s);
 
   WorkstationOptions opt_;
-  std::unique_ptr<WorkstationDevice> device_;
-  std::unique_ptr<dv::HapticDevice> link_;       // emulator / handhiro: the UDP link
-  std::unique_ptr<dv::HandHiroEmulator> emulator_;  // emulator: the robot side
+  std::unique_ptr<DeviceWiring> wiring_;           // what the haptic loop talks to
+  std::unique_ptr<dv::SimulatedHand> own_hand_;    // the mouse's hand beside a link
+  dv::SimulatedHand* device_ = nullptr;            // the simulated hand (wiring's or own)
   dv::TripleBuffer<dv::PoseFrame> poses_;
   dv::TripleBuffer<dv::ContactFrame> contacts_;
   dv::SpscRing<dv::TickRecord> ticks_{1 << 15};
@@ -318,14 +289,8 @@ class Workstation {
   std::atomic<int> sim_state_{0};  // 0 stopped, 1 loading, 2 running, 3 swapping, 4 error
   std::string backend_name_, safety_note_;            // guarded by mu_
   std::atomic<int> fallbacks_{0}, divergences_{0};
-  std::atomic<bool> recovering_{false};
   std::atomic<bool> stress_enabled_{false};
-  // Simulation thread only: the recovery after a fallback or reset (sim_main).
-  std::int64_t recover_start_ = 0;
-  std::int64_t blend_start_ = 0;  // 0: still holding
-  double settled_for_ = 0;        // simulated seconds the new forces have been steady
-  std::array<dv::FingerContactModel, dv::kMaxFingers> good_{}, held_{};
-  void publish_empty(std::uint64_t& seq, double sim_time);
+  std::unique_ptr<SimulationLoop> sim_loop_;  // the simulation thread's body
 
   // GUI-thread side
   LiveStats stats_;

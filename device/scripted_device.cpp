@@ -12,7 +12,8 @@ bool ScriptedDevice::read(std::int64_t now_ns, DeviceState& state) {
     started_ = true;
     t0_ = now_ns;
   }
-  const double t = double(now_ns - t0_) * 1e-9;
+  double t = double(now_ns - t0_) * 1e-9;
+  if (looped_ && script_.duration() > 0) t = std::fmod(t, script_.duration());
   for (int f = 0; f < kMaxFingers; ++f) {
     FingerState& fs = state.fingers[f];
     Vec3 p, v;
@@ -24,6 +25,10 @@ bool ScriptedDevice::read(std::int64_t now_ns, DeviceState& state) {
     fs.attached = fs.present && !detached_[f];
     fs.torque_limited = false;
   }
+  return stamp(now_ns, state);
+}
+
+bool ScriptedDevice::stamp(std::int64_t now_ns, DeviceState& state) {
   state.device_time_ns = now_ns;
   state.received_ns = now_ns;
   state.sequence = ++seq_;

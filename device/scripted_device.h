@@ -38,15 +38,22 @@ class ScriptedDevice : public HapticDevice {
     override_[finger] = on;
     override_pos_[finger] = p;
   }
+  /// Looped: the script starts over at its end (a hand palpating on its own).
+  void set_looped(bool on) { looped_ = on; }
   const ReceivedForces& received() const { return rx_; }
   const HandScript& script() const { return script_; }
   double script_time(std::int64_t now_ns) const { return started_ ? double(now_ns - t0_) * 1e-9 : 0.0; }
+
+ protected:
+  /// Fills the state's clock, sequence and link fields of a read at now_ns; returns
+  /// whether the device is connected.
+  bool stamp(std::int64_t now_ns, DeviceState& state);
 
  private:
   HandScript script_;
   DeviceCapabilities caps_;
   ReceivedForces rx_;
-  bool started_ = false, connected_ = true;
+  bool started_ = false, connected_ = true, looped_ = false;
   std::int64_t t0_ = 0;
   std::uint32_t seq_ = 0;
   std::array<bool, kMaxFingers> detached_{}, override_{};

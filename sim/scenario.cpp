@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_reader.h"
 #include "phantom.h"
 
 namespace palpation::sim {
@@ -18,86 +19,16 @@ using nlohmann::json;
 
 namespace {
 
-// Parsing context: every error names the file and the dotted field path.
-class Reader {
+// The scenario's fields beside the common ones (sim/json_reader.h).
+class Reader : public JsonReader {
  public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void fail(const std::string& field, const std::string& why) const {
-    std::string msg = source_ + ": " + (field.empty() ? std::string("(top level)") : field) + ": " + why;
-    // Keys and values from the file are quoted in messages: a control character in them
-    // (a newline in a key, found by fuzzing, docs/fuzzing.md) must not break the line.
-    for (char& c : msg)
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    throw ScenarioError(msg);
-  }
-
-  void only_keys(const json& obj, const std::string& field, std::initializer_list<const char*> keys) const {
-    if (!obj.is_object()) fail(field, "must be an object");
-    std::set<std::string> allowed;
-    for (const char* k : keys) allowed.insert(k);
-    for (auto it = obj.begin(); it != obj.end(); ++it)
-      if (!allowed.count(it.key())) {
-        std::string list;
-        for (const char* k : keys) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(join(field, it.key()), "unknown key (allowed: " + list + ")");
-      }
-  }
-
-  static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
-
-  double number(const json& v, const std::string& field) const {
-    if (!v.is_number()) fail(field, "must be a number, got " + std::string(v.type_name()));
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) fail(field, "must be finite");
-    return d;
-  }
-  double positive(const json& v, const std::string& field) const {
-    const double d = number(v, field);
-    if (!(d > 0)) fail(field, "must be > 0, got " + fmt(d));
-    return d;
-  }
-  double non_negative(const json& v, const std::string& field) const {
-    const double d = number(v, field);
-    if (d < 0) fail(field, "must be >= 0, got " + fmt(d));
-    return d;
-  }
+  using JsonReader::JsonReader;
   double poisson(const json& v, const std::string& field) const {
     const double d = number(v, field);
     if (!(d > -1.0 && d < 0.5)) fail(field, "must be in (-1, 0.5), got " + fmt(d));
     return d;
   }
-  int integer(const json& v, const std::string& field, int lo, int hi) const {
-    if (!v.is_number_integer()) fail(field, "must be an integer");
-    const auto i = v.get<long long>();
-    if (i < lo || i > hi) fail(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return static_cast<int>(i);
-  }
-  std::string string(const json& v, const std::string& field) const {
-    if (!v.is_string()) fail(field, "must be a string");
-    return v.get<std::string>();
-  }
-  std::string choice(const json& v, const std::string& field, std::initializer_list<const char*> options) const {
-    const std::string s = string(v, field);
-    std::string list;
-    for (const char* o : options) {
-      if (s == o) return s;
-      list += std::string(list.empty() ? "" : ", ") + o;
-    }
-    fail(field, "must be one of " + list + ", got \"" + s + "\"");
-  }
-  Eigen::Vector3d vec3(const json& v, const std::string& field) const {
-    if (!v.is_array() || v.size() != 3) fail(field, "must be an array of 3 numbers");
-    return {number(v[0], field + "[0]"), number(v[1], field + "[1]"), number(v[2], field + "[2]")};
-  }
-  static std::string fmt(double d) {
-    std::ostringstream o;
-    o << d;
-    return o.str();
-  }
-
- private:
-  std::string source_;
+  Eigen::Vector3d vec3(const json& v, const std::string& field) const { return triple<Eigen::Vector3d>(v, field); }
 };
 
 }  // namespace

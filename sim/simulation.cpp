@@ -100,21 +100,41 @@ void Simulation::init(const LogFn& log) {
 StepStats Simulation::step() {
   const double t1 = t_ + s_.params.solver.dt;
   for (std::size_t i = 0; i < s_.fingers.size(); ++i) s_.fingers[i].sample(t1, fingers_[i].position, fingers_[i].velocity);
-  StepStats st;
+  return advance(fingers_, outputs_, s_.params.solver.dt).stats;
+}
+
+Simulation::Outcome Simulation::advance(std::span<const FingerInput> in, std::span<FingerOutput> out, double h) {
+  if (backend_->params().solver.dt != h) {
+    SimParams p = backend_->params();
+    p.solver.dt = h;
+    backend_->set_params(p);
+  }
+  Outcome r;
   try {
-    st = backend_->step(fingers_, outputs_);
+    r.stats = backend_->step(in, out);
   } catch (const std::exception& e) {
+    // The CPU backend keeps the parameters (dt and threads included) of the one it replaces.
     if (!fall_back_to_cpu(e.what())) throw;
-    st = backend_->step(fingers_, outputs_);
+    r.fell_back = true;
+    r.error = e.what();
+    r.stats = backend_->step(in, out);
   }
-  t_ = t1;
+  t_ += h;
   ++steps_;
-  check_divergence(st, outputs_);
-  if (check_.diverged) {
-    st.finite = false;
-    for (auto& o : outputs_) o = FingerOutput{};
+  r.ok = !check_divergence(r.stats, out).diverged;
+  if (r.ok)
+    for (const auto& o : out)
+      if (!(o.force.allFinite() && o.stiffness.allFinite())) {
+        // With the guard disabled a non-finite contact output still never leaves the step.
+        backend_->reset();
+        r.ok = false;
+        break;
+      }
+  if (!r.ok) {
+    r.stats.finite = false;
+    for (auto& o : out) o = FingerOutput{};
   }
-  return st;
+  return r;
 }
 
 DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<const FingerOutput> out) {

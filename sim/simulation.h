@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -70,12 +71,25 @@ class Simulation {
   Backend& backend() { return *backend_; }
   std::string backend_reason() const { return reason_; }
 
-  /// Advances one step: samples the finger paths at t + dt, steps, returns stats.
-  /// Divergence (DivergenceLimits) puts the body back at rest, counts and logs the event
-  /// and returns stats with finite = false and zero finger outputs. A backend that throws
-  /// (a CUDA error mid-session) is replaced by the CPU backend (fall_back_to_cpu) and the
-  /// step is retried there; the CPU backend throwing is rethrown.
+  /// Advances one step of the scenario: samples its finger paths at t + dt and takes the
+  /// guarded step (advance) with them.
   StepStats step();
+
+  /// What one guarded step did (advance).
+  struct Outcome {
+    StepStats stats;        // stats.finite is false after a divergence reset
+    bool ok = true;         // outputs usable: no divergence, finite forces and stiffness
+    bool fell_back = false; // the backend threw and the step was taken on the CPU from rest
+    std::string error;      // the backend's error when fell_back
+  };
+  /// The guarded step every driver takes (headless runs, the real-time simulation thread
+  /// of sessions and the workstation, the review's re-simulation): steps the backend with
+  /// these finger inputs at dt = h (set on the backend when it differs). A backend that
+  /// throws (a CUDA error mid-session) is replaced by the CPU backend (fall_back_to_cpu)
+  /// and the step is retried there; the CPU backend throwing is rethrown. Divergence
+  /// (DivergenceLimits) or a non-finite contact output puts the body back at rest, counts
+  /// and logs it, and zeroes the outputs (ok = false).
+  Outcome advance(std::span<const FingerInput> in, std::span<FingerOutput> out, double h);
   /// Replaces the backend by a CPU one with the same parameters, at rest. Returns false
   /// (and changes nothing) when the backend already is the CPU one.
   bool fall_back_to_cpu(const std::string& why);

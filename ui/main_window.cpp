@@ -125,7 +125,7 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
     ws_->set_params(p);
   });
   connect(device_panel_->mode, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int i) {
-    ws_->device().set_mode(i == 1 ? app::WorkstationDevice::Mode::Mouse : app::WorkstationDevice::Mode::Script);
+    ws_->device().set_mode(i == 1 ? app::HandMode::Mouse : app::HandMode::Script);
     if (i == 1) ws_->set_mouse_finger(Eigen::Vector3d::Zero(), false);
     view_->set_tool(i == 1 ? VtkView::Tool::Palpate : VtkView::Tool::Camera);
     if (i == 1)
@@ -148,8 +148,8 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   connect(view_, &VtkView::brushDab, this, &MainWindow::on_brush);
   connect(view_, &VtkView::brushStrokeEnded, this, [this] { editor_->end_stroke(); });
   connect(view_, &VtkView::palpateTarget, this, [this](const Eigen::Vector3d& c, bool present) {
-    if (ws_->device().mode() != app::WorkstationDevice::Mode::Mouse) {
-      ws_->device().set_mode(app::WorkstationDevice::Mode::Mouse);
+    if (ws_->device().mode() != app::HandMode::Mouse) {
+      ws_->device().set_mode(app::HandMode::Mouse);
     }
     ws_->set_mouse_finger(c, present);
   });
@@ -577,7 +577,7 @@ void MainWindow::tick() {
     last_status_ = now;
     update_status();
     const auto& s = ws_->stats();
-    if (ws_->device().mode() == app::WorkstationDevice::Mode::Mouse)
+    if (ws_->device().mode() == app::HandMode::Mouse)
       // Numbers and units only: VTK's built-in font has no Japanese glyphs.
       view_->set_overlay_text(QStringLiteral("F = %1 N    press %2 mm")
                                   .arg(s.force_n[1], 0, 'f', 2)
@@ -606,7 +606,7 @@ void MainWindow::update_status() {
   st_step_->setText(tr("Simulation: %1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
   st_haptic_->setText(tr("Haptic: %1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
   const QString dev = !ws_->simulated_device() ? QString::fromStdString(ws_->device_description())
-                      : ws_->device().mode() == app::WorkstationDevice::Mode::Mouse ? tr("mouse")
+                      : ws_->device().mode() == app::HandMode::Mouse ? tr("mouse")
                                                                                     : tr("simulated HandHIRO");
   st_device_->setText(tr("Device: %1, %2").arg(dev, s.connected ? tr("connected") : tr("not connected")));
   st_fps_->setText(tr("View: %1 fps").arg(fps_, 0, 'f', 0));

@@ -1,0 +1,40 @@
+// The series a headless run of a scenario produces, for error measurement: `palpation
+// bench` (step time against error) and `palpation check-backends` (GPU against CPU) step
+// the same way and compare the same figures.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model.h"
+#include "scenario.h"
+
+namespace palpation::app {
+
+struct Trace {
+  std::vector<double> force;               // (steps x fingers x 3) filtered finger force, N
+  std::vector<int> iterations, contacts;   // (steps)
+  std::vector<double> step_ms;             // (steps) wall time of the backend's step
+  std::vector<std::vector<double>> snaps;  // node positions (nnode x 3, m) at snapshot_steps(steps)
+  bool finite = true;
+};
+
+/// The steps whose positions a trace keeps: N/4, N/2, 3N/4, N.
+std::vector<int> snapshot_steps(int steps);
+
+/// Steps a backend by name (sim::make_named_backend) through the scenario's finger paths
+/// for `steps` steps of its dt.
+Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::string& backend, int steps);
+
+/// Relative L2 norm of a - ref (absolute when ref is zero; infinite when the sizes differ).
+double rel_l2(const std::vector<double>& a, const std::vector<double>& ref);
+/// Relative L2 norm of the displacements (x - X) over all snapshots.
+double displacement_error(const Trace& a, const Trace& ref, const sim::Model& m);
+
+/// Cached traces: a binary file (magic, the series, an FNV sum of the forces), written
+/// through a temporary file and renamed. load_trace is false for a missing, foreign or
+/// damaged file.
+bool load_trace(const std::string& path, Trace& t);
+void save_trace(const std::string& path, const Trace& t);
+
+}  // namespace palpation::app
