@@ -4,7 +4,7 @@
 //   model in -> publish the fingertips and proxies (for the simulation) -> safety filter
 //   -> send -> record.
 // It never waits for the simulation, never allocates, locks, logs or touches Qt. The
-// thread that calls tick() at 1 kHz lives in app/ (app/haptic_thread.h); tests call it
+// thread that calls tick() at 1 kHz lives in app/ (app/live/haptic_thread.h); tests call it
 // directly with a fake clock.
 //
 // Force continuity: when a new contact model arrives, the difference between the force

@@ -12,7 +12,7 @@
 
 #include <QWidget>
 
-#include "workstation.h"
+#include "live/workstation.h"
 
 class QChart;
 class QChartView;

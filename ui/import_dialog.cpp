@@ -17,7 +17,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
-#include "patient_library.h"
+#include "store/patient_library.h"
 #include "scenario.h"
 #include "vtk_view.h"
 

@@ -7,7 +7,7 @@
 
 #include <QDialog>
 
-#include "scan_import_job.h"
+#include "scan/scan_import_job.h"
 
 class QCheckBox;
 class QComboBox;

@@ -16,7 +16,7 @@
 #include "main_window.h"
 #include "review_window.h"
 #include "vtk_view.h"
-#include "workstation.h"
+#include "live/workstation.h"
 
 int main(int argc, char** argv) {
   // VTK's OpenGL format, before the QApplication exists (stack-notes.md).

@@ -28,10 +28,10 @@
 #include "force_plots.h"
 #include "import_dialog.h"
 #include "panels.h"
-#include "patient_library.h"
+#include "store/patient_library.h"
 #include "review_window.h"
-#include "scan_import_job.h"
-#include "workstation_recorder.h"
+#include "scan/scan_import_job.h"
+#include "review/workstation_recorder.h"
 #include "tumour_editor.h"
 #include "vtk_view.h"
 
@@ -71,7 +71,7 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   patient_panel_->show_scenario(scenario_);
   tumour_panel_ = new TumourPanel(editor_);
   sim_panel_ = new SimulationPanel;
-  // What runs (the default patient's real-time settings, app/workstation.cpp), not the
+  // What runs (the default patient's real-time settings, app/live/workstation.cpp), not the
   // scenario defaults.
   sim_panel_->tolerance->setValue(scenario_.params.solver.cg_tolerance);
   sim_panel_->iterations->setValue(scenario_.params.solver.cg_max_iterations);

@@ -10,7 +10,7 @@
 
 #include <QPointer>
 
-#include "workstation.h"
+#include "live/workstation.h"
 
 namespace palpation::app {
 class PatientLibrary;

@@ -7,7 +7,7 @@
 #include <QWidget>
 
 #include "scenario.h"
-#include "workstation.h"
+#include "live/workstation.h"
 
 class QCheckBox;
 class QComboBox;

@@ -39,14 +39,14 @@ QString editor_text(const QString& s) {
 
 QString RecordedText::event(const std::string& text) {
   const QString s = QString::fromStdString(text);
-  // Fixed phrases (app/workstation.cpp, ui/main_window.cpp).
+  // Fixed phrases (app/live/workstation.cpp, ui/main_window.cpp).
   if (s == QLatin1String("device: mouse palpation")) return tr("device: mouse palpation");
   if (s == QLatin1String("device: scripted hand")) return tr("device: scripted hand");
   if (s == QLatin1String("trainee mode")) return tr("trainee mode");
   if (s == QLatin1String("instructor mode")) return tr("instructor mode");
   if (s == QLatin1String("solver/contact parameters changed")) return tr("solver/contact parameters changed");
   QRegularExpressionMatch m;
-  // A trainee's mark (app/review_session.cpp): "trainee mark N[ at (x, y, z) cm][: note]".
+  // A trainee's mark (app/review/review_session.cpp): "trainee mark N[ at (x, y, z) cm][: note]".
   if ((m = whole(QStringLiteral("trainee mark (\\d+)(?: at \\(([^,]+), ([^,]+), ([^)]+)\\) cm)?(?:: (.*))?"), s)).hasMatch()) {
     QString out = m.captured(2).isEmpty() ? tr("trainee mark %1").arg(m.captured(1))
                                           : tr("trainee mark %1 at (%2, %3, %4) cm")
@@ -70,7 +70,7 @@ QString RecordedText::event(const std::string& text) {
 QString RecordedText::patient_description(const std::string& text) {
   const QString s = QString::fromStdString(text);
   QRegularExpressionMatch m;
-  // app/patient_library.cpp's built-in patients.
+  // app/store/patient_library.cpp's built-in patients.
   if ((m = whole(QStringLiteral("Healthy breast, (small|medium|large|wide and flat|narrow and projecting) \\(([\\d,]+) mL\\)(, the "
                                 "paper's size)?, no tumour"),
                  s))

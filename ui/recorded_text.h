@@ -1,6 +1,6 @@
 // Texts that the app layer writes in English, shown in the chosen language. The recorded
-// session events (app/workstation.cpp's log_event, app/review_session.cpp's one-line form)
-// and the built-in patients' descriptions (app/patient_library.cpp) are data: a recording
+// session events (app/live/workstation.cpp's log_event, app/review/review_session.cpp's one-line form)
+// and the built-in patients' descriptions (app/store/patient_library.cpp) are data: a recording
 // or a patient library reads the same whatever language wrote it. The GUI recomposes the
 // texts it knows (fixed phrases and the patterns the app fills with numbers and names)
 // through tr() when it shows them; anything else (error messages from the system, a

@@ -11,7 +11,7 @@
 #include <QMainWindow>
 #include <QWidget>
 
-#include "review_session.h"
+#include "review/review_session.h"
 
 class QChart;
 class QChartView;

@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-#include "workstation.h"
+#include "live/workstation.h"
 
 namespace palpation::ui {
 

@@ -35,7 +35,7 @@
 #include <vtkNew.h>
 #include <vtkSmartPointer.h>
 
-#include "workstation.h"
+#include "live/workstation.h"
 
 class QOpenGLContext;
 class QOpenGLWindow;

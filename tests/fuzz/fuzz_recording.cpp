@@ -1,4 +1,4 @@
-// libFuzzer target: the session recording reader (app/recording.cpp, issue 6). Any file
+// libFuzzer target: the session recording reader (app/store/recording.cpp, issue 6). Any file
 // either reads into a recording or throws RecordingError with a one-line message naming
 // the file; recover_recording on it either recovers or throws RecordingError. Nothing
 // else (another exception, a crash, a sanitizer report) is acceptable.
@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "recording.h"
+#include "store/recording.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace palpation::app;

@@ -1,5 +1,5 @@
-// libFuzzer target: the scan importer's reading and checking (app/scan_import.h, issue 6):
-// assimp's STL/OBJ/PLY readers behind read_surface (app/scan_read_assimp.cpp), then
+// libFuzzer target: the scan importer's reading and checking (app/scan/scan_import.h, issue 6):
+// assimp's STL/OBJ/PLY readers behind read_surface (app/scan/scan_read_assimp.cpp), then
 // repair_surface and find_base_plane, i.e. everything import_scan does before Gmsh
 // tetrahedralises in a child process (not run here: it needs Gmsh and a fork per input).
 // The first input byte picks the file extension (0: .stl, 1: .obj, 2: .ply), the rest is
@@ -10,7 +10,7 @@
 // sanitizer report is a finding. assimp itself is Debian's uninstrumented build: its
 // crashes are caught, its internal memory errors only when they crash. Since finding 7
 // (docs/fuzzing.md) assimp runs in read_surface's child process (this executable,
-// re-executed: app/scan_read_child.h): the file checks run here under the fuzzer's eyes,
+// re-executed: app/scan/scan_read_child.h): the file checks run here under the fuzzer's eyes,
 // assimp and the conversion of its scene run in the child, whose coverage and memory
 // libFuzzer does not see; its crash, hang or excess is an ImportError here.
 #include <unistd.h>
@@ -22,7 +22,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "scan_import.h"
+#include "scan/scan_import.h"
 
 namespace {
 void check(bool ok) {

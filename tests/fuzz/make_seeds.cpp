@@ -8,7 +8,7 @@
 #include "handhiro_protocol.h"
 #include "mesh.h"
 #include "model_cache.h"
-#include "recording.h"
+#include "store/recording.h"
 #include "scenario.h"
 
 namespace pr = palpation::device::protocol;

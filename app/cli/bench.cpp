@@ -1,0 +1,238 @@
+#include "cli/bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "backend.h"
+#include "live/headless_run.h"
+#include "model_cache.h"
+#include "store/output_dir.h"
+#include "phantom.h"
+#include "cli/plot_png.h"
+#include "scenario.h"
+#include "simulation.h"
+#include "cli/trace.h"
+
+namespace palpation::app {
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+
+std::string now_iso() {
+  std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::json run_bench(const BenchOptions& opt_in) {
+  BenchOptions opt = opt_in;
+  std::vector<BenchSetting> settings;
+  if (opt.quick) {
+    opt.meshes = {"coarse"};
+    if (opt.backends.empty()) opt.backends = {"cpu"};
+    opt.steps = std::min(opt.steps, 300);
+    opt.warmup = 20;
+    settings = {{1e-6, 500}, {1e-3, 500}, {1e-10, 10}};
+  } else {
+    settings = {{3e-2, 1000}, {1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20}};
+  }
+  const auto avail = sim::available_backends();
+  if (opt.backends.empty()) opt.backends = avail;
+  for (const auto& b : opt.backends)
+    if (std::find(avail.begin(), avail.end(), b) == avail.end())
+      throw sim::ScenarioError("--backends: \"" + b + "\" is not available here");
+  const std::string ref_backend = std::find(avail.begin(), avail.end(), "cuda") != avail.end() ? "cuda" : "cpu";
+
+  nlohmann::json report;
+  report["date"] = now_iso();
+  report["commit"] = PALPATION_GIT_COMMIT;
+  report["scenario"] = opt.scenario;
+  report["steps"] = opt.steps;
+  report["warmup"] = opt.warmup;
+  report["reference"] = {{"backend", ref_backend}, {"precision", "double"}, {"cg_tolerance", 1e-10}};
+  report["points"] = nlohmann::json::array();
+  report["floors"] = nlohmann::json::array();
+  std::map<std::string, std::string> devices;
+
+  std::printf("%-7s %-9s %-6s %8s %6s | %9s %9s %6s %6s | %10s %10s | %9s %7s\n", "mesh", "backend", "prec", "tol", "cap",
+              "med_ms", "p99_ms", "it_med", "it_max", "force_err", "disp_err", "floor_ms", "x_floor");
+  for (const auto& level : opt.meshes) {
+    sim::Scenario s = sim::builtin_scenario(opt.scenario);
+    auto edge = sim::resolution_edge(s.patient.phantom, level);
+    if (!edge) throw sim::ScenarioError("--meshes: unknown level \"" + level + "\"");
+    s.patient.resolution = level;
+    s.patient.edge = *edge;
+    s.params.solver.dt = 0.001;
+    const auto t0 = clock_type::now();
+    sim::Model model = sim::build_scenario_model(s, sim::patient_mesh(s));
+    const double mesh_s = std::chrono::duration<double>(clock_type::now() - t0).count();
+    std::fprintf(stderr, "bench: mesh %s: %d nodes, %d tetrahedra (%.2f s to load/mesh and build)\n", level.c_str(),
+                 model.num_nodes(), model.num_tets(), mesh_s);
+
+    // Reference: double, CG to 1e-10, cached by mesh hash and scenario.
+    sim::Scenario sref = s;
+    sref.params.solver.precision = sim::Precision::Double;
+    sref.params.solver.cg_tolerance = 1e-10;
+    sref.params.solver.cg_max_iterations = 5000;
+    sref.params.solver.corotation_tolerance = 0;  // every element's rotation every step
+    std::ostringstream key;
+    sim::TetMesh keymesh;
+    keymesh.nodes = model.rest;
+    keymesh.tets = model.tets;
+    key << "ref-v2-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sref)) << std::dec << '-'
+        << opt.steps;
+    const std::string ref_path = (std::filesystem::path(sim::cache_dir()) / (key.str() + ".bin")).string();
+    Trace ref;
+    if (!load_trace(ref_path, ref)) {
+      std::fprintf(stderr, "bench: computing the reference for %s on %s (cached in %s)\n", level.c_str(),
+                   ref_backend.c_str(), ref_path.c_str());
+      ref = run_trace(sref, model, ref_backend, opt.steps);
+      save_trace(ref_path, ref);
+    }
+
+    // The GPU floor of this mesh (bytes and barriers of one CG iteration, bandwidth and
+    // barrier cost measured now): each GPU point is also shown as measured / floor, with
+    // floor = step_fixed + (median iterations) x iteration.
+    std::map<std::string, sim::FloorEstimate> floors;
+    for (const auto& prec : opt.precisions) {
+      sim::FloorEstimate fl;
+      if (sim::cuda_floor(model, prec == "float" ? sim::Precision::Float : sim::Precision::Double, fl)) floors[prec] = fl;
+    }
+
+    for (const auto& backend : opt.backends) {
+      if (backend == "cpu" && !opt.quick && (level == "xfine") &&
+          std::find(opt_in.backends.begin(), opt_in.backends.end(), "cpu") == opt_in.backends.end()) {
+        std::fprintf(stderr, "bench: skipping cpu on %s (minutes per point; ask with --backends cpu)\n", level.c_str());
+        continue;
+      }
+      for (const auto& prec : opt.precisions) {
+        for (const auto& set : settings) {
+          sim::Scenario sp = s;
+          sp.params.solver.precision = prec == "float" ? sim::Precision::Float : sim::Precision::Double;
+          sp.params.solver.cg_tolerance = set.tolerance;
+          sp.params.solver.cg_max_iterations = set.max_iterations;
+          // Float cannot reach 1e-10: the cap decides; skip loose float points that add nothing.
+          Trace tr = run_trace(sp, model, backend, opt.steps);
+          std::vector<double> timed(tr.step_ms.begin() + std::min<std::size_t>(opt.warmup, tr.step_ms.size()), tr.step_ms.end());
+          std::vector<double> its(tr.iterations.begin(), tr.iterations.end());
+          const double med = percentile(timed, 50), p99 = percentile(timed, 99);
+          const double ferr = rel_l2(tr.force, ref.force), derr = displacement_error(tr, ref, model);
+          const int itmax = its.empty() ? 0 : int(*std::max_element(its.begin(), its.end()));
+          double floor_ms = 0, x_floor = 0;
+          if (backend.rfind("cuda", 0) == 0 && floors.count(prec)) {
+            const auto& fl = floors[prec];
+            floor_ms = (fl.step_fixed_us + percentile(its, 50) * fl.iteration_us) / 1000.0;
+            x_floor = floor_ms > 0 ? med / floor_ms : 0;
+          }
+          std::printf("%-7s %-9s %-6s %8.0e %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
+                      backend.c_str(), prec.c_str(), set.tolerance, set.max_iterations, med, p99, percentile(its, 50), itmax,
+                      ferr, derr, floor_ms, x_floor, tr.finite ? "" : "  NOT FINITE");
+          std::fflush(stdout);
+          if (!devices.count(backend)) devices[backend] = sim::make_named_backend(backend, model, s.params)->device_name();
+          report["points"].push_back({{"mesh", level},
+                                      {"nodes", model.num_nodes()},
+                                      {"tetrahedra", model.num_tets()},
+                                      {"backend", backend},
+                                      {"device", devices[backend]},
+                                      {"precision", prec},
+                                      {"cg_tolerance", set.tolerance},
+                                      {"cg_max_iterations", set.max_iterations},
+                                      {"step_ms_median", med},
+                                      {"step_ms_p99", p99},
+                                      {"cg_iterations_median", percentile(its, 50)},
+                                      {"cg_iterations_max", itmax},
+                                      {"force_error", ferr},
+                                      {"displacement_error", derr},
+                                      {"finite", tr.finite},
+                                      {"floor_ms", floor_ms},
+                                      {"x_floor", x_floor},
+                                      {"mesh_seconds", mesh_s}});
+        }
+      }
+    }
+    // The floor of one CG iteration on this mesh (GPU only).
+    for (const auto& [prec, fl] : floors) {
+      {
+        report["floors"].push_back({{"mesh", level},
+                                    {"precision", prec},
+                                    {"bytes_per_iteration", fl.bytes_per_iteration},
+                                    {"syncs_per_iteration", fl.syncs_per_iteration},
+                                    {"bandwidth_gbs", fl.bandwidth_gbs},
+                                    {"sync_us", fl.sync_us},
+                                    {"iteration_us", fl.iteration_us},
+                                    {"step_fixed_us", fl.step_fixed_us},
+                                    {"device", fl.device}});
+        std::printf("floor %-7s %-6s: %.0f B/iter, %d syncs/iter, %.0f GB/s, %.2f us/sync -> %.2f us/iter + %.2f us/step\n",
+                    level.c_str(), prec.c_str(), fl.bytes_per_iteration, fl.syncs_per_iteration, fl.bandwidth_gbs, fl.sync_us,
+                    fl.iteration_us, fl.step_fixed_us);
+      }
+    }
+  }
+  report["devices"] = devices;
+
+  if (!opt.out.empty()) {
+    OutputDir out(opt.out);
+    {
+      std::ofstream js(out.path("bench.json"));
+      js << report.dump(2) << "\n";
+    }
+    {
+      std::ofstream csv(out.path("bench.csv"));
+      csv << "mesh,nodes,tetrahedra,backend,device,precision,cg_tolerance,cg_max_iterations,step_ms_median,step_ms_p99,"
+             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit,floor_ms,x_floor\n";
+      for (const auto& p : report["points"])
+        csv << p["mesh"].get<std::string>() << ',' << p["nodes"] << ',' << p["tetrahedra"] << ',' << p["backend"].get<std::string>()
+            << ",\"" << p["device"].get<std::string>() << "\"," << p["precision"].get<std::string>() << ',' << p["cg_tolerance"]
+            << ',' << p["cg_max_iterations"] << ',' << p["step_ms_median"] << ',' << p["step_ms_p99"] << ','
+            << p["cg_iterations_median"] << ',' << p["cg_iterations_max"] << ',' << p["force_error"] << ','
+            << p["displacement_error"] << ',' << (p["finite"].get<bool>() ? "true" : "false") << ',' << report["date"].get<std::string>()
+            << ',' << PALPATION_GIT_COMMIT << ',' << p["floor_ms"] << ',' << p["x_floor"] << '\n';
+    }
+    if (can_plot()) {
+      PlotSpec plot;
+      plot.title = "Step time against force error (" + opt.scenario + ", dt = 1 ms)";
+      plot.xlabel = "force error (relative L2 vs reference)";
+      plot.ylabel = "median step time [ms]";
+      plot.log_x = plot.log_y = true;
+      std::map<std::string, PlotSeries> curves;
+      for (const auto& p : report["points"]) {
+        const std::string name = p["mesh"].get<std::string>() + " " + p["backend"].get<std::string>() + " " + p["precision"].get<std::string>();
+        auto& c = curves[name];
+        c.name = name;
+        c.markers = true;
+        c.x.push_back(std::max(p["force_error"].get<double>(), 1e-12));
+        c.y.push_back(p["step_ms_median"].get<double>());
+      }
+      for (auto& [name, c] : curves) {
+        // Sort by error so the curve reads left to right.
+        std::vector<std::size_t> idx(c.x.size());
+        for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+        std::sort(idx.begin(), idx.end(), [&c](auto a, auto b) { return c.x[a] < c.x[b]; });
+        PlotSeries sorted = c;
+        for (std::size_t i = 0; i < idx.size(); ++i) {
+          sorted.x[i] = c.x[idx[i]];
+          sorted.y[i] = c.y[idx[i]];
+        }
+        plot.series.push_back(sorted);
+      }
+      write_plot_png(out.path("bench.png"), plot);
+    }
+    out.commit();
+    std::fprintf(stderr, "bench: wrote %s/bench.json, bench.csv%s\n", opt.out.c_str(), can_plot() ? ", bench.png" : "");
+  }
+  return report;
+}
+
+}  // namespace palpation::app

@@ -1,0 +1,24 @@
+#include "cli/cli.h"
+
+namespace palpation::app {
+
+sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend, const std::string& resolution) {
+  sim::Scenario s;
+  bool builtin = false;
+  for (const auto& n : sim::builtin_scenario_names())
+    if (arg == n || arg == "builtin:" + n) {
+      s = sim::builtin_scenario(n);
+      builtin = true;
+    }
+  if (!builtin) s = sim::load_scenario(arg);
+  if (!backend.empty()) s.backend = backend;
+  if (!resolution.empty()) {
+    auto e = sim::resolution_edge(s.patient.phantom, resolution);
+    if (!e) throw sim::ScenarioError("--resolution: unknown level \"" + resolution + "\"");
+    s.patient.resolution = resolution;
+    s.patient.edge = *e;
+  }
+  return s;
+}
+
+}  // namespace palpation::app

@@ -1,0 +1,25 @@
+// palpation bench [--quick] [--out DIR] [--meshes ...] [--backends ...] [--precisions ...]
+#include <cstdio>
+
+#include "cli/bench.h"
+#include "cli/cli.h"
+
+namespace palpation::app {
+
+CommandAction add_bench_command(CLI::App& app) {
+  auto* sub = app.add_subcommand("bench", "Sweep mesh x backend x precision x solver setting: step time against error");
+  auto o = std::make_shared<BenchOptions>();
+  sub->add_flag("--quick", o->quick, "Small CPU subset (CI)");
+  sub->add_option("--out", o->out, "Folder for bench.json, bench.csv, bench.png");
+  sub->add_option("--meshes", o->meshes, "Mesh levels (coarse, paper, fine, xfine)")->delimiter(',');
+  sub->add_option("--backends", o->backends, "Backends (cpu, cuda, cuda-csr)")->delimiter(',');
+  sub->add_option("--precisions", o->precisions, "double, float")->delimiter(',');
+  sub->add_option("--steps", o->steps, "Steps per point")->check(CLI::Range(20, 1000000));
+  sub->add_option("--scenario", o->scenario, "Built-in scenario to step (paper-sweep, idle, hertz)");
+  return [o]() {
+    run_bench(*o);
+    return kExitOk;
+  };
+}
+
+}  // namespace palpation::app

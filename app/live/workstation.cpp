@@ -1,0 +1,466 @@
+#include "live/workstation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "live/device_bridge.h"
+#include "live/device_factory.h"
+#include "fem_stress.h"
+#include "handhiro_emulator.h"
+#include "handhiro_link.h"
+#include "live/haptic_thread.h"
+#include "phantom.h"
+#include "rt_clock.h"
+#include "live/sim_fingers.h"
+#include "simulation.h"
+#include "live/simulation_loop.h"
+
+namespace palpation::app {
+
+// ---------------------------------------------------------------------------------------
+// Defaults
+
+sim::Scenario default_workstation_scenario() {
+  sim::Scenario s = sim::builtin_scenario("paper-sweep");
+  s.source = "default patient (paper breast, coarse)";
+  s.patient.resolution = "coarse";
+  s.patient.edge = *sim::resolution_edge("breast", "coarse");
+  s.backend = "auto";
+  // Real time on a CPU (docs/benchmarks.md, session 5): on the coarse breast float and CG
+  // 1e-2 give the same force error as double and CG 1e-6 (1.2e-4: the kept rotations'
+  // error dominates) at 0.6-0.8 ms a step on this project's 2-core VM, against 1.3 ms at
+  // the scenario defaults (double, 1e-3). The Simulation panel changes them.
+  s.params.solver.precision = sim::Precision::Float;
+  s.params.solver.cg_tolerance = 1e-2;
+  return s;
+}
+
+dv::HandScript default_hand_script(const DeviceConfig& cfg) {
+  const sim::Scenario paper = sim::builtin_scenario("paper-sweep");
+  const auto& reg = cfg.hand.registration;
+  const auto& keys = paper.fingers.at(0).keys;
+  // Hand layout relative to the index fingertip (world frame, m): the other fingers
+  // hover just above the dome (top at 6.5 cm), spread along y like a hand.
+  const std::array<Eigen::Vector3d, dv::kMaxFingers> offset{
+      Eigen::Vector3d(-0.035, -0.045, 0.0), Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.0, 0.022, 0.0),
+      Eigen::Vector3d(-0.004, 0.042, 0.0), Eigen::Vector3d(-0.012, 0.060, 0.0)};
+  dv::HandScript script;
+  for (int f = 0; f < dv::kMaxFingers; ++f) {
+    std::vector<dv::PathKey> path;
+    path.reserve(keys.size());
+    for (const auto& k : keys) {
+      Eigen::Vector3d p(k[1], k[2], k[3]);
+      if (f != dv::kIndex) p = Eigen::Vector3d(k[1], 0, 0.082) + offset[f];
+      path.push_back({k[0], reg.to_device(to_dev(p))});
+    }
+    script.set_path(f, std::move(path));
+  }
+  return script;
+}
+
+// ---------------------------------------------------------------------------------------
+// Workstation
+
+namespace {
+/// The fingertip radius of a patient's scenario (m): its first finger's, else 8 mm.
+double finger_radius(const sim::Scenario& s) { return s.fingers.empty() ? 0.008 : s.fingers[0].radius; }
+}  // namespace
+
+std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulation, std::uint64_t generation) {
+  auto g = std::make_shared<PatientGeometry>();
+  const sim::Model& m = simulation.model();
+  g->generation = generation;
+  g->rest = m.rest;
+  g->tets = m.tets;
+  g->surface = m.surface;
+  g->young = m.young;
+  g->centroid.resize(m.tets.size());
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 4; ++a) c += m.rest[std::size_t(m.tets[e][a])];
+    g->centroid[e] = c / 4.0;
+  }
+  g->tissue_young = simulation.scenario().young_modulus;
+  g->tissue_poisson = simulation.scenario().poisson_ratio;
+  auto& be = simulation.backend();
+  g->backend = be.name();
+  g->device_name = be.device_name();
+  return g;
+}
+
+struct Workstation::Threads {
+  HapticThread haptic;
+  PeriodicThread emulator;  // the robot side, "emulator" only
+  explicit Threads(dv::HapticLoop& l) : haptic(l) {}
+};
+
+Workstation::Workstation(WorkstationOptions opt) : opt_(std::move(opt)) {
+  if (opt_.device != "simulated" && opt_.device != "emulator" && opt_.device != "handhiro")
+    throw std::runtime_error("device: must be simulated, emulator or handhiro, got \"" + opt_.device + "\"");
+  DeviceRequest req;
+  req.kind = opt_.device;
+  req.config = opt_.config;
+  req.script = default_hand_script(opt_.config);
+  req.robot_address = opt_.robot_address;
+  req.robot_port = opt_.robot_port;
+  wiring_ = std::make_unique<DeviceWiring>(open_device(std::move(req)));
+  // The simulated hand exists with every device: the mouse palpates through it.
+  if (wiring_->hand) device_ = wiring_->hand;
+  else {
+    own_hand_ = std::make_unique<dv::SimulatedHand>(default_hand_script(opt_.config), opt_.config.hand.capabilities);
+    device_ = own_hand_.get();
+  }
+  dv::HapticDevice& dev = *wiring_->device;
+  loop_ = std::make_unique<dv::HapticLoop>(dev, poses_, contacts_, &ticks_, opt_.config.loop);
+  threads_ = std::make_unique<Threads>(*loop_);
+  // Every device finger is simulated, with the patient's fingertip radius.
+  SimulationLoopOptions lo;
+  for (int d = 0; d < dv::kMaxFingers; ++d) lo.finger_map.push_back(d);
+  lo.radius.assign(dv::kMaxFingers, finger_radius(opt_.scenario));
+  lo.registration = opt_.config.hand.registration;
+  lo.dt = opt_.scenario.params.solver.dt;
+  lo.realtime = true;
+  lo.max_dt = opt_.sim_max_dt;
+  lo.coupling_stiffness = loop_->params().virtual_coupling ? loop_->params().coupling_stiffness : 0.0;
+  lo.spike_guard = opt_.spike_guard;
+  lo.recover_hold_s = opt_.recover_hold_s;
+  lo.recover_hold_max_s = opt_.recover_hold_max_s;
+  lo.recover_blend_s = opt_.recover_blend_s;
+  sim_loop_ = std::make_unique<SimulationLoop>(poses_, contacts_, std::move(lo));
+}
+
+std::string Workstation::device_description() const {
+  if (wiring_->hand) return device_->mode() == HandMode::Mouse ? "mouse" : wiring_->description;
+  return wiring_->description;
+}
+
+bool Workstation::simulated_device() const { return wiring_->link == nullptr; }
+
+Workstation::~Workstation() { stop(); }
+
+double Workstation::now_s() const { return t0_ns_ ? double(dv::monotonic_ns() - t0_ns_) * 1e-9 : 0.0; }
+
+void Workstation::start() {
+  if (running()) return;
+  t0_ns_ = dv::monotonic_ns();
+  rate_window_ns_ = t0_ns_;
+  stop_.store(false);
+  sim_state_.store(1);
+  sim_thread_ = std::thread([this] { sim_main(); });
+  if (wiring_->emulator) {
+    dv::HandHiroEmulator* em = wiring_->emulator.get();
+    threads_->emulator.start(std::int64_t(1e6), opt_.haptic_priority > 0 ? std::max(1, opt_.haptic_priority - 10) : 0,
+                             [em](std::int64_t now, std::int64_t) { em->tick(now); });
+  }
+  threads_->haptic.start(opt_.haptic_priority);
+}
+
+void Workstation::stop() {
+  if (!running()) return;
+  threads_->haptic.stop();
+  threads_->emulator.stop();
+  stop_.store(true, std::memory_order_release);
+  sim_thread_.join();
+  sim_state_.store(0);
+}
+
+void Workstation::post(Command c) {
+  std::lock_guard<std::mutex> lk(mu_);
+  queue_.push_back(std::move(c));
+  posted_.fetch_add(1);
+}
+
+void Workstation::log_event(const std::string& kind, const std::string& text) {
+  std::lock_guard<std::mutex> lk(mu_);
+  Event e{now_s(), kind, text};
+  events_.push_back(e);
+  new_events_.push_back(std::move(e));
+}
+
+std::vector<Event> Workstation::events() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return events_;
+}
+
+std::shared_ptr<const PatientGeometry> Workstation::geometry() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return geometry_;
+}
+
+std::vector<double> Workstation::applied_young(std::uint64_t* applied) const {
+  std::lock_guard<std::mutex> lk(mu_);
+  if (applied) *applied = applied_.load();
+  return applied_young_;
+}
+
+void apply_element_young(sim::Simulation& s, const std::vector<std::pair<int, double>>& changes) {
+  sim::Model& m = s.model();
+  for (const auto& [e, E] : changes)
+    if (e >= 0 && e < m.num_tets() && E > 0) m.set_element_material(e, E, m.poisson[e]);
+  s.backend().update_materials();
+}
+
+void apply_params(sim::Simulation& s, const sim::SimParams& p) {
+  sim::SimParams q = p;
+  q.solver.dt = s.backend().params().solver.dt;  // the real-time dt stays the thread's
+  q.solver.threads = s.backend().params().solver.threads;
+  s.backend().set_params(q);
+}
+
+void Workstation::notify_command(CommandRecord r) {
+  r.index = posted_.load();  // the index post() is about to give it
+  for (auto& l : command_listeners_) l(r);
+}
+
+void Workstation::set_element_young(std::vector<std::pair<int, double>> changes, const std::string& event_text) {
+  if (!event_text.empty()) log_event("material", event_text);
+  if (!command_listeners_.empty()) notify_command({0, "young", changes, {}, {}, event_text});
+  post([changes = std::move(changes)](sim::Simulation& s) { apply_element_young(s, changes); });
+}
+
+void Workstation::set_params(const sim::SimParams& p) {
+  log_event("params", "solver/contact parameters changed");
+  if (!command_listeners_.empty()) notify_command({0, "params", {}, p, {}, "solver/contact parameters changed"});
+  post([p](sim::Simulation& s) { apply_params(s, p); });
+}
+
+void Workstation::load_patient(const sim::Scenario& s) {
+  log_event("patient", "loading patient: " + s.source);
+  if (!command_listeners_.empty()) notify_command({0, "patient", {}, {}, s, "loading patient: " + s.source});
+  post([this, s](sim::Simulation&) {
+    std::lock_guard<std::mutex> lk(mu_);
+    opt_.scenario = s;
+    swap_pending_ = true;  // sim_main fades the forces out, then rebuilds
+  });
+}
+
+void Workstation::set_mouse_finger(const Eigen::Vector3d& world, bool present) {
+  dv::SimulatedHand::Targets t;
+  t.present[dv::kIndex] = present;
+  t.position[dv::kIndex] = opt_.config.hand.registration.to_device(to_dev(world));
+  device_->set_targets(t);
+}
+
+void Workstation::build(const sim::Scenario& s) {
+  sim_state_.store(sim_ ? 3 : 1);
+  // A patient that cannot be built leaves the current one running.
+  auto simulation = std::make_unique<sim::Simulation>(s);
+  simulation->reset();
+  configure_realtime_threads(*simulation);
+  const sim::Model& m = simulation->model();
+  const std::uint64_t generation = generation_.load() + 1;
+  generation_.store(generation);
+  auto g = make_patient_geometry(*simulation, generation);
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    geometry_ = g;
+    applied_young_ = m.young;
+    backend_name_ = g->backend;
+  }
+  sim_ = std::move(simulation);
+  log_event("patient", "patient loaded: " + std::to_string(m.num_nodes()) + " nodes, " + std::to_string(m.num_tets()) +
+                           " tetrahedra, backend " + g->backend);
+  sim_state_.store(2);
+}
+
+void Workstation::sim_main() {
+  try {
+    build(opt_.scenario);
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lk(mu_);
+    load_error_ = e.what();
+    sim_state_.store(4);
+    return;
+  }
+  const auto& reg = opt_.config.hand.registration;
+  constexpr int nf = dv::kMaxFingers;
+  std::int64_t last_snapshot = 0;
+  const auto snapshot_period = std::int64_t(1e9 / std::max(1.0, opt_.snapshot_hz));
+  std::vector<double> xyz;
+  sim::StressScratch stress_scratch;
+  std::vector<Command> cmds;
+  SimulationLoop& loop = *sim_loop_;
+  SimulationLoop::Hooks hooks;
+  hooks.between_steps = [&] {
+    // Queued commands, between steps.
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      cmds.swap(queue_);
+    }
+    if (cmds.empty()) return;
+    for (auto& c : cmds) {
+      try {
+        c(*sim_);
+      } catch (const std::exception& e) {
+        log_event("error", e.what());
+      }
+    }
+    const std::uint64_t n = cmds.size();
+    cmds.clear();
+    if (swap_pending_) {
+      swap_pending_ = false;
+      // Patient swap: fade the forces to zero (empty contact models, blended out by the
+      // haptic loop over its blend window), then rebuild. The haptic loop keeps running.
+      sim_state_.store(3);
+      const std::int64_t fade_end = dv::monotonic_ns() + 100000000;  // 100 ms
+      while (dv::monotonic_ns() < fade_end) {
+        loop.publish_empty();
+        dv::sleep_until_ns(dv::monotonic_ns() + 2000000);
+      }
+      sim::Scenario s;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        s = opt_.scenario;
+      }
+      try {
+        build(s);
+      } catch (const std::exception& e) {
+        log_event("error", std::string("patient not loaded: ") + e.what());
+        sim_state_.store(2);
+      }
+      loop.restart(*sim_, std::vector<double>(nf, finger_radius(s)));
+    }
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      applied_young_ = sim_->model().young;
+    }
+    applied_.fetch_add(n);
+  };
+  hooks.on_fault = [this](const sim::Simulation::Outcome& r) {
+    if (r.fell_back) {
+      fallbacks_.fetch_add(1);
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        backend_name_ = sim_->backend().name();
+        safety_note_ = sim_->backend_reason();
+      }
+      log_event("fallback", "backend error: " + r.error + "; continuing on the CPU from rest (forces held, then blended)");
+    }
+    if (!r.ok) {
+      divergences_.fetch_add(1);
+      const std::string& reason = sim_->last_check().reason;
+      const std::string why = reason.empty() ? std::string("non-finite contact output") : reason;
+      {
+        std::lock_guard<std::mutex> lk(mu_);
+        safety_note_ = "divergence reset: " + why;
+      }
+      log_event("reset", "simulation diverged (" + why + "): body reset to rest (forces held, then blended)");
+    }
+  };
+  hooks.after_step = [&](const LoopStep& ls) {
+    const sim::StepStats& st = ls.outcome->stats;
+    StepSample ss{double(ls.start_ns - t0_ns_) * 1e-9, ls.sim_time, float(ls.step_ms), st.cg_iterations, st.contacts, ls.h,
+                  applied_.load(), {}, {}};
+    for (int d = 0; d < nf; ++d) {
+      ss.in[d] = ls.in[std::size_t(d)];
+      ss.force[d] = ls.out[std::size_t(d)].force;
+    }
+    steps_.push(ss);
+    if (ls.start_ns - last_snapshot < snapshot_period) return;
+    last_snapshot = ls.start_ns;
+    sim::Backend& be = sim_->backend();
+    be.positions(xyz);
+    RenderSnapshot& rs = snapshots_.write_slot();
+    rs.model_generation = generation_.load();
+    rs.sequence = ls.sequence;
+    rs.sim_time = ls.sim_time;
+    rs.positions.resize(xyz.size());
+    for (std::size_t i = 0; i < xyz.size(); ++i) rs.positions[i] = float(xyz[i]);
+    for (int d = 0; d < nf; ++d) {
+      rs.finger_position[d] = to_eigen(reg.to_world(ls.poses->fingers[d].position));
+      rs.finger_force[d] = ls.in[std::size_t(d)].active ? Eigen::Vector3d(ls.out[std::size_t(d)].force) : Eigen::Vector3d::Zero();
+      rs.finger_active[d] = ls.poses->fingers[d].present;
+    }
+    rs.finger_radius = ls.in[0].radius;
+    if (stress_enabled_.load(std::memory_order_acquire)) sim::nodal_von_mises(sim_->model(), xyz.data(), rs.von_mises, stress_scratch);
+    else rs.von_mises.clear();
+    snapshots_.publish();
+  };
+  try {
+    loop.run(*sim_, stop_, hooks);
+  } catch (const std::exception& e) {
+    // The CPU backend itself failed: nothing left to step. Fade the forces out.
+    const std::string why = e.what();
+    log_event("error", "simulation stopped: " + why);
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      load_error_ = "simulation stopped: " + why;
+    }
+    sim_state_.store(4);
+    loop.publish_empty();
+  }
+}
+
+bool Workstation::poll() {
+  const auto& reg = opt_.config.hand.registration;
+  dv::TickRecord r;
+  bool any_tick = false, any_attached = false;
+  while (ticks_.pop(r)) {
+    any_tick = true;
+    any_attached = any_attached || r.attached != 0;
+    ++window_ticks_;
+    if (prev_tick_ns_ > 0) {
+      const double j = std::fabs(double(r.time_ns - prev_tick_ns_) * 1e-3 - opt_.config.loop.period * 1e6);
+      window_jitter_ = std::max(window_jitter_, j);
+    }
+    prev_tick_ns_ = r.time_ns;
+    const double t = double(r.time_ns - t0_ns_) * 1e-9;
+    for (int f = 0; f < dv::kMaxFingers; ++f) {
+      const bool att = (r.attached >> f) & 1;
+      stats_.attached[f] = att;
+      stats_.force_n[f] = dv::norm(r.force[f]);
+      if (tick_listeners_.empty() || !att) continue;
+      TickSample s{t, f, to_eigen(reg.to_world(r.position[f])), to_eigen(reg.vector_to_world(r.force[f])), att};
+      for (auto& l : tick_listeners_) l(s);
+    }
+  }
+  StepSample ss;
+  while (steps_.pop(ss)) {
+    ++window_steps_;
+    stats_.step_ms = ss.step_ms;
+    stats_.cg_iterations = ss.cg_iterations;
+    for (auto& l : step_listeners_) l(ss);
+  }
+  std::vector<Event> evs;
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    evs.swap(new_events_);
+  }
+  for (const auto& e : evs)
+    for (auto& l : event_listeners_) l(e);
+  const std::int64_t now = dv::monotonic_ns();
+  if (now - rate_window_ns_ >= 500000000) {
+    const double w = double(now - rate_window_ns_) * 1e-9;
+    stats_.haptic_rate_hz = double(window_ticks_) / w;
+    stats_.step_rate_hz = double(window_steps_) / w;
+    stats_.jitter_us = window_jitter_;
+    window_ticks_ = window_steps_ = 0;
+    window_jitter_ = 0;
+    rate_window_ns_ = now;
+  }
+  stats_.dropped = ticks_.dropped();
+  stats_.fallbacks = fallbacks_.load();
+  stats_.divergences = divergences_.load();
+  stats_.recovering = sim_loop_->recovering();
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    stats_.backend = backend_name_;
+    stats_.safety_note = safety_note_;
+  }
+  if (any_tick) stats_.connected = running() && any_attached;
+  if (!running()) stats_.connected = false;
+  switch (sim_state_.load()) {
+    case 0: stats_.state = "stopped"; break;
+    case 1: stats_.state = "loading"; break;
+    case 2: stats_.state = "running"; break;
+    case 3: stats_.state = "swapping"; break;
+    default: {
+      std::lock_guard<std::mutex> lk(mu_);
+      stats_.state = "error: " + load_error_;
+    }
+  }
+  return snapshots_.update();
+}
+
+}  // namespace palpation::app

@@ -1,0 +1,408 @@
+#include "review/review_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "review/replay.h"
+#include "simulation.h"
+#include "live/simulation_loop.h"
+
+namespace palpation::app {
+
+using nlohmann::json;
+
+namespace {
+
+std::string one_line(const json& e) {
+  const std::string kind = e.value("kind", "");
+  if (kind == "mark") {
+    std::string s = "trainee mark " + std::to_string(e.value("mark", 0));
+    if (e.contains("position") && e["position"].is_array() && e["position"].size() == 3) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, " at (%.1f, %.1f, %.1f) cm", e["position"][0].get<double>() * 100,
+                    e["position"][1].get<double>() * 100, e["position"][2].get<double>() * 100);
+      s += buf;
+    }
+    if (e.contains("note") && e["note"].is_string()) s += ": " + e["note"].get<std::string>();
+    return s;
+  }
+  if (e.contains("text") && e["text"].is_string() && !e["text"].get<std::string>().empty()) return e["text"].get<std::string>();
+  if (e.contains("event") && e["event"].is_string()) return kind + ": " + e["event"].get<std::string>();
+  if (e.contains("command") && e["command"].is_string()) return "change: " + e["command"].get<std::string>();
+  return kind;
+}
+
+}  // namespace
+
+ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path)) {
+  // The workstation records an instructor's change twice: as data for the re-simulation
+  // ("parameter") and as a line of its event log ("instructor", the same text within a
+  // few ms); a trainee's mark likewise ("mark" with its position, and the log's "trainee
+  // mark N"). The list and the timeline show each once: the data's entry.
+  std::vector<std::pair<double, std::string>> data_twins;
+  for (const json& e : rec_.events) {
+    if (!e.is_object() || !e.contains("t") || !e["t"].is_number()) continue;
+    const std::string kind = e.value("kind", "");
+    if (kind == "parameter" && e.contains("text") && e["text"].is_string())
+      data_twins.emplace_back(e["t"].get<double>(), e["text"].get<std::string>());
+    else if (kind == "mark" && e.contains("mark") && e["mark"].is_number_integer())
+      data_twins.emplace_back(e["t"].get<double>(), "trainee mark " + std::to_string(e["mark"].get<long long>()));
+  }
+  auto is_log_twin = [&](double t, const json& e) {
+    if (!e.contains("text") || !e["text"].is_string()) return false;
+    const std::string& text = e["text"].get_ref<const std::string&>();
+    for (const auto& [td, d] : data_twins)
+      if (d == text && std::abs(td - t) < 0.1) return true;
+    return false;
+  };
+  for (const json& e : rec_.events) {
+    if (!e.is_object() || !e.contains("t") || !e["t"].is_number()) continue;
+    if (e.value("kind", "") == "instructor" && is_log_twin(e["t"].get<double>(), e)) continue;
+    ReviewMarker m;
+    m.t = e["t"].get<double>();
+    m.kind = e.value("kind", "");
+    m.text = one_line(e);
+    if (m.kind == "mark" && e.contains("position") && e["position"].is_array() && e["position"].size() == 3 &&
+        e["position"][0].is_number()) {
+      m.has_position = true;
+      for (int i = 0; i < 3; ++i) m.position[i] = e["position"][std::size_t(i)].get<double>();
+    }
+    if (m.kind == "session") continue;  // start/end: the timeline's ends
+    markers_.push_back(std::move(m));
+  }
+  // Parameter changes as data: applied by the re-simulation before the step that saw them.
+  for (const json& e : rec_.events) {
+    if (!e.is_object() || e.value("kind", "") != "parameter" || !e.contains("index") || !e["index"].is_number_unsigned())
+      continue;
+    Command c;
+    c.index = e["index"].get<std::uint64_t>();
+    c.kind = e.value("command", "");
+    if (c.kind == "young" && e.contains("changes") && e["changes"].is_array()) {
+      for (const auto& p : e["changes"])
+        if (p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number())
+          c.young.emplace_back(p[0].get<int>(), p[1].get<double>());
+    } else if ((c.kind == "params" || c.kind == "patient") && e.contains("scenario")) {
+      c.scenario = e["scenario"];
+    }
+    commands_.push_back(std::move(c));
+  }
+  std::stable_sort(commands_.begin(), commands_.end(), [](const Command& a, const Command& b) { return a.index < b.index; });
+  const std::size_t n = has_steps() ? rec_.steps.size() : rec_.ticks();
+  resim_t_.assign(n, 0.0);
+  resim_f_.assign(n * std::size_t(rec_.fingers), Eigen::Vector3d::Zero());
+}
+
+ReviewSession::~ReviewSession() { cancel(); }
+
+double ReviewSession::duration() const {
+  double d = rec_.duration();
+  if (!rec_.steps.empty()) d = std::max(d, rec_.steps.back().t);
+  return d;
+}
+
+std::size_t ReviewSession::total() const { return has_steps() ? rec_.steps.size() : rec_.ticks(); }
+
+std::string ReviewSession::error() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return error_;
+}
+
+std::string ReviewSession::backend() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return backend_;
+}
+
+ReviewSession::Compare ReviewSession::compare() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return compare_;
+}
+
+void ReviewSession::start(const std::string& backend) {
+  if (worker_.joinable()) return;
+  cancel_.store(false);
+  worker_ = std::thread([this, backend] {
+    try {
+      if (has_steps()) run_steps(backend);
+      else run_ticks(backend);
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lk(mu_);
+      error_ = e.what();
+    }
+    finished_.store(true, std::memory_order_release);
+  });
+}
+
+void ReviewSession::cancel() {
+  cancel_.store(true);
+  if (worker_.joinable()) worker_.join();
+}
+
+void ReviewSession::keep_frame(double t, sim::Simulation& s, const std::shared_ptr<const PatientGeometry>& g,
+                               const std::vector<sim::FingerInput>& in, const std::vector<Eigen::Vector3d>& f) {
+  auto fr = std::make_shared<ReviewFrame>();
+  fr->t = t;
+  fr->geometry = g;
+  std::vector<double> xyz;
+  s.backend().positions(xyz);
+  RenderSnapshot& rs = fr->snapshot;
+  rs.model_generation = g->generation;
+  rs.sim_time = t;
+  rs.positions.resize(xyz.size());
+  for (std::size_t i = 0; i < xyz.size(); ++i) rs.positions[i] = float(xyz[i]);
+  for (std::size_t d = 0; d < in.size() && d < std::size_t(dv::kMaxFingers); ++d) {
+    rs.finger_position[d] = in[d].position;
+    rs.finger_force[d] = f[d];
+    rs.finger_active[d] = in[d].active;
+    rs.finger_radius = in[d].radius;
+  }
+  std::lock_guard<std::mutex> lk(mu_);
+  rs.sequence = frames_.size() + 1;
+  frames_.push_back(std::move(fr));
+}
+
+void ReviewSession::run_steps(const std::string& backend) {
+  const std::string where = rec_.path + ": header.scenario";
+  sim::Scenario s = sim::parse_scenario(rec_.header["scenario"].dump(), where);
+  if (!backend.empty()) s.backend = backend;
+  auto build = [&](const sim::Scenario& sc) {
+    auto sim = std::make_unique<sim::Simulation>(sc);
+    sim->reset();
+    configure_realtime_threads(*sim);
+    return sim;
+  };
+  std::unique_ptr<sim::Simulation> simulation = build(s);
+  std::uint64_t generation = 1;
+  std::shared_ptr<const PatientGeometry> geometry = make_patient_geometry(*simulation, generation);
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    backend_ = simulation->backend().name();
+  }
+  const int nf = rec_.fingers;
+  std::vector<sim::FingerInput> in(static_cast<std::size_t>(nf));
+  std::vector<sim::FingerOutput> out(static_cast<std::size_t>(nf));
+  std::vector<Eigen::Vector3d> f(static_cast<std::size_t>(nf));
+  std::size_t ci = 0;
+  double last_frame = -1e300;
+  Compare cmp;
+  for (std::size_t i = 0; i < rec_.steps.size(); ++i) {
+    if (cancel_.load(std::memory_order_relaxed)) return;
+    const RecordedStep& st = rec_.steps[i];
+    // The commands this step saw, applied as the workstation's simulation thread applies a
+    // batch: in order on the current model, a patient swap after the batch.
+    const json* swap = nullptr;
+    while (ci < commands_.size() && commands_[ci].index < st.commands_applied) {
+      const Command& c = commands_[ci++];
+      if (c.kind == "young") apply_element_young(*simulation, c.young);
+      else if (c.kind == "params") apply_params(*simulation, sim::parse_scenario(c.scenario.dump(), rec_.path + ": params change").params);
+      else if (c.kind == "patient") swap = &c.scenario;
+    }
+    if (swap) {
+      sim::Scenario s2 = sim::parse_scenario(swap->dump(), rec_.path + ": patient change");
+      if (!backend.empty()) s2.backend = backend;
+      simulation = build(s2);
+      geometry = make_patient_geometry(*simulation, ++generation);
+      last_frame = -1e300;
+    }
+    for (int k = 0; k < nf; ++k) {
+      const auto& fi = st.fingers[std::size_t(k)];
+      in[std::size_t(k)].position = fi.x;
+      in[std::size_t(k)].velocity = fi.v;
+      in[std::size_t(k)].radius = fi.radius;
+      in[std::size_t(k)].active = fi.active;
+    }
+    // The workstation's guarded step (sim::Simulation::advance): a backend error falls
+    // back to the CPU from rest, the divergence guard resets the body.
+    const bool ok = simulation->advance(in, out, st.h).ok;
+    for (int k = 0; k < nf; ++k) {
+      f[std::size_t(k)] = ok ? Eigen::Vector3d(out[std::size_t(k)].force) : Eigen::Vector3d::Zero();
+      resim_f_[i * std::size_t(nf) + std::size_t(k)] = f[std::size_t(k)];
+      const Eigen::Vector3d& fr = st.fingers[std::size_t(k)].f;
+      cmp.max_force = std::max(cmp.max_force, fr.norm());
+      const double d = (f[std::size_t(k)] - fr).norm();
+      if (!(d <= cmp.max_diff)) {
+        cmp.max_diff = std::isfinite(d) ? d : HUGE_VAL;
+        cmp.at_t = st.t;
+        cmp.finger = k;
+      }
+      ++cmp.compared;
+    }
+    resim_t_[i] = st.t;
+    if (st.t - last_frame >= frame_period || i + 1 == rec_.steps.size()) {
+      last_frame = st.t;
+      keep_frame(st.t, *simulation, geometry, in, f);
+    }
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      compare_ = cmp;
+    }
+    done_.store(i + 1, std::memory_order_release);
+    done_t_.store(st.t, std::memory_order_release);
+  }
+  // The forces sent at 1 kHz (the haptic loop: local contact model, coupling, safety filter)
+  // against the step forces held until the next step: reported, not expected to vanish.
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < rec_.ticks(); ++i) {
+    while (j + 1 < rec_.steps.size() && rec_.steps[j + 1].t <= rec_.t[i]) ++j;
+    if (rec_.steps[j].t > rec_.t[i]) continue;
+    for (int k = 0; k < nf; ++k) {
+      const double d = (rec_.f[i * std::size_t(nf) + std::size_t(k)] - resim_f_[j * std::size_t(nf) + std::size_t(k)]).norm();
+      if (std::isfinite(d)) cmp.max_sent_diff = std::max(cmp.max_sent_diff, d);
+    }
+  }
+  std::lock_guard<std::mutex> lk(mu_);
+  compare_ = cmp;
+}
+
+void ReviewSession::run_ticks(const std::string& backend) {
+  // As replay_recording (palpation replay): the recorded device input as finger paths, the
+  // forces at each 1 kHz tick with the local contact model between simulation steps.
+  sim::Scenario s = replay_scenario(rec_);
+  if (!backend.empty()) s.backend = backend;
+  sim::Simulation simulation(s);
+  simulation.reset();
+  std::shared_ptr<const PatientGeometry> geometry = make_patient_geometry(simulation, 1);
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    backend_ = simulation.backend().name();
+  }
+  const int nf = rec_.fingers;
+  std::vector<Eigen::Vector3d> step_pos(static_cast<std::size_t>(nf), Eigen::Vector3d::Zero()), f(static_cast<std::size_t>(nf));
+  std::vector<sim::FingerInput> in(static_cast<std::size_t>(nf));
+  double last_frame = -1e300;
+  Compare cmp;
+  for (std::size_t i = 0; i < rec_.ticks(); ++i) {
+    if (cancel_.load(std::memory_order_relaxed)) return;
+    const double tk = double(i + 1) * 0.001;
+    while (simulation.time() < tk - 1e-9) {
+      simulation.step();
+      for (int k = 0; k < nf; ++k) step_pos[std::size_t(k)] = simulation.fingers()[std::size_t(k)].position;
+    }
+    for (int k = 0; k < nf; ++k) {
+      Eigen::Vector3d x, v;
+      s.fingers[std::size_t(k)].sample(tk, x, v);
+      const sim::FingerOutput& o = simulation.outputs()[std::size_t(k)];
+      Eigen::Vector3d force = o.force;
+      if (o.contacts > 0) force += o.stiffness * (x - step_pos[std::size_t(k)]);
+      f[std::size_t(k)] = force;
+      in[std::size_t(k)].position = x;
+      in[std::size_t(k)].radius = s.fingers[std::size_t(k)].radius;
+      in[std::size_t(k)].active = true;
+      resim_f_[i * std::size_t(nf) + std::size_t(k)] = force;
+      const Eigen::Vector3d& fr = rec_.f[i * std::size_t(nf) + std::size_t(k)];
+      if (!fr.allFinite()) continue;
+      cmp.max_force = std::max(cmp.max_force, fr.norm());
+      const double d = (force - fr).norm();
+      if (!(d <= cmp.max_diff)) {
+        cmp.max_diff = std::isfinite(d) ? d : HUGE_VAL;
+        cmp.at_t = rec_.t[i];
+        cmp.finger = k;
+      }
+      ++cmp.compared;
+    }
+    resim_t_[i] = rec_.t[i];
+    if (rec_.t[i] - last_frame >= frame_period || i + 1 == rec_.ticks()) {
+      last_frame = rec_.t[i];
+      keep_frame(rec_.t[i], simulation, geometry, in, f);
+    }
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      compare_ = cmp;
+    }
+    done_.store(i + 1, std::memory_order_release);
+    done_t_.store(rec_.t[i], std::memory_order_release);
+  }
+}
+
+std::shared_ptr<const ReviewFrame> ReviewSession::frame_at(double t) const {
+  std::lock_guard<std::mutex> lk(mu_);
+  if (frames_.empty()) return nullptr;
+  auto it = std::upper_bound(frames_.begin(), frames_.end(), t,
+                             [](double v, const std::shared_ptr<const ReviewFrame>& f) { return v < f->t; });
+  if (it == frames_.begin()) return frames_.front();
+  return *(it - 1);
+}
+
+bool ReviewSession::resim_force_at(double t, int k, Eigen::Vector3d& f) const {
+  const std::size_t n = done();
+  if (n == 0 || k < 0 || k >= rec_.fingers) return false;
+  auto it = std::upper_bound(resim_t_.begin(), resim_t_.begin() + std::ptrdiff_t(n), t);
+  if (it == resim_t_.begin()) return false;
+  const std::size_t i = std::size_t(it - resim_t_.begin()) - 1;
+  f = resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)];
+  return true;
+}
+
+std::size_t ReviewSession::tick_index(double t) const {
+  if (rec_.t.empty()) return 0;
+  auto it = std::upper_bound(rec_.t.begin(), rec_.t.end(), t);
+  return it == rec_.t.begin() ? 0 : std::size_t(it - rec_.t.begin()) - 1;
+}
+
+std::vector<std::pair<double, double>> ReviewSession::recorded_series(int k, double step) const {
+  std::vector<std::pair<double, double>> v;
+  if (k < 0 || k >= rec_.fingers) return v;
+  double last = -1e300;
+  for (std::size_t i = 0; i < rec_.ticks(); ++i) {
+    if (rec_.t[i] - last < step && i + 1 != rec_.ticks()) continue;
+    last = rec_.t[i];
+    v.emplace_back(rec_.t[i], rec_.f[i * std::size_t(rec_.fingers) + std::size_t(k)].norm());
+  }
+  return v;
+}
+
+std::vector<std::pair<double, double>> ReviewSession::resim_series(int k, double step) const {
+  std::vector<std::pair<double, double>> v;
+  if (k < 0 || k >= rec_.fingers) return v;
+  const std::size_t n = done();
+  double last = -1e300;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (resim_t_[i] - last < step && i + 1 != n) continue;
+    last = resim_t_[i];
+    v.emplace_back(resim_t_[i], resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)].norm());
+  }
+  return v;
+}
+
+void ReviewSession::export_csv(const std::string& path) const {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write");
+  out << "t,finger,x,y,z,fx,fy,fz,fx_resim,fy_resim,fz_resim\n";
+  out.precision(9);
+  for (std::size_t i = 0; i < rec_.ticks(); ++i)
+    for (int k = 0; k < rec_.fingers; ++k) {
+      const std::size_t idx = i * std::size_t(rec_.fingers) + std::size_t(k);
+      const Eigen::Vector3d& x = rec_.x[idx];
+      const Eigen::Vector3d& f = rec_.f[idx];
+      out << rec_.t[i] << ',' << k << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << f.x() << ',' << f.y() << ','
+          << f.z();
+      Eigen::Vector3d fr;
+      if (resim_force_at(rec_.t[i], k, fr)) out << ',' << fr.x() << ',' << fr.y() << ',' << fr.z() << '\n';
+      else out << ",,,\n";
+    }
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+void ReviewSession::seek(double t) { time_ = std::clamp(t, 0.0, duration()); }
+
+void ReviewSession::set_playing(bool on) {
+  if (on && time_ >= duration()) time_ = 0;  // play again from the start
+  playing_ = on;
+}
+
+void ReviewSession::set_speed(double s) { speed_ = std::clamp(s, 0.25, 4.0); }
+
+void ReviewSession::advance(double wall_dt) {
+  if (!playing_) return;
+  time_ += wall_dt * speed_;
+  if (time_ >= duration()) {
+    time_ = duration();
+    playing_ = false;
+  }
+}
+
+}  // namespace palpation::app

@@ -1,0 +1,144 @@
+// Review of a recorded session for students (issue 6, docs/recording.md): the recording,
+// its re-simulation on a worker thread and the playback clock. The widgets (ui/review_window)
+// only display what this holds. Qt-free.
+//
+// Re-simulation: a workstation recording (version 2) holds the simulation thread's steps
+// (dt, fingertip inputs, forces out) and the parameter changes as data with the number of
+// commands applied before each step; the worker builds the recorded patient, applies each
+// change before the step that saw it, steps with the recorded dt and inputs, and compares
+// the forces out with the recorded ones. Same backend, settings and thread count: the
+// same floating-point operations, so the difference is zero up to rounding. A recording
+// without steps (version 1, `palpation session`) is re-simulated from its 1 kHz device
+// input at the scenario's dt (replay_scenario), and the difference is reported.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "store/recording.h"
+#include "live/workstation.h"
+
+namespace palpation::app {
+
+/// What the timeline shows besides the forces.
+struct ReviewMarker {
+  double t = 0;
+  std::string kind;   // "instructor", "parameter", "mark", "session"
+  std::string text;   // one line, English
+  bool has_position = false;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // marks: where, world m
+};
+
+/// One re-simulated frame for the 3-D view (kept at most every `frame_period` s).
+struct ReviewFrame {
+  double t = 0;                                   // s, recording time
+  std::shared_ptr<const PatientGeometry> geometry;
+  RenderSnapshot snapshot;
+};
+
+class ReviewSession {
+ public:
+  /// Reads the recording (throws RecordingError naming file, chunk, offset, reason;
+  /// nothing is written, an interrupted file is read as far as it is valid).
+  explicit ReviewSession(const std::string& path);
+  ~ReviewSession();
+  ReviewSession(const ReviewSession&) = delete;
+  ReviewSession& operator=(const ReviewSession&) = delete;
+
+  const Recording& recording() const { return rec_; }
+  double duration() const;
+  const std::vector<ReviewMarker>& markers() const { return markers_; }
+  /// Exact mode: the recording holds the simulation's steps.
+  bool has_steps() const { return !rec_.steps.empty(); }
+  /// Device fingers of the recording: 5 (workstation) or the scenario's.
+  int fingers() const { return rec_.fingers; }
+
+  // Re-simulation (worker thread) -------------------------------------------------------
+  /// Starts the worker (idempotent). `backend` non-empty overrides the recorded one.
+  void start(const std::string& backend = {});
+  void cancel();
+  bool finished() const { return finished_.load(std::memory_order_acquire); }
+  /// Empty, or why the re-simulation stopped.
+  std::string error() const;
+  /// Recording time up to which the re-simulation has run.
+  double resimulated_until() const { return done_t_.load(std::memory_order_acquire); }
+  /// Steps (or 1 kHz ticks for a recording without steps) done and in all.
+  std::size_t done() const { return done_.load(std::memory_order_acquire); }
+  std::size_t total() const;
+  std::string backend() const;
+
+  /// Recorded vs re-simulated force per step and finger (exact mode) or per tick.
+  struct Compare {
+    double max_diff = 0;          // N, largest |f_resim - f_recorded|
+    double at_t = 0;              // s
+    int finger = 0;
+    double max_force = 0;         // N, largest recorded, for scale
+    std::size_t compared = 0;
+    double max_sent_diff = 0;     // N, exact mode: the forces sent (1 kHz, haptic loop) vs the re-simulated step forces
+  };
+  Compare compare() const;
+
+  /// The frame to show at time t (the newest at or before t that is computed), or null.
+  std::shared_ptr<const ReviewFrame> frame_at(double t) const;
+  /// Re-simulated force of finger k at the step (tick) at or before t; false when not yet computed.
+  bool resim_force_at(double t, int k, Eigen::Vector3d& f) const;
+  /// Recorded force sent and fingertip position at the tick at or before t.
+  std::size_t tick_index(double t) const;
+
+  /// Time series for plots: recorded forces sent (1 kHz, decimated to `step` s) and the
+  /// re-simulated ones (computed part). (t, |f|) pairs.
+  std::vector<std::pair<double, double>> recorded_series(int finger, double step) const;
+  std::vector<std::pair<double, double>> resim_series(int finger, double step) const;
+
+  /// CSV of the whole session: t,finger,x,y,z,fx,fy,fz (recorded, 1 kHz) and the
+  /// re-simulated force (fx_resim..; empty where not computed). Throws std::runtime_error.
+  void export_csv(const std::string& path) const;
+
+  // Playback clock (the GUI advances it) ---------------------------------------------------
+  double time() const { return time_; }
+  void seek(double t);
+  bool playing() const { return playing_; }
+  void set_playing(bool on);
+  double speed() const { return speed_; }
+  /// 0.25 to 4.
+  void set_speed(double s);
+  /// Advances by `wall_dt` seconds of wall time x speed; stops at the end.
+  void advance(double wall_dt);
+
+  double frame_period = 1.0 / 30.0;  // s between kept frames
+
+ private:
+  void run_steps(const std::string& backend);
+  void run_ticks(const std::string& backend);
+  void keep_frame(double t, sim::Simulation& s, const std::shared_ptr<const PatientGeometry>& g,
+                  const std::vector<sim::FingerInput>& in, const std::vector<Eigen::Vector3d>& f);
+
+  Recording rec_;
+  std::vector<ReviewMarker> markers_;
+  struct Command {
+    std::uint64_t index = 0;
+    std::string kind;
+    std::vector<std::pair<int, double>> young;
+    nlohmann::json scenario;
+  };
+  std::vector<Command> commands_;
+  std::vector<Eigen::Vector3d> resim_f_;   // per step (or tick) x fingers
+  std::vector<double> resim_t_;            // per step (or tick)
+  std::vector<std::shared_ptr<const ReviewFrame>> frames_;
+  mutable std::mutex mu_;                  // frames_, error_, backend_, compare_
+  std::string error_, backend_;
+  Compare compare_;
+  std::thread worker_;
+  std::atomic<bool> cancel_{false}, finished_{false};
+  std::atomic<std::size_t> done_{0};
+  std::atomic<double> done_t_{0};
+  double time_ = 0, speed_ = 1;
+  bool playing_ = false;
+};
+
+}  // namespace palpation::app

@@ -1,0 +1,415 @@
+#include "store/patient_library.h"
+
+#include <atomic>
+#include <cmath>
+#include <ctime>
+#include <cstdlib>
+#include <filesystem>
+
+#include <QCoreApplication>
+#include <QDir>
+#include <QFileInfo>
+#include <QSqlDatabase>
+#include <QSqlError>
+#include <QSqlQuery>
+#include <QStandardPaths>
+#include <QUrl>
+#include <QVariant>
+
+namespace palpation::app {
+
+using nlohmann::json;
+
+namespace {
+
+std::atomic<int> g_connections{0};
+
+std::string utc_now() {
+  std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return buf;
+}
+
+QString q(const std::string& s) { return QString::fromStdString(s); }
+
+// The schema's history: step 0 creates version 1, step k migrates version k to k + 1.
+// Written once per version and never changed afterwards (databases out there hold them).
+std::vector<std::vector<std::string>> schema_steps(bool pg) {
+  const std::string pk = pg ? "SERIAL PRIMARY KEY" : "INTEGER PRIMARY KEY";
+  const std::string blob = pg ? "BYTEA" : "BLOB";
+  return {
+      // version 1: patients as a JSON scenario fragment.
+      {"CREATE TABLE meta (key VARCHAR(64) PRIMARY KEY, value TEXT NOT NULL)",
+       "CREATE TABLE patients (id " + pk + ", name VARCHAR(200) UNIQUE NOT NULL, scenario TEXT NOT NULL, "
+       "created VARCHAR(32) NOT NULL)",
+       "INSERT INTO meta (key, value) VALUES ('schema_version', '1')"},
+      // 1 -> 2: category, description, built-in flag.
+      {"ALTER TABLE patients ADD COLUMN category VARCHAR(64) NOT NULL DEFAULT 'custom'",
+       "ALTER TABLE patients ADD COLUMN description TEXT NOT NULL DEFAULT ''",
+       "ALTER TABLE patients ADD COLUMN builtin INTEGER NOT NULL DEFAULT 0",
+       "UPDATE meta SET value = '2' WHERE key = 'schema_version'"},
+      // 2 -> 3: imported scans (source file, tetrahedral mesh).
+      {"ALTER TABLE patients ADD COLUMN source TEXT NOT NULL DEFAULT ''",
+       "CREATE TABLE meshes (patient_id INTEGER PRIMARY KEY, format VARCHAR(16) NOT NULL, data " + blob + " NOT NULL)",
+       "UPDATE meta SET value = '3' WHERE key = 'schema_version'"},
+  };
+}
+
+// A QSqlError as a one-line reason, with the common SQLite cases made plain.
+std::string reason(const QSqlError& e) {
+  const std::string t = e.text().toStdString();
+  const std::string lower = e.text().toLower().toStdString();
+  if (lower.find("locked") != std::string::npos || lower.find("busy") != std::string::npos)
+    return "the library is locked by another program writing to it (" + t + "); try again when it has finished";
+  if (lower.find("not a database") != std::string::npos || lower.find("malformed") != std::string::npos)
+    return "not a patient library, or a corrupted one (" + t + "); the file was left as it is";
+  return t.empty() ? std::string("unknown database error") : t;
+}
+
+json fragment(const json& patient, double e = 19000.0, json inclusions = json::array()) {
+  return {{"patient", patient}, {"tissue", {{"young_modulus", e}, {"poisson_ratio", 0.45}, {"density", 1000}}},
+          {"inclusions", inclusions}};
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- built-in patients
+
+std::vector<PatientRecord> PatientLibrary::builtin_patients() {
+  std::vector<PatientRecord> v;
+  auto add = [&](std::string name, std::string cat, std::string desc, json body) {
+    PatientRecord p;
+    p.name = std::move(name);
+    p.category = std::move(cat);
+    p.description = std::move(desc);
+    p.body = std::move(body);
+    p.builtin = true;
+    v.push_back(std::move(p));
+  };
+  // Breast sizes and shapes: half-ellipsoid domes, volume 2/3 pi a^2 h (facts.md: about
+  // 250 mL small to 1,250 mL large, 560-975 mL typical). Fat-like tissue 19 kPa (the
+  // paper's value; Krouskop 1998 fat at 5% precompression 18-20 kPa).
+  struct Shape {
+    const char* name;
+    double a, h;
+    const char* what;
+  };
+  const Shape shapes[] = {{"breast-small", 0.060, 0.045, "small (339 mL)"},
+                          {"breast-medium", 0.080, 0.065, "medium (871 mL), the paper's size"},
+                          {"breast-large", 0.088, 0.077, "large (1,249 mL)"},
+                          {"breast-flat", 0.085, 0.045, "wide and flat (681 mL)"},
+                          {"breast-projecting", 0.065, 0.075, "narrow and projecting (664 mL)"}};
+  for (const auto& s : shapes) {
+    json p = {{"phantom", "breast"}, {"resolution", "paper"}, {"base_radius", s.a}, {"height", s.h}};
+    add(s.name, "breast", std::string("Healthy breast, ") + s.what + ", no tumour", fragment(p));
+  }
+  // The paper's case: tumour radius 1.5 cm, E 107 kPa, on the axis at x = 0.125 m.
+  const json medium = {{"phantom", "breast"}, {"resolution", "paper"}};
+  add("paper-case", "tumour", "The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin",
+      fragment(medium, 19000.0,
+               json::array({{{"shape", "sphere"}, {"center", {0.125, 0.0, 0.035}}, {"radius", 0.015}, {"young_modulus", 107000}}})));
+  // Graded cases on the medium breast (skin at z = 0.065 m on the axis, chest wall z = 0).
+  // Hardness (Krouskop 1998, 5% / 20% precompression; Samani 2007 ratios to fat):
+  //   soft 38 kPa (2x fat, fibroadenoma-like), firm 107 kPa (fibrous / IDC at 5%, the
+  //   paper's), hard 460 kPa (IDC at 20% precompression).
+  // Depth of the centre below the skin: superficial 0.5 cm + radius, mid 2.5 cm, deep: 1.2 cm
+  // above the chest wall. Diameters 0.3 to 2 cm (0.3 cm: the expert detection limit).
+  const double skin = 0.065;
+  auto tumour = [&](double d_cm, const std::string& depth, const std::string& hard) {
+    const double r = d_cm * 0.005;  // cm diameter -> m radius
+    double z = skin - 0.025;
+    if (depth == "superficial") z = skin - 0.005 - r;
+    if (depth == "deep") z = 0.012;
+    const double e = hard == "soft" ? 38000.0 : hard == "hard" ? 460000.0 : 107000.0;
+    char name[64], desc[200];
+    std::snprintf(name, sizeof name, "tumour-%.1fcm-%s-%s", d_cm, depth.c_str(), hard.c_str());
+    std::snprintf(desc, sizeof desc, "Medium breast, %s tumour %.1f cm diameter (%.0f kPa), centre %.1f cm below the skin",
+                  hard.c_str(), d_cm, e / 1000.0, (skin - z) * 100.0);
+    add(name, "tumour", desc,
+        fragment(medium, 19000.0,
+                 json::array({{{"shape", "sphere"}, {"center", {0.125, 0.0, z}}, {"radius", r}, {"young_modulus", e}}})));
+  };
+  for (double d : {0.3, 0.5, 1.0, 1.5, 2.0}) tumour(d, "mid", "firm");         // size
+  for (const char* depth : {"superficial", "deep"}) tumour(1.0, depth, "firm");  // depth
+  for (const char* h : {"soft", "hard"}) tumour(1.0, "mid", h);                  // hardness
+  tumour(0.5, "deep", "soft");                                                   // the hardest to find
+  tumour(2.0, "superficial", "hard");                                            // the easiest
+  return v;
+}
+
+json patient_scenario(const PatientRecord& p, const std::string& mesh_file) {
+  json s = p.body;
+  if (!mesh_file.empty()) s["patient"]["mesh"] = mesh_file;
+  if (s.contains("fingers")) {  // the patient brings its own press (imported scans: over the top)
+    if (!s.contains("duration")) s["duration"] = 2.0;
+    return s;
+  }
+  // A default press: over the first inclusion, else over the breast's axis / the origin.
+  double x = 0.0, top = 0.1;
+  if (s["patient"].value("phantom", "") == "breast") {
+    x = 0.125;
+    top = s["patient"].value("height", 0.065);
+  }
+  if (!s["inclusions"].empty()) x = s["inclusions"][0]["center"][0].get<double>();
+  const double r = 0.008;
+  s["fingers"] = json::array({{{"radius", r}, {"path", {{0.0, x, 0.0, top + r + 0.005}, {1.0, x, 0.0, top + r - 0.01}, {2.0, x, 0.0, top + r + 0.005}}}}});
+  s["duration"] = 2.0;
+  return s;
+}
+
+// ---------------------------------------------------------------- the database
+
+std::string PatientLibrary::default_location() {
+  if (const char* e = std::getenv("PALPATION_DB"); e && *e) return e;
+  if (QCoreApplication::applicationName().isEmpty()) QCoreApplication::setApplicationName("palpation");
+  QString dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
+  if (dir.isEmpty()) dir = QDir::homePath() + "/.local/share/palpation";
+  return (dir + "/patients.sqlite").toStdString();
+}
+
+PatientLibrary::PatientLibrary(const Options& opt) {
+  where_ = opt.db.empty() ? default_location() : opt.db;
+  conn_ = "palpation-library-" + std::to_string(++g_connections);
+  pg_ = where_.rfind("postgresql://", 0) == 0 || where_.rfind("postgres://", 0) == 0;
+  const char* driver = pg_ ? "QPSQL" : "QSQLITE";
+  if (!QSqlDatabase::isDriverAvailable(driver))
+    throw LibraryError(where_ + ": the Qt SQL driver " + driver + " is not installed (Debian: " +
+                       (pg_ ? "libqt6sql6-psql" : "libqt6sql6-sqlite") + ")");
+  {
+    QSqlDatabase db = QSqlDatabase::addDatabase(driver, q(conn_));
+    if (pg_) {
+      const QUrl u(q(where_));
+      db.setHostName(u.host());
+      if (u.port() > 0) db.setPort(u.port());
+      db.setUserName(u.userName());
+      db.setPassword(u.password());
+      db.setDatabaseName(u.path().mid(1));
+      // Hide the password in messages.
+      QUrl shown = u;
+      shown.setPassword({});
+      where_ = shown.toString().toStdString();
+    } else {
+      const QFileInfo fi(q(where_));
+      if (fi.exists() && !fi.isFile()) throw LibraryError(where_ + ": not a file");
+      if (!QDir().mkpath(fi.absolutePath()))
+        throw LibraryError(where_ + ": cannot create the folder " + fi.absolutePath().toStdString());
+      db.setDatabaseName(q(where_));
+      db.setConnectOptions(q("QSQLITE_BUSY_TIMEOUT=" + std::to_string(opt.busy_timeout_ms)));
+    }
+    if (!db.open()) {
+      const std::string why = reason(db.lastError());
+      db = QSqlDatabase();
+      QSqlDatabase::removeDatabase(q(conn_));
+      throw LibraryError(where_ + ": cannot open the patient library: " + why);
+    }
+  }
+  try {
+    migrate();
+    if (opt.seed && opened_as_ != "opened") {
+      // A new library gets the built-in patients; a migrated one those it lacks.
+      for (const auto& p : builtin_patients())
+        if (!find(p.name)) add(p);
+    }
+  } catch (...) {
+    QSqlDatabase::database(q(conn_), false).close();
+    QSqlDatabase::removeDatabase(q(conn_));
+    throw;
+  }
+}
+
+PatientLibrary::~PatientLibrary() {
+  {
+    QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+    if (db.isValid()) db.close();
+  }
+  QSqlDatabase::removeDatabase(q(conn_));
+}
+
+void PatientLibrary::exec(const std::string& sql, const char* what) const {
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  if (!query.exec(q(sql))) throw LibraryError(where_ + ": " + what + ": " + reason(query.lastError()));
+}
+
+int PatientLibrary::schema_version() const {
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  if (!query.exec("SELECT value FROM meta WHERE key = 'schema_version'") || !query.next())
+    throw LibraryError(where_ + ": reading the schema version: " + reason(query.lastError()));
+  bool ok = false;
+  const int v = query.value(0).toString().toInt(&ok);
+  if (!ok || v < 1) throw LibraryError(where_ + ": schema version \"" + query.value(0).toString().toStdString() + "\" is not a number");
+  return v;
+}
+
+void PatientLibrary::migrate() {
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  QSqlQuery query(db);
+  const QString probe = pg_ ? "SELECT count(*) FROM information_schema.tables WHERE table_name = 'meta'"
+                            : "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'meta'";
+  if (!query.exec(probe) || !query.next()) throw LibraryError(where_ + ": " + reason(query.lastError()));
+  int version = 0;
+  if (query.value(0).toInt() > 0) {
+    version = schema_version();
+  } else {
+    QSqlQuery other(db);
+    const QString any = pg_ ? "SELECT count(*) FROM information_schema.tables WHERE table_schema = current_schema()"
+                            : "SELECT count(*) FROM sqlite_master WHERE type = 'table'";
+    if (other.exec(any) && other.next() && other.value(0).toInt() > 0)
+      throw LibraryError(where_ + ": not a patient library (it holds other tables and no schema version); the file was left as it is");
+  }
+  if (version > kSchemaVersion)
+    throw LibraryError(where_ + ": the patient library has schema version " + std::to_string(version) +
+                       ", newer than this program's (" + std::to_string(kSchemaVersion) +
+                       "): use a newer palpation, or another library (--db / PALPATION_DB); nothing was changed");
+  opened_as_ = version == 0 ? "created" : version == kSchemaVersion ? "opened" : "migrated from " + std::to_string(version);
+  const auto steps = schema_steps(pg_);
+  for (int v = version; v < kSchemaVersion; ++v) {
+    // Each step in one transaction: a failed migration leaves the previous version intact.
+    if (!db.transaction()) throw LibraryError(where_ + ": migrating to schema " + std::to_string(v + 1) + ": " + reason(db.lastError()));
+    try {
+      for (const auto& sql : steps[std::size_t(v)]) exec(sql, ("migrating to schema " + std::to_string(v + 1)).c_str());
+    } catch (...) {
+      db.rollback();
+      throw;
+    }
+    if (!db.commit()) {
+      const std::string why = reason(db.lastError());
+      db.rollback();
+      throw LibraryError(where_ + ": migrating to schema " + std::to_string(v + 1) + ": " + why);
+    }
+  }
+}
+
+std::vector<PatientRecord> PatientLibrary::list() const {
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  if (!query.exec("SELECT name, category, description, scenario, builtin, source, created FROM patients ORDER BY category, name"))
+    throw LibraryError(where_ + ": listing patients: " + reason(query.lastError()));
+  std::vector<PatientRecord> v;
+  while (query.next()) {
+    PatientRecord p;
+    p.name = query.value(0).toString().toStdString();
+    p.category = query.value(1).toString().toStdString();
+    p.description = query.value(2).toString().toStdString();
+    p.body = json::parse(query.value(3).toString().toStdString(), nullptr, false);
+    p.builtin = query.value(4).toInt() != 0;
+    p.source = query.value(5).toString().toStdString();
+    p.created = query.value(6).toString().toStdString();
+    v.push_back(std::move(p));
+  }
+  return v;
+}
+
+std::optional<PatientRecord> PatientLibrary::find(const std::string& name) const {
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  QSqlQuery query(db);
+  query.prepare("SELECT id, name, category, description, scenario, builtin, source, created FROM patients WHERE name = ?");
+  query.addBindValue(q(name));
+  if (!query.exec()) throw LibraryError(where_ + ": reading patient \"" + name + "\": " + reason(query.lastError()));
+  if (!query.next()) return std::nullopt;
+  PatientRecord p;
+  const int id = query.value(0).toInt();
+  p.name = query.value(1).toString().toStdString();
+  p.category = query.value(2).toString().toStdString();
+  p.description = query.value(3).toString().toStdString();
+  p.body = json::parse(query.value(4).toString().toStdString(), nullptr, false);
+  if (p.body.is_discarded()) throw LibraryError(where_ + ": patient \"" + name + "\": scenario: not valid JSON");
+  p.builtin = query.value(5).toInt() != 0;
+  p.source = query.value(6).toString().toStdString();
+  p.created = query.value(7).toString().toStdString();
+  QSqlQuery m(db);
+  m.prepare("SELECT data FROM meshes WHERE patient_id = ?");
+  m.addBindValue(id);
+  if (!m.exec()) throw LibraryError(where_ + ": reading the mesh of \"" + name + "\": " + reason(m.lastError()));
+  if (m.next()) {
+    const QByteArray b = m.value(0).toByteArray();
+    p.mesh.assign(b.constData(), std::size_t(b.size()));
+  }
+  return p;
+}
+
+void PatientLibrary::add(const PatientRecord& p) {
+  if (p.name.empty() || p.name.size() > 200) throw LibraryError(where_ + ": patient name: must be 1 to 200 characters");
+  if (!p.body.is_object() || !p.body.contains("patient"))
+    throw LibraryError(where_ + ": patient \"" + p.name + "\": scenario: needs a \"patient\" object");
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  if (find(p.name)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
+  if (!db.transaction()) throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(db.lastError()));
+  auto fail = [&](const QSqlError& e) {
+    const std::string why = reason(e);
+    db.rollback();
+    throw LibraryError(where_ + ": adding \"" + p.name + "\": " + why + " (nothing was added)");
+  };
+  QSqlQuery ins(db);
+  ins.prepare("INSERT INTO patients (name, scenario, created, category, description, builtin, source) VALUES (?, ?, ?, ?, ?, ?, ?)");
+  ins.addBindValue(q(p.name));
+  ins.addBindValue(q(p.body.dump()));
+  ins.addBindValue(q(utc_now()));
+  ins.addBindValue(q(p.category.empty() ? "custom" : p.category));
+  ins.addBindValue(q(p.description));
+  ins.addBindValue(p.builtin ? 1 : 0);
+  ins.addBindValue(q(p.source));
+  if (!ins.exec()) fail(ins.lastError());
+  if (!p.mesh.empty()) {
+    QSqlQuery id(db);
+    id.prepare("SELECT id FROM patients WHERE name = ?");
+    id.addBindValue(q(p.name));
+    if (!id.exec() || !id.next()) fail(id.lastError());
+    QSqlQuery mesh(db);
+    mesh.prepare("INSERT INTO meshes (patient_id, format, data) VALUES (?, ?, ?)");
+    mesh.addBindValue(id.value(0).toInt());
+    mesh.addBindValue(QString("pmesh"));
+    mesh.addBindValue(QByteArray(p.mesh.data(), qsizetype(p.mesh.size())));
+    if (!mesh.exec()) fail(mesh.lastError());
+  }
+  if (!db.commit()) fail(db.lastError());
+}
+
+bool PatientLibrary::remove(const std::string& name) {
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  if (!db.transaction()) throw LibraryError(where_ + ": removing \"" + name + "\": " + reason(db.lastError()));
+  QSqlQuery a(db), b(db);
+  a.prepare("DELETE FROM meshes WHERE patient_id IN (SELECT id FROM patients WHERE name = ?)");
+  a.addBindValue(q(name));
+  b.prepare("DELETE FROM patients WHERE name = ?");
+  b.addBindValue(q(name));
+  if (!a.exec() || !b.exec()) {
+    const std::string why = reason(a.lastError().isValid() ? a.lastError() : b.lastError());
+    db.rollback();
+    throw LibraryError(where_ + ": removing \"" + name + "\": " + why);
+  }
+  const bool any = b.numRowsAffected() > 0;
+  if (!db.commit()) {
+    const std::string why = reason(db.lastError());
+    db.rollback();
+    throw LibraryError(where_ + ": removing \"" + name + "\": " + why);
+  }
+  return any;
+}
+
+void PatientLibrary::create_old_schema_for_test(const std::string& path, int version) {
+  const QString conn = q("palpation-old-schema-" + std::to_string(++g_connections));
+  {
+    QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", conn);
+    db.setDatabaseName(q(path));
+    if (!db.open()) throw LibraryError(path + ": " + reason(db.lastError()));
+    const auto steps = schema_steps(false);
+    for (int v = 0; v < version; ++v)
+      for (const auto& sql : steps[std::size_t(v)]) {
+        QSqlQuery query(db);
+        if (!query.exec(q(sql))) throw LibraryError(path + ": " + reason(query.lastError()));
+      }
+    QSqlQuery ins(db);
+    const std::string body = fragment({{"phantom", "box"}, {"size", {0.1, 0.1, 0.05}}}).dump();
+    if (version == 1)
+      ins.prepare("INSERT INTO patients (name, scenario, created) VALUES ('old-patient', ?, '2026-01-01T00:00:00Z')");
+    else
+      ins.prepare("INSERT INTO patients (name, scenario, created, category, description) VALUES ('old-patient', ?, "
+                  "'2026-01-01T00:00:00Z', 'box', 'made by schema version " + QString::number(version) + "')");
+    ins.addBindValue(q(body));
+    if (!ins.exec()) throw LibraryError(path + ": " + reason(ins.lastError()));
+    db.close();
+  }
+  QSqlDatabase::removeDatabase(conn);
+}
+
+}  // namespace palpation::app

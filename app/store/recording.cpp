@@ -1,0 +1,419 @@
+#include "store/recording.h"
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <ctime>
+#include <fcntl.h>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "crc32.h"
+
+namespace palpation::app {
+
+using nlohmann::json;
+
+namespace {
+
+constexpr char kMagic[8] = {'P', 'A', 'L', 'R', 'E', 'C', '\r', '\n'};
+constexpr std::uint32_t kChunkTag = 0x4B4E4843u;  // "CHNK"
+constexpr std::uint32_t kTicks = 1, kEvent = 2, kEnd = 3, kSteps = 4;
+constexpr std::uint32_t kMaxChunk = 64u << 20;
+constexpr std::uint32_t kMaxHeader = 16u << 20;
+constexpr std::uint32_t kTicksPerChunk = 250;  // 0.25 s at 1 kHz
+
+void put_u32(std::string& s, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) s.push_back(char((v >> (8 * i)) & 0xFF));
+}
+void put_f64(std::string& s, double d) {
+  std::uint64_t v;
+  std::memcpy(&v, &d, 8);
+  for (int i = 0; i < 8; ++i) s.push_back(char((v >> (8 * i)) & 0xFF));
+}
+std::uint32_t get_u32(const unsigned char* p) {
+  return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+double get_f64(const unsigned char* p) {
+  std::uint64_t v = 0;
+  for (int i = 7; i >= 0; --i) v = (v << 8) | p[i];
+  double d;
+  std::memcpy(&d, &v, 8);
+  return d;
+}
+std::uint32_t crc(const std::string& s) { return device::crc32(reinterpret_cast<const std::uint8_t*>(s.data()), s.size()); }
+
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string utc_now() {
+  std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return buf;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- writer
+
+RecordingWriter::RecordingWriter(const std::string& path, json header, int fingers) : path_(path), fingers_(fingers) {
+  if (fingers < 1 || fingers > kRecordingMaxFingers)
+    throw RecordingError(path + ": fingers: must be 1 to 5, got " + std::to_string(fingers));
+  if (!header.is_object() || !header.contains("scenario"))
+    throw RecordingError(path + ": header: needs the scenario");
+  header["format"] = "palpation-recording";
+  header["version"] = kRecordingVersion;
+  header["fingers"] = fingers;
+  if (!header.contains("created")) header["created"] = utc_now();
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw RecordingError(path + ": cannot create the recording (" + std::strerror(errno) + ")");
+  const std::string h = header.dump();
+  std::string s(kMagic, 8);
+  put_u32(s, kRecordingVersion);
+  put_u32(s, std::uint32_t(h.size()));
+  s += h;
+  put_u32(s, crc(h));
+  if (!write_all(s.data(), s.size())) throw RecordingError(path + ": cannot write the header (" + error_ + ")");
+  ::fdatasync(fd_);
+  last_sync_ns_ = now_ns();
+  buf_.reserve(4 + kTicksPerChunk * std::size_t(8 + 48 * fingers));
+}
+
+RecordingWriter::~RecordingWriter() {
+  if (!closed_) {
+    // Destroyed without close(): an error path. Keep what is there (the next start recovers it).
+    flush(true);
+  }
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool RecordingWriter::write_all(const void* data, std::size_t n) {
+  if (!error_.empty() || fd_ < 0) return false;
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    std::size_t want = n;
+    if (limit_ > 0) {
+      if (bytes_ >= limit_) {
+        error_ = path_ + ": write failed at offset " + std::to_string(bytes_) + " (" + std::strerror(ENOSPC) + ")";
+        return false;
+      }
+      want = std::min<std::uint64_t>(want, limit_ - bytes_);
+    }
+    const ssize_t w = ::write(fd_, p, want);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      error_ = path_ + ": write failed at offset " + std::to_string(bytes_) + " (" +
+               std::strerror(w < 0 ? errno : ENOSPC) + ")";
+      return false;
+    }
+    p += w;
+    n -= std::size_t(w);
+    bytes_ += std::uint64_t(w);
+  }
+  return true;
+}
+
+void RecordingWriter::write_chunk(std::uint32_t type, const std::string& payload) {
+  if (failed()) return;
+  std::string body;
+  body.reserve(12 + payload.size());
+  put_u32(body, type);
+  put_u32(body, seq_);
+  put_u32(body, std::uint32_t(payload.size()));
+  body += payload;
+  std::string s;
+  s.reserve(body.size() + 8);
+  put_u32(s, kChunkTag);
+  s += body;
+  put_u32(s, crc(body));
+  if (write_all(s.data(), s.size())) ++seq_;
+}
+
+void RecordingWriter::add_tick(double t, const Eigen::Vector3d* x, const Eigen::Vector3d* f) {
+  if (failed() || closed_) return;
+  if (buffered_ == 0) {
+    buf_.clear();
+    put_u32(buf_, 0);  // count, patched at flush
+    buf_t0_ = t;
+  }
+  put_f64(buf_, t);
+  for (int k = 0; k < fingers_; ++k) {
+    for (int i = 0; i < 3; ++i) put_f64(buf_, x[k][i]);
+    for (int i = 0; i < 3; ++i) put_f64(buf_, f[k][i]);
+  }
+  ++buffered_;
+  ++ticks_;
+  last_t_ = t;
+  if (buffered_ >= kTicksPerChunk || t - buf_t0_ >= 0.25) flush();
+}
+
+void RecordingWriter::add_step(const RecordedStep& st) {
+  if (failed() || closed_) return;
+  if (step_buffered_ == 0) {
+    step_buf_.clear();
+    put_u32(step_buf_, 0);  // count, patched at flush
+  }
+  put_f64(step_buf_, st.t);
+  put_f64(step_buf_, st.h);
+  put_f64(step_buf_, double(st.commands_applied));
+  for (int k = 0; k < fingers_; ++k) {
+    const RecordedStep::Finger fi = k < int(st.fingers.size()) ? st.fingers[std::size_t(k)] : RecordedStep::Finger{};
+    put_f64(step_buf_, fi.active ? 1.0 : 0.0);
+    put_f64(step_buf_, fi.radius);
+    for (int i = 0; i < 3; ++i) put_f64(step_buf_, fi.x[i]);
+    for (int i = 0; i < 3; ++i) put_f64(step_buf_, fi.v[i]);
+    for (int i = 0; i < 3; ++i) put_f64(step_buf_, fi.f[i]);
+  }
+  ++step_buffered_;
+  ++steps_;
+}
+
+void RecordingWriter::add_event(double t, const std::string& kind, json data) {
+  if (failed() || closed_) return;
+  flush();
+  if (!data.is_object()) data = json{{"value", data}};
+  data["t"] = t;
+  data["kind"] = kind;
+  write_chunk(kEvent, data.dump());
+}
+
+void RecordingWriter::flush(bool sync) {
+  if (failed() || fd_ < 0) return;
+  if (buffered_ > 0) {
+    for (int i = 0; i < 4; ++i) buf_[std::size_t(i)] = char((buffered_ >> (8 * i)) & 0xFF);
+    write_chunk(kTicks, buf_);
+    buffered_ = 0;
+  }
+  if (step_buffered_ > 0) {
+    for (int i = 0; i < 4; ++i) step_buf_[std::size_t(i)] = char((step_buffered_ >> (8 * i)) & 0xFF);
+    write_chunk(kSteps, step_buf_);
+    step_buffered_ = 0;
+  }
+  const std::int64_t now = now_ns();
+  if (sync || now - last_sync_ns_ > 1000000000LL) {
+    ::fdatasync(fd_);
+    last_sync_ns_ = now;
+  }
+}
+
+void RecordingWriter::close(json footer) {
+  if (closed_) return;
+  flush();
+  if (!footer.is_object()) footer = json{{"value", footer}};
+  footer["ticks"] = ticks_;
+  if (steps_ > 0) footer["steps"] = steps_;
+  footer["duration_s"] = last_t_;
+  footer["closed"] = utc_now();
+  write_chunk(kEnd, footer.dump());
+  flush(true);
+  closed_ = true;
+}
+
+// ---------------------------------------------------------------- reader
+
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RecordingError(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+Recording read_recording(const std::string& path) {
+  const std::string data = read_file(path);
+  const auto* p = reinterpret_cast<const unsigned char*>(data.data());
+  const std::uint64_t n = data.size();
+  Recording r;
+  r.path = path;
+  r.file_bytes = n;
+  auto fail = [&](const std::string& where, const std::string& why) -> RecordingError {
+    return RecordingError(path + ": " + where + ": " + why);
+  };
+  if (n == 0) throw fail("offset 0", "empty file");
+  if (n < 8 || std::memcmp(p, kMagic, 8) != 0) throw fail("offset 0", "not a palpation recording (bad magic)");
+  if (n < 16) throw fail("header at offset 8", "truncated");
+  r.version = get_u32(p + 8);
+  if (r.version == 0 || r.version > kRecordingVersion)
+    throw fail("header at offset 8", "format version " + std::to_string(r.version) +
+                                         " is not readable by this program (it reads version " +
+                                         std::to_string(kRecordingVersion) + "; newer recordings need a newer program)");
+  const std::uint32_t hl = get_u32(p + 12);
+  if (hl > kMaxHeader || 16 + std::uint64_t(hl) + 4 > n) throw fail("header at offset 16", "truncated or bad length " + std::to_string(hl));
+  const std::string h(data, 16, hl);
+  if (get_u32(p + 16 + hl) != crc(h)) throw fail("header at offset 16", "checksum mismatch (corrupted)");
+  try {
+    r.header = json::parse(h);
+  } catch (const std::exception& e) {
+    throw fail("header at offset 16", std::string("bad JSON: ") + e.what());
+  }
+  if (!r.header.is_object() || r.header.value("format", "") != "palpation-recording" || !r.header.contains("scenario") ||
+      !r.header["fingers"].is_number_integer())
+    throw fail("header at offset 16", "missing format, fingers or scenario");
+  r.fingers = r.header["fingers"].get<int>();
+  if (r.fingers < 1 || r.fingers > kRecordingMaxFingers) throw fail("header at offset 16", "fingers must be 1 to 5");
+  const std::size_t rec_bytes = 8 + 48 * std::size_t(r.fingers);
+
+  std::uint64_t off = 16 + std::uint64_t(hl) + 4;
+  r.valid_bytes = off;
+  std::uint32_t seq = 0;
+  double last_t = -1e300;
+  while (off < n) {
+    const std::string where = "chunk " + std::to_string(seq) + " at offset " + std::to_string(off);
+    if (r.complete) throw fail(where, std::to_string(n - off) + " bytes after the end chunk");
+    if (n - off < 16) {
+      r.interrupted = where + ": truncated chunk header (" + std::to_string(n - off) + " of 16 bytes)";
+      break;
+    }
+    if (get_u32(p + off) != kChunkTag) {
+      throw fail(where, "bad chunk tag (corrupted)");
+    }
+    const std::uint32_t type = get_u32(p + off + 4), cseq = get_u32(p + off + 8), len = get_u32(p + off + 12);
+    if (len > kMaxChunk) throw fail(where, "chunk length " + std::to_string(len) + " too large (corrupted)");
+    const std::uint64_t end = off + 16 + len + 4;
+    if (end > n) {
+      r.interrupted = where + ": truncated chunk (" + std::to_string(n - off) + " of " + std::to_string(end - off) + " bytes)";
+      break;
+    }
+    const std::string body(data, off + 4, 12 + len);
+    if (get_u32(p + off + 16 + len) != crc(body)) {
+      if (end == n) {
+        r.interrupted = where + ": checksum mismatch in the last chunk (torn write)";
+        break;
+      }
+      throw fail(where, "checksum mismatch (corrupted)");
+    }
+    if (cseq != seq) throw fail(where, "sequence number " + std::to_string(cseq) + ", expected " + std::to_string(seq));
+    const unsigned char* q = p + off + 16;
+    if (type == kTicks) {
+      if (len < 4) throw fail(where, "ticks chunk too short");
+      const std::uint32_t count = get_u32(q);
+      if (std::uint64_t(len) != 4 + std::uint64_t(count) * rec_bytes)
+        throw fail(where, "ticks chunk length " + std::to_string(len) + " does not match " + std::to_string(count) + " ticks");
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const unsigned char* rp = q + 4 + i * rec_bytes;
+        const double t = get_f64(rp);
+        if (!std::isfinite(t) || t <= last_t)
+          throw fail(where, "tick " + std::to_string(i) + ": time " + std::to_string(t) + " not finite or not increasing");
+        last_t = t;
+        r.t.push_back(t);
+        for (int k = 0; k < r.fingers; ++k) {
+          const unsigned char* fp = rp + 8 + 48 * k;
+          Eigen::Vector3d x(get_f64(fp), get_f64(fp + 8), get_f64(fp + 16));
+          Eigen::Vector3d f(get_f64(fp + 24), get_f64(fp + 32), get_f64(fp + 40));
+          if (!x.allFinite()) throw fail(where, "tick " + std::to_string(i) + " finger " + std::to_string(k) + ": position not finite");
+          r.x.push_back(x);
+          r.f.push_back(f);
+        }
+      }
+    } else if (type == kSteps && r.version >= 2) {
+      const std::size_t step_bytes = 24 + 88 * std::size_t(r.fingers);
+      if (len < 4) throw fail(where, "steps chunk too short");
+      const std::uint32_t count = get_u32(q);
+      if (std::uint64_t(len) != 4 + std::uint64_t(count) * step_bytes)
+        throw fail(where, "steps chunk length " + std::to_string(len) + " does not match " + std::to_string(count) + " steps");
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const unsigned char* sp = q + 4 + std::size_t(i) * step_bytes;
+        RecordedStep st;
+        st.t = get_f64(sp);
+        st.h = get_f64(sp + 8);
+        const double applied = get_f64(sp + 16);
+        const std::string which = "step " + std::to_string(i);
+        if (!std::isfinite(st.t) || (!r.steps.empty() && st.t < r.steps.back().t))
+          throw fail(where, which + ": time not finite or decreasing");
+        if (!(st.h > 0 && st.h <= 1.0)) throw fail(where, which + ": dt " + std::to_string(st.h) + " s not in (0, 1]");
+        if (!(applied >= 0 && applied <= 9.0e15) || applied != std::floor(applied) ||
+            (!r.steps.empty() && std::uint64_t(applied) < r.steps.back().commands_applied))
+          throw fail(where, which + ": commands applied not a non-decreasing count");
+        st.commands_applied = std::uint64_t(applied);
+        st.fingers.resize(std::size_t(r.fingers));
+        for (int k = 0; k < r.fingers; ++k) {
+          const unsigned char* fp = sp + 24 + 88 * std::size_t(k);
+          RecordedStep::Finger& fi = st.fingers[std::size_t(k)];
+          const double active = get_f64(fp);
+          fi.radius = get_f64(fp + 8);
+          for (int c = 0; c < 3; ++c) {
+            fi.x[c] = get_f64(fp + 16 + 8 * c);
+            fi.v[c] = get_f64(fp + 40 + 8 * c);
+            fi.f[c] = get_f64(fp + 64 + 8 * c);
+          }
+          if (!(active == 0.0 || active == 1.0) || !(fi.radius > 0 && fi.radius < 1.0) || !fi.x.allFinite() ||
+              !fi.v.allFinite() || !fi.f.allFinite())
+            throw fail(where, which + " finger " + std::to_string(k) + ": bad value (flag, radius or not finite)");
+          fi.active = active == 1.0;
+        }
+        r.steps.push_back(std::move(st));
+      }
+    } else if (type == kEvent || type == kEnd) {
+      json j;
+      try {
+        j = json::parse(std::string(reinterpret_cast<const char*>(q), len));
+      } catch (const std::exception& e) {
+        throw fail(where, std::string("bad JSON: ") + e.what());
+      }
+      if (type == kEvent) {
+        r.events.push_back(std::move(j));
+      } else {
+        r.footer = std::move(j);
+        r.complete = true;
+        r.recovered = r.footer.is_object() && r.footer.value("recovered", false);
+      }
+    } else {
+      throw fail(where, "unknown chunk type " + std::to_string(type));
+    }
+    ++seq;
+    ++r.chunks;
+    off = end;
+    r.valid_bytes = off;
+  }
+  if (!r.complete && r.interrupted.empty()) r.interrupted = "no end chunk after chunk " + std::to_string(seq) + " (interrupted)";
+  return r;
+}
+
+RecoverResult recover_recording(const std::string& path) {
+  Recording r = read_recording(path);
+  RecoverResult res;
+  res.ticks = r.ticks();
+  res.duration = r.duration();
+  if (r.complete) {
+    res.was_complete = true;
+    return res;
+  }
+  res.dropped_bytes = r.file_bytes - r.valid_bytes;
+  res.reason = r.interrupted;
+  if (::truncate(path.c_str(), off_t(r.valid_bytes)) != 0)
+    throw RecordingError(path + ": cannot cut the torn tail (" + std::strerror(errno) + ")");
+  json footer{{"recovered", true},
+              {"reason", r.interrupted},
+              {"dropped_bytes", res.dropped_bytes},
+              {"ticks", r.ticks()},
+              {"duration_s", r.duration()},
+              {"closed", utc_now()}};
+  const std::string js = footer.dump();
+  std::string body;
+  put_u32(body, kEnd);
+  put_u32(body, std::uint32_t(r.chunks));
+  put_u32(body, std::uint32_t(js.size()));
+  body += js;
+  std::string s;
+  put_u32(s, kChunkTag);
+  s += body;
+  put_u32(s, crc(body));
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd < 0) throw RecordingError(path + ": cannot reopen to mark it recovered (" + std::strerror(errno) + ")");
+  const bool ok = ::write(fd, s.data(), s.size()) == ssize_t(s.size());
+  ::fdatasync(fd);
+  ::close(fd);
+  if (!ok) throw RecordingError(path + ": cannot write the recovery mark (" + std::strerror(errno) + ")");
+  return res;
+}
+
+}  // namespace palpation::app

@@ -1,0 +1,98 @@
+// The paper's Fig. 6 experiment: the index finger pushes and releases while sweeping
+// along x over the tumour (x = 0.125 m), left to right and back, twice, with and without
+// the tumour (same mesh).
+#include <QtTest>
+
+#include <cstdlib>
+#include <thread>
+
+#include "live/headless_run.h"
+#include "phantom.h"
+#include "scenario.h"
+#include "cli/sweep_analysis.h"
+
+using namespace palpation;
+
+namespace {
+
+sim::Scenario sweep(const std::string& name) {
+  sim::Scenario s = sim::builtin_scenario(name);
+  // A 7.5 mm edge by default (3,079 nodes, 14,559 tetrahedra: between "coarse" and
+  // "paper", 5.7 ms a step, so the two 24 s sweeps take about 2.3 minutes on CI's two
+  // cores); PALPATION_SWEEP_RESOLUTION names another level (paper: the paper's mesh).
+  // PALPATION_LIGHT_TESTS (the sanitizer stage of .ci/run): the coarse mesh and the first
+  // pass only (6 s of the 24); the full sweep runs in the normal build.
+  const char* light = std::getenv("PALPATION_LIGHT_TESTS");
+  const bool is_light = light && *light && *light != '0';
+  const char* env = std::getenv("PALPATION_SWEEP_RESOLUTION");
+  if (env && *env) {
+    s.patient.resolution = env;
+    s.patient.edge = *sim::resolution_edge("breast", s.patient.resolution);
+  } else if (is_light) {
+    s.patient.resolution = "coarse";
+    s.patient.edge = *sim::resolution_edge("breast", "coarse");
+  } else {
+    s.patient.resolution.clear();  // a numeric edge, as the scenario format keeps it
+    s.patient.edge = 0.0075;
+  }
+  s.backend = "cpu";
+  s.params.solver.threads = 1;  // the two runs go in parallel, one core each
+  if (is_light) s.duration = 6.0;
+  return s;
+}
+
+}  // namespace
+
+class TestPaperSweep : public QObject {
+  Q_OBJECT
+ private slots:
+  // Asserted on the 7.5 mm mesh: the sweep stays finite with bounded forces, the four
+  // passes are found, every one has its largest push within 1 cm of the tumour (the
+  // issue's criterion), and the pushes over the tumour (within 1.2 cm of x = 0.125 m)
+  // are at least 15% stronger with it than without. Measured (docs/benchmarks.md, "Paper
+  // sweep"): on this mesh all 4 passes peak 4.2-4.6 mm from the tumour, ratio 1.25; on
+  // the paper mesh all 4 within 4 mm, ratio 1.25-1.32; on the coarse mesh only 2 of 4
+  // (the others 1.2 cm off: the tumour spans two or three coarse elements), which is why
+  // CI does not sweep the coarse mesh. Pushes are 4 mm apart, so a peak one push further
+  // off (Gmsh's meshes differ a little from run to run) still passes.
+  void tumourRaisesTheForceOverIt() {
+    const sim::Scenario with = sweep("paper-sweep"), without = sweep("paper-sweep-no-tumour");
+    sim::patient_mesh(with);  // mesh once (cached) before the two runs share it
+    app::RunResult rt, rn;
+    std::thread other([&] { rn = app::run_headless(without, {}); });
+    rt = app::run_headless(with, {});
+    other.join();
+    QVERIFY(rt.summary["finite"].get<bool>() && rn.summary["finite"].get<bool>());
+    // A fingertip pressed 1.8 cm into 19 kPa tissue: a few newtons (measured 2-6 N from
+    // the fine to the coarse mesh); 20 N would mean the contact went unstable.
+    QVERIFY(rt.summary["max_force_n"].get<double>() < 20.0);
+    const app::SweepAnalysis at = app::analyze_sweep(rt.samples), an = app::analyze_sweep(rn.samples);
+    const bool light = rt.summary["steps"].get<int>() < 10000;
+    QCOMPARE(int(at.passes.size()), light ? 1 : 4);
+    int within = 0;
+    for (const auto& p : at.passes) {
+      qInfo("pass %d (%s): largest push peak %.3f N at x = %.4f m (%.1f mm from the tumour)", p.pass,
+            p.direction > 0 ? "left to right" : "right to left", p.fz, p.x, 1e3 * std::abs(p.x - 0.125));
+      if (std::abs(p.x - 0.125) <= 0.01) ++within;
+    }
+    qInfo("passes peaking within 1 cm of the tumour: %d of %d", within, int(at.passes.size()));
+    if (!light) QVERIFY2(within == 4, qPrintable(QString::number(within)));
+    auto mean_over_tumour = [](const app::SweepAnalysis& a) {
+      double sum = 0;
+      int n = 0;
+      for (const auto& q : a.pushes)
+        if (std::abs(q.x - 0.125) <= 0.012 && q.fz > 1.0) {  // whole pushes, not fragments
+          sum += q.fz;
+          ++n;
+        }
+      return n ? sum / n : 0.0;
+    };
+    const double ft = mean_over_tumour(at), fn = mean_over_tumour(an);
+    qInfo("mean push peak within 1.2 cm of the tumour: %.3f N with it, %.3f N without: ratio %.3f", ft, fn, ft / fn);
+    QVERIFY(fn > 1.0);
+    QVERIFY2(ft / fn > 1.15, qPrintable(QString::number(ft / fn)));
+  }
+};
+
+QTEST_APPLESS_MAIN(TestPaperSweep)
+#include "tst_paper_sweep.moc"

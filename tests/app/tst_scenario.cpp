@@ -1,0 +1,131 @@
+// Scenario parsing: every bad input gets one line naming the file, the field and the
+// reason; good input round-trips; output folders never hold half a result.
+#include <QtTest>
+
+#include <filesystem>
+#include <fstream>
+
+#include "store/output_dir.h"
+#include "scenario.h"
+
+using namespace palpation;
+
+namespace {
+
+// The error message for `text`, or "" when it parses.
+QString error_of(const std::string& text) {
+  try {
+    sim::parse_scenario(text, "case.json");
+  } catch (const sim::ScenarioError& e) {
+    return QString::fromStdString(e.what());
+  }
+  return {};
+}
+
+const char* kFinger = R"("fingers": [{"path": [[0, 0, 0, 0.1], [1, 0, 0, 0.05]]}])";
+
+std::string with(const std::string& body) { return "{\"patient\": {\"phantom\": \"box\"}, " + body + ", " + kFinger + "}"; }
+
+}  // namespace
+
+class TestScenario : public QObject {
+  Q_OBJECT
+ private slots:
+  void badInputNamesFileFieldAndReason_data() {
+    QTest::addColumn<QString>("text");
+    QTest::addColumn<QString>("expected");
+    QTest::newRow("malformed") << QString("{\"patient\": ") << QString("case.json: (syntax): malformed JSON");
+    QTest::newRow("unknown key") << QString::fromStdString(with("\"colour\": 1")) << QString("case.json: colour: unknown key");
+    QTest::newRow("wrong type") << QString::fromStdString(with("\"duration\": \"long\"")) << QString("case.json: duration: must be a number");
+    QTest::newRow("E <= 0") << QString::fromStdString(with("\"tissue\": {\"young_modulus\": 0}"))
+                            << QString("case.json: tissue.young_modulus: must be > 0");
+    QTest::newRow("nu 0.5") << QString::fromStdString(with("\"tissue\": {\"poisson_ratio\": 0.5}"))
+                            << QString("case.json: tissue.poisson_ratio: must be in (-1, 0.5)");
+    QTest::newRow("dt <= 0") << QString::fromStdString(with("\"solver\": {\"dt\": -0.001}")) << QString("case.json: solver.dt: must be > 0");
+    QTest::newRow("radius <= 0") << QString::fromStdString(
+                                        "{\"patient\": {\"phantom\": \"box\"}, \"fingers\": [{\"radius\": 0, \"path\": [[0, 0, 0, 0.1]]}]}")
+                                 << QString("case.json: fingers[0].radius: must be > 0");
+    QTest::newRow("NaN") << QString::fromStdString(with("\"inclusions\": [{\"center\": [0, NaN, 0], \"radius\": 0.01}]"))
+                         << QString("case.json: (syntax)");
+    QTest::newRow("keys not increasing")
+        << QString("{\"patient\": {\"phantom\": \"box\"}, \"fingers\": [{\"path\": [[0, 0, 0, 0.1], [0, 0, 0, 0.2]]}]}")
+        << QString("case.json: fingers[0].path[1]: keyframe times must increase");
+    QTest::newRow("no fingers") << QString("{\"patient\": {\"phantom\": \"box\"}}") << QString("case.json: fingers: is required");
+    QTest::newRow("six fingers")
+        << QString::fromStdString("{\"patient\": {\"phantom\": \"box\"}, \"fingers\": [" + std::string(5, ' ') +
+                                  "{\"path\": [[0,0,0,0.1]]},{\"path\": [[0,0,0,0.1]]},{\"path\": [[0,0,0,0.1]]},"
+                                  "{\"path\": [[0,0,0,0.1]]},{\"path\": [[0,0,0,0.1]]},{\"path\": [[0,0,0,0.1]]}]}")
+        << QString("case.json: fingers: must be an array of 1 to 5 fingers");
+    QTest::newRow("unknown level") << QString::fromStdString(
+                                          "{\"patient\": {\"phantom\": \"box\", \"resolution\": \"huge\"}, " + std::string(kFinger) + "}")
+                                   << QString("case.json: patient.resolution: unknown level");
+  }
+  void badInputNamesFileFieldAndReason() {
+    QFETCH(QString, text);
+    QFETCH(QString, expected);
+    const QString err = error_of(text.toStdString());
+    QVERIFY2(err.startsWith(expected), qPrintable(err));
+    QVERIFY(!err.contains('\n'));
+  }
+
+  void unreadableFileIsNamed() {
+    try {
+      sim::load_scenario("/nonexistent/scenario.json");
+      QFAIL("no error");
+    } catch (const sim::ScenarioError& e) {
+      QVERIFY(QString(e.what()).startsWith("/nonexistent/scenario.json: (file): cannot be read"));
+    }
+  }
+
+  void builtinsRoundTrip() {
+    for (const auto& name : sim::builtin_scenario_names()) {
+      const sim::Scenario a = sim::builtin_scenario(name);
+      const std::string json = sim::scenario_to_json(a);
+      const sim::Scenario b = sim::parse_scenario(json, name);
+      QCOMPARE(sim::scenario_to_json(b), json);
+      QCOMPARE(b.fingers.size(), a.fingers.size());
+      QCOMPARE(b.inclusions.size(), a.inclusions.size());
+    }
+  }
+
+  void pathIsLinearBetweenKeys() {
+    sim::FingerPath p;
+    p.keys = {{0, 0, 0, 0.1}, {1, 0.02, 0, 0.05}};
+    Eigen::Vector3d x, v;
+    p.sample(0.5, x, v);
+    QVERIFY((x - Eigen::Vector3d(0.01, 0, 0.075)).norm() < 1e-12);
+    QVERIFY((v - Eigen::Vector3d(0.02, 0, -0.05)).norm() < 1e-12);
+    p.sample(2.0, x, v);  // held after the last key
+    QVERIFY((x - Eigen::Vector3d(0.02, 0, 0.05)).norm() < 1e-12 && v.norm() == 0);
+  }
+
+  // A command that fails after writing leaves nothing in its folder; one that succeeds
+  // replaces the files; files already there survive a failure.
+  void outputFolderNeverHoldsHalfAResult() {
+    const std::string dir = QDir::tempPath().toStdString() + "/palpation-tst-out";
+    std::filesystem::remove_all(dir);
+    {
+      app::OutputDir out(dir);
+      std::ofstream(out.path("fingers.csv")) << "half";
+      out.commit();
+    }
+    QVERIFY(std::filesystem::exists(dir + "/fingers.csv"));
+    {
+      app::OutputDir out(dir);
+      std::ofstream(out.path("fingers.csv")) << "new but failed";
+      std::ofstream(out.path("summary.json")) << "{}";
+      // no commit: the command failed
+    }
+    std::ifstream in(dir + "/fingers.csv");
+    std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    QCOMPARE(QString::fromStdString(content), QString("half"));
+    QVERIFY(!std::filesystem::exists(dir + "/summary.json"));
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+    QCOMPARE(entries, 1);  // no staging folder left behind
+    std::filesystem::remove_all(dir);
+  }
+};
+
+QTEST_APPLESS_MAIN(TestScenario)
+#include "tst_scenario.moc"
