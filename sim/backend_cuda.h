@@ -1,5 +1,6 @@
-// The CUDA backends (issue 3). Declared here, implemented in backend_cuda.cu; only
-// backend.cpp includes this header, and only in builds with PALPATION_HAVE_CUDA.
+// The CUDA backends. Declared here, implemented in sim/cuda/ (one file per stage:
+// backend_cuda.cu composes them, baseline.cu is "cuda-csr", floor_bench.cu the floor);
+// only backend.cpp includes this header, and only in builds with PALPATION_HAVE_CUDA.
 //
 // "cuda"     : the fast backend. Every per-step computation on the GPU: contact
 //              detection, per-element corotation and forces, assembly of the 3x3-block

@@ -1,0 +1,157 @@
+// Assembly stage: gathering the element records into the block system (see assembly.cuh).
+#include "cuda/assembly.cuh"
+
+#include "cuda/element.cuh"
+
+namespace palpation::sim::cuda {
+
+namespace {
+
+template <class T>
+__device__ void invert3(const T m[9], T inv[9]) {
+  // Cofactor inverse (as Eigen's 3x3 inverse); a non-finite result becomes zero.
+  const T c00 = m[4] * m[8] - m[5] * m[7];
+  const T c01 = m[5] * m[6] - m[3] * m[8];
+  const T c02 = m[3] * m[7] - m[4] * m[6];
+  const T det = m[0] * c00 + m[1] * c01 + m[2] * c02;
+  const T id = T(1) / det;
+  inv[0] = c00 * id;
+  inv[1] = (m[2] * m[7] - m[1] * m[8]) * id;
+  inv[2] = (m[1] * m[5] - m[2] * m[4]) * id;
+  inv[3] = c01 * id;
+  inv[4] = (m[0] * m[8] - m[2] * m[6]) * id;
+  inv[5] = (m[2] * m[3] - m[0] * m[5]) * id;
+  inv[6] = c02 * id;
+  inv[7] = (m[1] * m[6] - m[0] * m[7]) * id;
+  inv[8] = (m[0] * m[4] - m[1] * m[3]) * id;
+  bool finite = true;
+  for (int j = 0; j < 9; ++j) finite = finite && isfinite(inv[j]);
+  if (!finite)
+    for (int j = 0; j < 9; ++j) inv[j] = T(0);
+}
+
+/// Block row i is one warp: lane l owns block k0 + l (rows longer than 32 blocks take more
+/// passes). The warp stages the records of the elements around node i in shared memory
+/// (up to 32 at a time, all loads issued together, coalesced), then walks them: the lane
+/// whose column node is element node b adds
+///   K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (r_a . r_b) I)     (r_a . r_b = g_a . g_b)
+/// and lanes 0..2 add component c of Q r_a to the right-hand side. Every output is
+/// written once: no atomics, no element colouring.
+template <class T>
+__global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
+  constexpr int kWarps = kBlock / 32;
+  __shared__ T srec[kWarps][32][kRec];
+  __shared__ int4 stet[kWarps][32];
+  __shared__ int sinc[kWarps][32];
+  const int lane = threadIdx.x & 31, w = threadIdx.x >> 5;
+  const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
+  const int nwarps = (gridDim.x * blockDim.x) >> 5;
+  for (int i = warp; i < a.nf; i += nwarps) {
+    const int k0 = a.row_ptr[i], len = a.row_ptr[i + 1] - k0, len3 = 3 * len;
+    const int node_i = a.free_nodes[i];
+    const int l0 = a.inc_ptr[i], l1 = a.inc_ptr[i + 1];
+    for (int base = 0; base < len; base += 32) {
+      const int kk = base + lane;
+      const int jnode = kk < len ? a.col_node[k0 + kk] : -1;
+      T acc[9];
+#pragma unroll
+      for (int j = 0; j < 9; ++j) acc[j] = T(0);
+      T rhs = 0;
+      for (int c0 = l0; c0 < l1; c0 += 32) {
+        const int cnt = min(32, l1 - c0);
+        __syncwarp();
+        if (lane < cnt) sinc[w][lane] = __ldg(a.inc + c0 + lane);
+        __syncwarp();
+        if (lane < cnt) stet[w][lane] = __ldg(a.tets + (sinc[w][lane] >> 2));
+        for (int idx = lane; idx < cnt * kRec; idx += 32) {
+          const int j = idx / kRec, comp = idx - j * kRec;
+          srec[w][j][comp] = a.rec[std::size_t(kRec) * (sinc[w][j] >> 2) + comp];
+        }
+        __syncwarp();
+#pragma unroll 2
+        for (int j = 0; j < cnt; ++j) {
+          const int ia = sinc[w][j] & 3;
+          const int4 t = stet[w][j];
+          const T* rec = srec[w][j];
+          const int ib = t.x == jnode ? 0 : t.y == jnode ? 1 : t.z == jnode ? 2 : t.w == jnode ? 3 : -1;
+          const T ra0 = rec[3 * ia], ra1 = rec[3 * ia + 1], ra2 = rec[3 * ia + 2];
+          if (ib >= 0) {
+            const T rb0 = rec[3 * ib], rb1 = rec[3 * ib + 1], rb2 = rec[3 * ib + 2];
+            const T lv = rec[12], mv = rec[13];
+            const T ra[3] = {ra0, ra1, ra2}, rb[3] = {rb0, rb1, rb2};
+#pragma unroll
+            for (int r = 0; r < 3; ++r)
+#pragma unroll
+              for (int c = 0; c < 3; ++c) acc[3 * r + c] += lv * ra[r] * rb[c] + mv * rb[r] * ra[c];
+            const T d = mv * (ra0 * rb0 + ra1 * rb1 + ra2 * rb2);
+            acc[0] += d;
+            acc[4] += d;
+            acc[8] += d;
+          }
+          if (base == 0 && lane < 3) {
+            // Q row `lane` (symmetric, stored xx xy xz yy yz zz) times r_a.
+            const int q0 = lane == 0 ? 14 : (lane == 1 ? 15 : 16);
+            const int q1 = lane == 0 ? 15 : (lane == 1 ? 17 : 18);
+            const int q2 = lane == 0 ? 16 : (lane == 1 ? 18 : 19);
+            rhs += rec[q0] * ra0 + rec[q1] * ra1 + rec[q2] * ra2;
+          }
+        }
+      }
+      if (kk < len) {
+#pragma unroll
+        for (int j = 0; j < 9; ++j) acc[j] *= a.kscale;
+        if (jnode == node_i) {
+          const T mm = a.mscale * a.mass[node_i];
+          acc[0] += mm;
+          acc[4] += mm;
+          acc[8] += mm;
+          const int s = a.free_surf[i];
+          if (s >= 0) {
+            const double* c = a.cA + 6 * s;
+            acc[0] += T(c[0]);
+            acc[1] += T(c[1]);
+            acc[2] += T(c[2]);
+            acc[3] += T(c[1]);
+            acc[4] += T(c[3]);
+            acc[5] += T(c[4]);
+            acc[6] += T(c[2]);
+            acc[7] += T(c[4]);
+            acc[8] += T(c[5]);
+          }
+          T inv[9];
+          invert3(acc, inv);
+#pragma unroll
+          for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
+        }
+        T* dst = a.vals + 9 * std::size_t(k0) + 3 * kk;
+#pragma unroll
+        for (int r = 0; r < 3; ++r)
+#pragma unroll
+          for (int c = 0; c < 3; ++c) dst[r * len3 + c] = acc[3 * r + c];
+      }
+      if (base == 0 && lane < 3) {
+        // b = h (f + m g - alpha M v - (beta + h) K v) + contact; the element terms are in rhs.
+        const T m = a.mass[node_i];
+        const T gc = lane == 0 ? a.g0 : (lane == 1 ? a.g1 : a.g2);
+        T bc = rhs + a.h * (m * gc - a.alpha * m * a.v[3 * node_i + lane]);
+        const int s = a.free_surf[i];
+        if (s >= 0) bc += T(a.cb[3 * s + lane]);
+        a.b[3 * i + lane] = bc;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+template <class T>
+void launch_assemble(cudaStream_t s, const AssembleArgs<T>& a) {
+  const int warps_per_block = kBlock / 32;
+  k_assemble<T><<<(a.nf + warps_per_block - 1) / warps_per_block, kBlock, 0, s>>>(a);
+  CU_LAUNCHED(k_assemble);
+}
+
+template void launch_assemble<float>(cudaStream_t, const AssembleArgs<float>&);
+template void launch_assemble<double>(cudaStream_t, const AssembleArgs<double>&);
+
+}  // namespace palpation::sim::cuda

@@ -1,0 +1,545 @@
+// CUDA backends: "cuda" (fast) and "cuda-csr" (textbook baseline). backend_cpu.cpp is the
+// specification; this file composes the stages of sim/cuda/ into the same step on the GPU
+// (docs/gpu-notes.md has the design, the alternatives measured and the numbers), and
+// detects the device.
+//
+// Per step, in one stream (three launches and one synchronisation when in motion):
+//   k_element   (element.cu) per element: F, rotation (warm-started quaternion), r_a = R g_a
+//               and the element's right-hand-side matrix Q (elastic force and K v folded
+//               in), one compact record per element; extra blocks do the contact detection
+//               at start-of-step positions against the end-of-step fingers (contact.cuh).
+//   k_assemble  (assembly.cu) one warp per block row: stages the records of the elements
+//               around the node in shared memory and gathers its 3x3 blocks, the
+//               block-Jacobi inverse of its diagonal and its right-hand side (no atomics,
+//               every output written once).
+//   k_pcg       (pcg.cu) one persistent cooperative kernel: the PCG of solve_cg.h (warm
+//               start, restart and stopping rules), two grid barriers per iteration (the
+//               search direction is formed inside the SpMV), rows held in registers when
+//               they fit; then v += dv, x += h v, the rest rule, and the finger outputs at
+//               the end state.
+//   The kernels write the small result (finger sums, statistics) into mapped pinned memory:
+//   no copy is queued; the host synchronises once.
+// At rest with no contact only k_detect (contact.cu) runs (GPU detection, the result read
+// the same way). "cuda-csr" shares k_element and k_assemble and replaces k_pcg by the
+// host-driven cuSPARSE/cuBLAS loop of baseline.cu, then k_detect (finish).
+// The knobs for measurements (environment) are read once per backend: tuning.h.
+#include "backend_cuda.h"
+
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "cuda/assembly.cuh"
+#include "cuda/baseline.cuh"
+#include "cuda/common.cuh"
+#include "cuda/contact.cuh"
+#include "cuda/device_info.h"
+#include "cuda/element.cuh"
+#include "cuda/pcg.cuh"
+#include "cuda/tuning.h"
+
+namespace palpation::sim {
+
+namespace cuda {
+
+const DeviceInfo& device_info() {
+  static DeviceInfo info;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    int count = 0;
+    const cudaError_t e = cudaGetDeviceCount(&count);
+    if (e != cudaSuccess) {
+      info.why = std::string("no usable CUDA device (") + cudaGetErrorName(e) + ": " + cudaGetErrorString(e) + ")";
+      cudaGetLastError();
+      return;
+    }
+    if (count <= 0) {
+      info.why = "no CUDA device found";
+      return;
+    }
+    cudaDeviceProp prop{};
+    if (cudaGetDeviceProperties(&prop, 0) != cudaSuccess) {
+      info.why = "cudaGetDeviceProperties failed";
+      cudaGetLastError();
+      return;
+    }
+    info.name = prop.name;
+    info.sms = prop.multiProcessorCount;
+    info.cc_major = prop.major;
+    info.cc_minor = prop.minor;
+    info.cooperative = prop.cooperativeLaunch != 0;
+    if (prop.major < 6) {
+      info.why = std::string("GPU ") + prop.name + " has compute capability " + std::to_string(prop.major) + "." +
+                 std::to_string(prop.minor) + " (6.0 or newer needed)";
+      return;
+    }
+    if (!info.cooperative) {
+      info.why = std::string("GPU ") + prop.name + " does not support cooperative launches";
+      return;
+    }
+    const cudaError_t e2 = cudaFree(nullptr);  // creates the context: catches driver/runtime mismatch
+    if (e2 != cudaSuccess) {
+      info.why = std::string("cannot use the CUDA device (") + cudaGetErrorName(e2) + ": " + cudaGetErrorString(e2) + ")";
+      cudaGetLastError();
+      return;
+    }
+    info.ok = true;
+  });
+  return info;
+}
+
+namespace {
+
+/// Host copies of the model arrays in the GPU layout (built once per backend).
+template <class T>
+struct HostLayout {
+  std::vector<int4> tets;
+  std::vector<T> grad, vol;
+  std::vector<int> col_node, inc_ptr, inc, free_surf;
+  std::vector<T> mass;
+
+  explicit HostLayout(const Model& m) {
+    const int ne = m.num_tets(), nf = m.num_free(), nb = m.num_blocks();
+    tets.resize(ne);
+    grad.resize(12 * std::size_t(ne));
+    vol.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      tets[e] = make_int4(m.tets[e][0], m.tets[e][1], m.tets[e][2], m.tets[e][3]);
+      for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 3; ++c) grad[12 * std::size_t(e) + 3 * a + c] = T(m.grad[e][a][c]);
+      vol[e] = T(m.volume[e]);
+    }
+    // Node of each block's column (what the assembly warp matches element nodes with).
+    col_node.resize(nb);
+    for (int k = 0; k < nb; ++k) col_node[k] = m.free_nodes[m.col[k]];
+    // Incidences of each free node.
+    inc_ptr.assign(nf + 1, 0);
+    for (int e = 0; e < ne; ++e)
+      for (int a = 0; a < 4; ++a)
+        if (m.dof[m.tets[e][a]] >= 0) ++inc_ptr[m.dof[m.tets[e][a]] + 1];
+    for (int i = 0; i < nf; ++i) inc_ptr[i + 1] += inc_ptr[i];
+    inc.resize(inc_ptr[nf]);
+    {
+      std::vector<int> fill(inc_ptr.begin(), inc_ptr.end() - 1);
+      for (int e = 0; e < ne; ++e)
+        for (int a = 0; a < 4; ++a) {
+          const int i = m.dof[m.tets[e][a]];
+          if (i >= 0) inc[fill[i]++] = (e << 2) | a;
+        }
+    }
+    const int ns = static_cast<int>(m.surface_nodes.size());
+    free_surf.assign(nf, -1);
+    for (int s = 0; s < ns; ++s) {
+      const int i = m.dof[m.surface_nodes[s]];
+      if (i >= 0) free_surf[i] = s;
+    }
+    mass.resize(m.num_nodes());
+    for (int j = 0; j < m.num_nodes(); ++j) mass[j] = T(m.mass[j]);
+  }
+};
+
+enum class Solver { Persistent, Csr };
+
+/// Stage timing with events (CudaTuning::profile): printed when the backend dies.
+struct Profiler {
+  bool on = false;
+  static constexpr int kStages = 4;
+  const char* names[kStages] = {"element+detect", "assemble", "solve+finish", "wait"};
+  cudaEvent_t ev[kStages + 1]{};
+  std::vector<float> ms[kStages];
+  int steps = 0;
+  void init(bool enable) {
+    on = enable;
+    if (on)
+      for (auto& e : ev) CU(cudaEventCreate(&e));
+  }
+  void mark(int i, cudaStream_t s) {
+    if (on) CU(cudaEventRecord(ev[i], s));
+  }
+  void collect() {
+    if (!on) return;
+    for (int i = 0; i < kStages; ++i) {
+      float t = 0;
+      CU(cudaEventElapsedTime(&t, ev[i], ev[i + 1]));
+      ms[i].push_back(t);
+    }
+    ++steps;
+  }
+  void report(const std::string& who) {
+    if (!on || steps == 0) return;
+    std::fprintf(stderr, "cuda profile (%s, %d solved steps), median us per stage:", who.c_str(), steps);
+    for (int i = 0; i < kStages; ++i) {
+      auto v = ms[i];
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      std::fprintf(stderr, " %s %.1f", names[i], 1000.0 * v[v.size() / 2]);
+    }
+    std::fprintf(stderr, "\n");
+  }
+  ~Profiler() {
+    for (auto& e : ev)
+      if (e) cudaEventDestroy(e);
+  }
+};
+
+template <class T>
+class CudaBackend final : public Backend {
+ public:
+  CudaBackend(const Model& model, const SimParams& params, Solver solver) : m_(model), p_(params), solver_(solver) {
+    const DeviceInfo& d = device_info();
+    if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
+    const CudaTuning tuning = CudaTuning::from_environment();
+    CU(cudaSetDevice(d.device));
+    CU(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+    nn_ = m_.num_nodes();
+    ne_ = m_.num_tets();
+    nf_ = m_.num_free();
+    nb_ = m_.num_blocks();
+    ns_ = static_cast<int>(m_.surface_nodes.size());
+    nt_ = static_cast<int>(m_.surface.size());
+    if (static_cast<long long>(ne_) >= (1ll << 27)) throw std::runtime_error("cuda backend: too many elements");
+    HostLayout<T> L(m_);
+    tets_.upload(L.tets, stream_);
+    grad_.upload(L.grad, stream_);
+    vol_.upload(L.vol, stream_);
+    col_node_.upload(L.col_node, stream_);
+    inc_ptr_.upload(L.inc_ptr, stream_);
+    inc_.upload(L.inc, stream_);
+    free_surf_.upload(L.free_surf, stream_);
+    {
+      std::vector<int> tri(3 * std::size_t(nt_)), node_surf(nn_, -1);
+      for (int t = 0; t < nt_; ++t)
+        for (int k = 0; k < 3; ++k) tri[3 * std::size_t(t) + k] = m_.surface[t][k];
+      for (int s = 0; s < ns_; ++s) node_surf[m_.surface_nodes[s]] = s;
+      tri_.upload(tri, stream_);
+      node_surf_.upload(node_surf, stream_);
+      dof_.upload(m_.dof, stream_);
+    }
+    mass_.upload(L.mass, stream_);
+    row_ptr_.upload(m_.row_ptr, stream_);
+    col_.upload(m_.col, stream_);
+    free_nodes_.upload(m_.free_nodes, stream_);
+    x_.alloc(3 * std::size_t(nn_));
+    v_.alloc(3 * std::size_t(nn_));
+    quat_.alloc(4 * std::size_t(ne_));
+    lambda_.alloc(ne_);
+    mu_.alloc(ne_);
+    rec_.alloc(kRec * std::size_t(ne_));
+    vals_.alloc(9 * std::size_t(nb_));
+    precond_.alloc(9 * std::size_t(nf_));
+    for (auto* v : {&b_, &dv_, &r_, &z_, &p0_, &p1_, &q_}) v->alloc(3 * std::size_t(nf_));
+    cA_.alloc(6 * std::size_t(std::max(ns_, 1)));
+    cb_.alloc(3 * std::size_t(std::max(ns_, 1)));
+    scratch_.alloc(1);
+    // The result lives in mapped pinned memory: the kernels write it, no copy is queued.
+    CU(cudaHostAlloc(reinterpret_cast<void**>(&host_res_), sizeof(DevResult), cudaHostAllocMapped));
+    CU(cudaHostGetDevicePointer(reinterpret_cast<void**>(&dev_res_), host_res_, 0));
+    rest_.resize(3 * std::size_t(nn_));
+    for (int j = 0; j < nn_; ++j)
+      for (int c = 0; c < 3; ++c) rest_[3 * j + c] = T(m_.rest[j][c]);
+    detect_grid_ = cuda::detect_grid(nt_, d.sms);
+    if (solver_ == Solver::Persistent) {
+      launch_ = cuda::pcg_launch<T>(nf_, tuning);
+      fused_ = tuning.fused_cg;
+    } else {
+#ifdef PALPATION_HAVE_CUSPARSE
+      csr_ = cuda::make_csr_baseline<T>(m_, pcg_args(), stream_);
+#else
+      throw std::runtime_error("backend cuda-csr: this build has no cuSPARSE/cuBLAS");
+#endif
+    }
+    prof_.init(tuning.profile);
+    update_materials();
+    reset();
+  }
+
+  ~CudaBackend() override {
+    prof_.report(name() + (std::is_same_v<T, double> ? " double" : " float"));
+    csr_.reset();  // its cuSPARSE/cuBLAS handles work in stream_: gone before the stream
+    if (host_res_) cudaFreeHost(host_res_);
+    if (stream_) cudaStreamDestroy(stream_);
+  }
+
+  std::string name() const override { return solver_ == Solver::Persistent ? "cuda" : "cuda-csr"; }
+  std::string device_name() const override { return device_info().name; }
+  Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
+  const SimParams& params() const override { return p_; }
+  void set_params(const SimParams& p) override { p_ = p; }
+
+  void update_materials() override {
+    std::vector<T> l(ne_), mu(ne_);
+    for (int e = 0; e < ne_; ++e) {
+      l[e] = T(m_.lambda[e]);
+      mu[e] = T(m_.mu[e]);
+    }
+    CU(cudaStreamSynchronize(stream_));
+    lambda_.upload(l, stream_);
+    mu_.upload(mu, stream_);
+    rested_ = false;
+  }
+
+  void reset() override {
+    CU(cudaStreamSynchronize(stream_));
+    x_.upload(rest_, stream_);
+    v_.zero(stream_);
+    dv_.zero(stream_);
+    p0_.zero(stream_);
+    p1_.zero(stream_);
+    std::vector<T> q(4 * std::size_t(ne_), T(0));
+    for (int e = 0; e < ne_; ++e) q[4 * std::size_t(e)] = T(1);
+    CU(cudaMemcpyAsync(quat_.get(), q.data(), sizeof(T) * q.size(), cudaMemcpyHostToDevice, stream_));
+    scratch_.zero(stream_);
+    cA_.zero(stream_);
+    cb_.zero(stream_);
+    CU(cudaStreamSynchronize(stream_));
+    std::memset(static_cast<void*>(host_res_), 0, sizeof(DevResult));
+    filtered_.clear();
+    rested_ = p_.gravity.squaredNorm() == 0;
+  }
+
+  void positions(std::vector<double>& xyz) const override { download(x_, xyz); }
+  void velocities(std::vector<double>& xyz) const override { download(v_, xyz); }
+
+  StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
+    if (fingers.size() > std::size_t(kMaxFingers))
+      throw std::runtime_error("cuda backend: at most " + std::to_string(kMaxFingers) + " fingers");
+    StepStats st;
+    if (filtered_.size() != fingers.size()) filtered_.assign(fingers.size(), Eigen::Vector3d::Zero());
+    FingersArg F{};
+    F.n = static_cast<int>(fingers.size());
+    for (int f = 0; f < F.n; ++f) {
+      for (int c = 0; c < 3; ++c) {
+        F.f[f].c[c] = fingers[f].position[c];
+        F.f[f].v[c] = fingers[f].velocity[c];
+      }
+      F.f[f].r = fingers[f].radius;
+      F.f[f].active = fingers[f].active ? 1 : 0;
+    }
+    StepConsts k{};
+    k.h = p_.solver.dt;
+    k.alpha = p_.damping.mass;
+    k.beta = p_.damping.stiffness;
+    k.ks = p_.contact.stiffness;
+    k.ke = p_.contact.damping;
+    for (int c = 0; c < 3; ++c) k.g[c] = p_.gravity[c];
+
+    bool detected = false;
+    if (rested_) {
+      // At rest: the solve is needed only if something touches. Detection on the GPU and
+      // the result in mapped memory: one launch and one synchronisation decide.
+      launch_detect(F, k, true);
+      fetch_result();
+      if (host_res_->start_contacts == 0) {
+        finger_outputs(fingers, out);
+        st.contacts = 0;
+        st.finite = true;
+        for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
+        return st;
+      }
+      detected = true;
+    }
+    prof_.mark(0, stream_);
+    launch_element(F, k, !detected);
+    prof_.mark(1, stream_);
+    launch_assemble(k);
+    prof_.mark(2, stream_);
+    int iterations = 0;
+    double residual = 0;
+    if (solver_ == Solver::Persistent) {
+      launch_pcg(F, k);
+    } else {
+      solve_csr(iterations, residual);
+      launch_detect(F, k, false);
+    }
+    prof_.mark(3, stream_);
+    fetch_result();
+    prof_.mark(4, stream_);
+    if (prof_.on) {
+      CU(cudaEventSynchronize(prof_.ev[4]));
+      prof_.collect();
+    }
+    const DevResult& R = *host_res_;
+    if (solver_ == Solver::Persistent) {
+      iterations = R.cg_iterations;
+      residual = R.cg_residual;
+    }
+    st.cg_iterations = iterations;
+    st.cg_residual = residual;
+    st.solved = true;
+    st.contacts = R.start_contacts;
+    rested_ = R.rested != 0;
+    st.finite = std::isfinite(R.vmax) && std::isfinite(residual);
+    finger_outputs(fingers, out);
+    for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
+    return st;
+  }
+
+ private:
+  void download(const DeviceArray<T>& a, std::vector<double>& xyz) const {
+    std::vector<T> tmp(a.size());
+    CU(cudaMemcpyAsync(tmp.data(), a.get(), sizeof(T) * tmp.size(), cudaMemcpyDeviceToHost, stream_));
+    CU(cudaStreamSynchronize(stream_));
+    xyz.assign(tmp.begin(), tmp.end());
+  }
+
+  void fetch_result() { CU(cudaStreamSynchronize(stream_)); }
+
+  DetectArgs<T> detect_args() {
+    return DetectArgs<T>{nt_,      tri_.get(), node_surf_.get(), dof_.get(), ns_,     x_.get(),
+                         v_.get(), cA_.get(), cb_.get(),        scratch_.get(), dev_res_};
+  }
+
+  void launch_detect(const FingersArg& F, const StepConsts& k, bool start) {
+    cuda::launch_detect(stream_, detect_grid_, detect_args(), F, k, start);
+  }
+
+  /// Elements, plus the start-of-step contact detection in extra blocks when `detect`.
+  void launch_element(const FingersArg& F, const StepConsts& k, bool detect) {
+    ElementArgs<T> a{ne_, tets_.get(), grad_.get(), vol_.get(), lambda_.get(), mu_.get(), quat_.get(), x_.get(), v_.get(),
+                     rec_.get(), T(k.h), T(k.beta), 0};  // elem_blocks: set by launch_element
+    cuda::launch_element(stream_, a, detect_args(), F, k, detect);
+  }
+
+  void launch_assemble(const StepConsts& k) {
+    AssembleArgs<T> a{};
+    a.nf = nf_;
+    a.row_ptr = row_ptr_.get();
+    a.col_node = col_node_.get();
+    a.inc_ptr = inc_ptr_.get();
+    a.inc = inc_.get();
+    a.tets = tets_.get();
+    a.rec = rec_.get();
+    a.free_nodes = free_nodes_.get();
+    a.free_surf = free_surf_.get();
+    a.mass = mass_.get();
+    a.v = v_.get();
+    a.cA = cA_.get();
+    a.cb = cb_.get();
+    a.vals = vals_.get();
+    a.precond = precond_.get();
+    a.b = b_.get();
+    const T h = T(k.h);
+    a.kscale = h * h + h * T(k.beta);
+    a.mscale = T(1) + h * T(k.alpha);
+    a.h = h;
+    a.alpha = T(k.alpha);
+    a.g0 = T(k.g[0]);
+    a.g1 = T(k.g[1]);
+    a.g2 = T(k.g[2]);
+    cuda::launch_assemble(stream_, a);
+  }
+
+  PcgArgs<T> pcg_args() {
+    PcgArgs<T> a{};
+    a.n = nf_;
+    a.row_ptr = row_ptr_.get();
+    a.col = col_.get();
+    a.vals = vals_.get();
+    a.P = precond_.get();
+    a.b = b_.get();
+    a.x = dv_.get();
+    a.r = r_.get();
+    a.z = z_.get();
+    a.p0 = p0_.get();
+    a.p1 = p1_.get();
+    a.q = q_.get();
+    a.nnode = nn_;
+    a.free_nodes = free_nodes_.get();
+    a.xpos = x_.get();
+    a.vel = v_.get();
+    a.h = T(p_.solver.dt);
+    a.tol = T(p_.solver.cg_tolerance);
+    a.max_it = p_.solver.cg_max_iterations;
+    a.fused = fused_ ? 1 : 0;
+    a.scr = scratch_.get();
+    a.res = dev_res_;
+    return a;
+  }
+
+  void launch_pcg(const FingersArg& F, const StepConsts& k) {
+    cuda::launch_pcg(stream_, launch_, pcg_args(), detect_args(), F, k);
+  }
+
+  void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
+    const double h = p_.solver.dt;
+    constexpr double kPi = 3.14159265358979323846;
+    const double a = 1.0 - std::exp(-2.0 * kPi * p_.contact.force_filter_hz * h);
+    for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
+    for (std::size_t f = 0; f < out.size() && f < fingers.size(); ++f) {
+      const double* s = host_res_->finger[f];
+      FingerOutput& o = out[f];
+      o.force_raw = Eigen::Vector3d(s[0], s[1], s[2]);
+      o.stiffness << s[3], s[4], s[5], s[4], s[6], s[7], s[5], s[7], s[8];
+      o.contacts = static_cast<int>(std::lround(s[12]));
+      o.contact_point = Eigen::Vector3d(s[9], s[10], s[11]);
+      if (o.contacts > 0) o.contact_point /= o.contacts;
+      const double fn = o.force_raw.norm();
+      o.normal = fn > 0 ? Eigen::Vector3d(o.force_raw / fn) : Eigen::Vector3d::Zero();
+      filtered_[f] += a * (o.force_raw - filtered_[f]);
+      o.force = filtered_[f];
+    }
+  }
+
+  /// The textbook baseline's solve (baseline.cu), then v += dv, x += h v and the rest rule.
+  void solve_csr(int& iterations, double& residual) { csr_->solve(pcg_args(), iterations, residual); }
+
+  const Model& m_;
+  SimParams p_;
+  Solver solver_;
+  int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0, nt_ = 0;
+  PcgLaunch launch_;
+  int detect_grid_ = 1;
+  bool fused_ = true;
+  cudaStream_t stream_ = nullptr;
+  DeviceArray<int4> tets_;
+  DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_;
+  DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
+  DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, r_, z_, p0_, p1_, q_;
+  DeviceArray<double> cA_, cb_;
+  DeviceArray<DevScratch> scratch_;
+  DevResult* host_res_ = nullptr;  // mapped pinned memory
+  DevResult* dev_res_ = nullptr;   // its device address
+  std::vector<T> rest_;
+  std::vector<Eigen::Vector3d> filtered_;
+  bool rested_ = true;
+  Profiler prof_;
+  std::unique_ptr<CsrBaseline<T>> csr_;  // the baseline's solver ("cuda-csr" only)
+};
+
+}  // namespace
+
+}  // namespace cuda
+
+bool cuda_probe(std::string* why_not) {
+  const cuda::DeviceInfo& d = cuda::device_info();
+  if (!d.ok && why_not) *why_not = d.why;
+  return d.ok;
+}
+
+std::unique_ptr<Backend> make_cuda_backend(const Model& model, const SimParams& params) {
+  if (params.solver.precision == Precision::Float)
+    return std::make_unique<cuda::CudaBackend<float>>(model, params, cuda::Solver::Persistent);
+  return std::make_unique<cuda::CudaBackend<double>>(model, params, cuda::Solver::Persistent);
+}
+
+std::unique_ptr<Backend> make_cuda_csr_backend(const Model& model, const SimParams& params) {
+#ifndef PALPATION_HAVE_CUSPARSE
+  (void)model;
+  (void)params;
+  throw std::runtime_error("backend cuda-csr: this build has no cuSPARSE/cuBLAS");
+#else
+  if (params.solver.precision == Precision::Float)
+    return std::make_unique<cuda::CudaBackend<float>>(model, params, cuda::Solver::Csr);
+  return std::make_unique<cuda::CudaBackend<double>>(model, params, cuda::Solver::Csr);
+#endif
+}
+
+}  // namespace palpation::sim

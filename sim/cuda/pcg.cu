@@ -1,0 +1,350 @@
+// PCG stage: the persistent cooperative kernel and its launch plan (see pcg.cuh).
+#include "cuda/pcg.cuh"
+
+#include <cooperative_groups.h>
+
+#include "cuda/device_info.h"
+
+namespace palpation::sim::cuda {
+
+static_assert(CudaTuning{}.pcg_block == kPcgMaxBlock, "the default PCG block is the kernel's launch bound");
+
+namespace {
+
+namespace coop = cooperative_groups;
+
+constexpr int kCacheBlocks = 3;  // blocks per lane held in registers: rows of up to 24 blocks
+
+/// The first block row of each lane group, held in registers for the whole solve: lane gl
+/// keeps blocks gl, gl + G, ..., gl + (B - 1) G of it (9 values and the column each). When
+/// every row fits (the paper mesh: rows of at most 24 blocks, one row per group) the
+/// iterations read no matrix data from memory at all.
+template <class T, int B>
+struct RowCache {
+  T v[B > 0 ? B : 1][9];
+  int j[B > 0 ? B : 1];
+  int k0 = 0, len = 0;
+};
+
+template <class T, int B>
+__device__ void load_row_cache(const PcgArgs<T>& a, RowCache<T, B>& rc) {
+  constexpr int G = kGroup, RPW = 32 / G;
+  const int lane = threadIdx.x & 31, gl = lane % G, gw = lane / G;
+  const int i = ((blockIdx.x * blockDim.x + threadIdx.x) >> 5) * RPW + gw;
+  if constexpr (B > 0) {
+    if (i < a.n) {
+      rc.k0 = a.row_ptr[i];
+      rc.len = a.row_ptr[i + 1] - rc.k0;
+      const int len3 = 3 * rc.len;
+      const T* rv = a.vals + 9 * std::size_t(rc.k0);
+#pragma unroll
+      for (int b = 0; b < B; ++b) {
+        const int kk = gl + b * G;
+        rc.j[b] = 0;
+#pragma unroll
+        for (int c = 0; c < 9; ++c) rc.v[b][c] = T(0);
+        if (kk < rc.len) {
+          rc.j[b] = a.col[rc.k0 + kk];
+          const T* bv = rv + 3 * kk;
+#pragma unroll
+          for (int r = 0; r < 3; ++r)
+#pragma unroll
+            for (int c = 0; c < 3; ++c) rc.v[b][3 * r + c] = bv[r * len3 + c];
+        }
+      }
+    }
+  }
+}
+
+/// y_i = sum_k A_k u_col(k) for the block rows of this thread's group, then
+/// emit(i, c, y_c) on lanes c = 0..2 of the group. `fetch(j, c)` reads the input vector.
+/// The first pass takes its row from the register cache; other passes (rows beyond one
+/// per group, on large meshes) stream the matrix. Warp-uniform loop bounds: every lane of
+/// a warp takes part in every shuffle.
+template <class T, int B, class Fetch, class Emit>
+__device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<T, B>& rc, Fetch fetch, Emit emit) {
+  constexpr int G = kGroup, RPW = 32 / G;
+  const int lane = threadIdx.x & 31;
+  const int gl = lane % G, gw = lane / G;
+  const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
+  const int nwarps = (gridDim.x * blockDim.x) >> 5;
+  bool first_pass = true;
+  for (int base = warp * RPW; base < a.n; base += nwarps * RPW) {
+    const int i = base + gw;
+    T y0 = 0, y1 = 0, y2 = 0;
+    if (i < a.n) {
+      int k0, len, kstart = gl;
+      if (B > 0 && first_pass) {
+        k0 = rc.k0;
+        len = rc.len;
+#pragma unroll
+        for (int b = 0; b < (B > 0 ? B : 1); ++b) {
+          if (gl + b * G < len) {
+            const int jj = rc.j[b];
+            const T u0 = fetch(jj, 0), u1 = fetch(jj, 1), u2 = fetch(jj, 2);
+            const T* m = rc.v[b];
+            y0 += m[0] * u0 + m[1] * u1 + m[2] * u2;
+            y1 += m[3] * u0 + m[4] * u1 + m[5] * u2;
+            y2 += m[6] * u0 + m[7] * u1 + m[8] * u2;
+          }
+        }
+        kstart = gl + B * G;
+      } else {
+        k0 = a.row_ptr[i];
+        len = a.row_ptr[i + 1] - k0;
+      }
+      const int len3 = 3 * len;
+      const T* rv = a.vals + 9 * std::size_t(k0);
+      for (int kk = kstart; kk < len; kk += G) {
+        const int j = __ldg(a.col + k0 + kk);
+        const T u0 = fetch(j, 0), u1 = fetch(j, 1), u2 = fetch(j, 2);
+        const T* bv = rv + 3 * kk;
+        y0 += __ldg(bv) * u0 + __ldg(bv + 1) * u1 + __ldg(bv + 2) * u2;
+        y1 += __ldg(bv + len3) * u0 + __ldg(bv + len3 + 1) * u1 + __ldg(bv + len3 + 2) * u2;
+        y2 += __ldg(bv + 2 * len3) * u0 + __ldg(bv + 2 * len3 + 1) * u1 + __ldg(bv + 2 * len3 + 2) * u2;
+      }
+    }
+    first_pass = false;
+#pragma unroll
+    for (int o = G / 2; o > 0; o >>= 1) {
+      y0 += __shfl_xor_sync(0xffffffffu, y0, o);
+      y1 += __shfl_xor_sync(0xffffffffu, y1, o);
+      y2 += __shfl_xor_sync(0xffffffffu, y2, o);
+    }
+    if (i < a.n && gl < 3) emit(i, gl, gl == 0 ? y0 : (gl == 1 ? y1 : y2));
+  }
+}
+
+/// Reduction ring: the values reduced before barrier m live in slot m % 4.
+struct Ring {
+  int m = 0;
+  __device__ double* slot(DevScratch* s) const { return s->red[m & 3]; }
+  /// After the barrier: read slot m % 4, zero slot (m + 2) % 4, advance. One thread per
+  /// block reads the slot and shares it: every thread of the grid reading one L2 line is a
+  /// hot spot (docs/gpu-notes.md).
+  template <int K>
+  __device__ void take(DevScratch* s, double (&out)[K]) {
+    __shared__ double sh[K];
+    if (threadIdx.x == 0) {
+#pragma unroll
+      for (int k = 0; k < K; ++k) sh[k] = __ldcg(&s->red[m & 3][k]);
+      if (blockIdx.x == 0)
+        for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
+    }
+    __syncthreads();
+#pragma unroll
+    for (int k = 0; k < K; ++k) out[k] = sh[k];
+    ++m;
+  }
+  /// A barrier that carries no reduction still advances the ring (and zeroes ahead).
+  __device__ void skip(DevScratch* s) {
+    if (blockIdx.x == 0 && threadIdx.x == 0)
+      for (int k = 0; k < 4; ++k) s->red[(m + 2) & 3][k] = 0.0;
+    ++m;
+  }
+};
+
+/// The whole PCG of solve_cg.h (same warm start, restart rule, stopping rule and
+/// breakdown test) in one persistent cooperative kernel, then the state update, the rest
+/// rule and the finger outputs. Per iteration two grid barriers: the search direction
+/// p = z + beta p is formed inside the SpMV from z and the previous p (double-buffered),
+/// so its own barrier disappears. B > 0: the first row of each lane group is held in
+/// registers (k_pcg is then launched with at most two blocks per multiprocessor).
+template <class T, int B>
+__global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
+  coop::grid_group grid = coop::this_grid();
+  const int tid = blockIdx.x * blockDim.x + threadIdx.x, nthreads = gridDim.x * blockDim.x;
+  Ring ring;
+  RowCache<T, B> rc;
+  load_row_cache(a, rc);
+
+  // r = b - A x (warm start), ||b||^2, ||r||^2.
+  {
+    double acc[2] = {0, 0};
+    spmv_groups<T, B>(
+        a, rc, [&](int j, int c) { return a.x[3 * j + c]; },
+        [&](int i, int c, T y) {
+          const T bi = a.b[3 * i + c];
+          const T ri = bi - y;
+          a.r[3 * i + c] = ri;
+          acc[0] += double(bi) * double(bi);
+          acc[1] += double(ri) * double(ri);
+        });
+    block_sum_atomic<2>(acc, ring.slot(a.scr));
+  }
+  grid.sync();
+  double br[2];
+  ring.take<2>(a.scr, br);
+  const T bnorm = sqrt(T(br[0]));
+  T rnorm = sqrt(T(br[1]));
+  int it = 0;
+  if (bnorm > T(0)) {
+    const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
+    {
+      double acc[1] = {0};
+      for (int i = tid; i < a.n; i += nthreads) {
+        if (restart)
+          for (int c = 0; c < 3; ++c) {
+            a.x[3 * i + c] = T(0);
+            a.r[3 * i + c] = a.b[3 * i + c];
+          }
+        precondition_row(a.P, a.r, a.z, i);
+        for (int c = 0; c < 3; ++c) acc[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
+      }
+      block_sum_atomic<1>(acc, ring.slot(a.scr));
+    }
+    grid.sync();
+    double rz1[1];
+    ring.take<1>(a.scr, rz1);
+    T rz = T(rz1[0]);
+    if (restart) rnorm = bnorm;
+    T beta = 0;
+    bool first = true;
+    T* pold = a.p0;
+    T* pnew = a.p1;
+    while (it < a.max_it && rnorm > a.tol * bnorm) {
+      // Search direction p = z + beta p (first: p = z) and q = A p.
+      if (!a.fused) {
+        for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];
+        grid.sync();
+        ring.skip(a.scr);
+      }
+      double acc[1] = {0};
+      if (a.fused) {
+        const T* z = a.z;
+        const T* po = pold;
+        T* pn = pnew;
+        const bool fst = first;
+        const T bt = beta;
+        auto pfly = [=](int j, int c) { return fst ? z[3 * j + c] : fma(bt, po[3 * j + c], z[3 * j + c]); };
+        spmv_groups<T, B>(a, rc, pfly, [&](int i, int c, T y) {
+          const T pi = pfly(i, c);
+          pn[3 * i + c] = pi;
+          a.q[3 * i + c] = y;
+          acc[0] += double(pi) * double(y);
+        });
+      } else {
+        const T* pn = pnew;
+        spmv_groups<T, B>(
+            a, rc, [=](int j, int c) { return pn[3 * j + c]; },
+            [&](int i, int c, T y) {
+              a.q[3 * i + c] = y;
+              acc[0] += double(pn[3 * i + c]) * double(y);
+            });
+      }
+      block_sum_atomic<1>(acc, ring.slot(a.scr));
+      grid.sync();
+      double pq1[1];
+      ring.take<1>(a.scr, pq1);
+      const T pq = T(pq1[0]);
+      if (!(pq > T(0))) break;
+      const T alpha = rz / pq;
+      {
+        double acc2[2] = {0, 0};
+        for (int i = tid; i < a.n; i += nthreads) {
+          for (int c = 0; c < 3; ++c) {
+            a.x[3 * i + c] += alpha * pnew[3 * i + c];
+            a.r[3 * i + c] -= alpha * a.q[3 * i + c];
+          }
+          precondition_row(a.P, a.r, a.z, i);
+          for (int c = 0; c < 3; ++c) {
+            const double rr = double(a.r[3 * i + c]);
+            acc2[0] += rr * double(a.z[3 * i + c]);
+            acc2[1] += rr * rr;
+          }
+        }
+        block_sum_atomic<2>(acc2, ring.slot(a.scr));
+      }
+      grid.sync();
+      double rr2[2];
+      ring.take<2>(a.scr, rr2);
+      const T rz_new = T(rr2[0]);
+      rnorm = sqrt(T(rr2[1]));
+      beta = rz_new / rz;
+      rz = rz_new;
+      T* tmp = pold;
+      pold = pnew;
+      pnew = tmp;
+      first = false;
+      ++it;
+    }
+  } else {
+    for (int j = tid; j < 3 * a.n; j += nthreads) a.x[j] = T(0);
+    grid.sync();
+    ring.skip(a.scr);
+  }
+  if (tid == 0) {
+    a.res->cg_iterations = it;
+    a.res->cg_residual = bnorm > T(0) ? double(rnorm / bnorm) : 0.0;
+  }
+  update_state(a);
+  grid.sync();
+  rest_rule(a);
+  grid.sync();
+  // Finger outputs at the end state (v already zeroed when the body came to rest).
+  __shared__ double sacc[kMaxFingers * kFingerVals];
+  for (int t = threadIdx.x; t < kMaxFingers * kFingerVals; t += blockDim.x) sacc[t] = 0.0;
+  __syncthreads();
+  detect_nodes(d, F, k, false, sacc, nullptr, tid, nthreads);
+  zero_contact_terms(d, tid, nthreads);
+  __syncthreads();
+  for (int t = threadIdx.x; t < F.n * kFingerVals; t += blockDim.x)
+    if (sacc[t] != 0.0) atomicAdd(&a.scr->facc[0][0] + t, sacc[t]);
+  grid.sync();
+  if (blockIdx.x == 0) finalize_result(a.scr, a.res, true);
+}
+
+}  // namespace
+
+template <class T>
+PcgLaunch pcg_launch(int n, const CudaTuning& tuning) {
+  const DeviceInfo& d = device_info();
+  PcgLaunch L;
+  L.block = tuning.pcg_block;
+  const int rows_per_block = L.block / kGroup;
+  const int forced = tuning.pcg_grid;
+  const int cap_per_sm = tuning.pcg_blocks_per_sm;
+  // Register-resident rows when one pass of lane groups covers every row.
+  int per_sm_c = 0;
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks>, L.block, 0));
+  if (cap_per_sm > 0) per_sm_c = std::min(per_sm_c, cap_per_sm);
+  const int need = (n + rows_per_block - 1) / rows_per_block;
+  if (tuning.rows_in_registers && per_sm_c > 0 && need <= per_sm_c * d.sms) {
+    L.fn = reinterpret_cast<const void*>(&k_pcg<T, kCacheBlocks>);
+    L.cached = true;
+    L.grid = std::max(need, 1);
+    if (forced > 0) L.grid = std::min(forced, per_sm_c * d.sms);
+    return L;
+  }
+  int per_sm = 0;
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0>, L.block, 0));
+  per_sm = std::max(per_sm, 1);
+  if (cap_per_sm > 0) per_sm = std::min(per_sm, cap_per_sm);
+  const int max_blocks = per_sm * d.sms;
+  // Enough blocks that each lane group gets about one block row per SpMV pass; more only
+  // makes the barriers dearer.
+  L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0>);
+  L.grid = std::clamp(need, 1, max_blocks);
+  if (forced > 0) L.grid = std::min(forced, max_blocks);
+  return L;
+}
+
+template <class T>
+void launch_pcg(cudaStream_t s, const PcgLaunch& L, const PcgArgs<T>& a, const DetectArgs<T>& d, const FingersArg& F,
+                const StepConsts& k) {
+  PcgArgs<T> aa = a;
+  DetectArgs<T> dd = d;
+  FingersArg f = F;
+  StepConsts kk = k;
+  void* args[] = {&aa, &dd, &f, &kk};
+  CU(cudaLaunchCooperativeKernel(L.fn, dim3(L.grid), dim3(L.block), args, 0, s));
+}
+
+template PcgLaunch pcg_launch<float>(int, const CudaTuning&);
+template PcgLaunch pcg_launch<double>(int, const CudaTuning&);
+template void launch_pcg<float>(cudaStream_t, const PcgLaunch&, const PcgArgs<float>&, const DetectArgs<float>&,
+                                const FingersArg&, const StepConsts&);
+template void launch_pcg<double>(cudaStream_t, const PcgLaunch&, const PcgArgs<double>&, const DetectArgs<double>&,
+                                 const FingersArg&, const StepConsts&);
+
+}  // namespace palpation::sim::cuda

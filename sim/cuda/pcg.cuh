@@ -1,0 +1,114 @@
+// PCG stage of the CUDA backends: the PCG of solve_cg.h inside one persistent cooperative
+// kernel (pcg.cu), then the state update, the rest rule and the finger outputs.
+//
+// Header-only here: the arguments, the launch plan, and the device pieces that the
+// textbook baseline (baseline.cu) runs as separate kernels: the block-Jacobi
+// preconditioner, the state update and the rest rule.
+#pragma once
+
+#include "cuda/common.cuh"
+#include "cuda/contact.cuh"
+#include "cuda/tuning.h"
+
+namespace palpation::sim::cuda {
+
+template <class T>
+struct PcgArgs {
+  int n;  // block rows (free nodes)
+  const int* row_ptr;
+  const int* col;
+  const T* vals;
+  const T* P;  // block-Jacobi inverse (n x 9)
+  const T* b;
+  T* x;  // dv: warm start in, solution out
+  T* r;
+  T* z;
+  T* p0;
+  T* p1;
+  T* q;
+  // State update and rest detection.
+  int nnode;
+  const int* free_nodes;
+  T* xpos;
+  T* vel;
+  T h;
+  T tol;
+  int max_it;
+  int fused;  // 1: search direction updated inside the SpMV (2 barriers per iteration)
+  DevScratch* scr;
+  DevResult* res;
+};
+
+/// z_i = P_i r_i: block row i of the block-Jacobi preconditioner (P: n x 9, row-major).
+template <class T>
+__device__ __forceinline__ void precondition_row(const T* P, const T* r, T* z, int i) {
+  const T* Pi = P + 9 * i;
+  const T r0 = r[3 * i], r1 = r[3 * i + 1], r2 = r[3 * i + 2];
+  z[3 * i] = Pi[0] * r0 + Pi[1] * r1 + Pi[2] * r2;
+  z[3 * i + 1] = Pi[3] * r0 + Pi[4] * r1 + Pi[5] * r2;
+  z[3 * i + 2] = Pi[6] * r0 + Pi[7] * r1 + Pi[8] * r2;
+}
+
+/// v += dv, x += h v over the free nodes; block maxima of |v| and |dv| into the scratch.
+template <class T>
+__device__ void update_state(const PcgArgs<T>& a) {
+  double vmax = 0, dvmax = 0;
+  bool bad = false;
+  for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < a.n; i += gridDim.x * blockDim.x) {
+    const int node = a.free_nodes[i];
+#pragma unroll
+    for (int c = 0; c < 3; ++c) {
+      const T dv = a.x[3 * i + c];
+      const T v = a.vel[3 * node + c] + dv;
+      a.vel[3 * node + c] = v;
+      a.xpos[3 * node + c] += a.h * v;
+      vmax = fmax(vmax, double(fabs(v)));
+      dvmax = fmax(dvmax, double(fabs(dv)));
+      bad = bad || !isfinite(v) || !isfinite(dv);
+    }
+  }
+  // A non-finite velocity must reach the host (fmax drops NaN): report it as +inf.
+  if (bad) vmax = dvmax = INFINITY;
+  double m2[2] = {vmax, dvmax};
+  unsigned long long* const dst[2] = {&a.scr->vmax_bits, &a.scr->dvmax_bits};
+  block_max_atomic<2>(m2, dst);
+}
+
+/// Rest rule of backend_cpu.cpp: no contact at the start, |v| < 1e-6, |dv| < 1e-7 ->
+/// v = 0. Every thread reads the same global values and takes the same branch.
+template <class T>
+__device__ void rest_rule(const PcgArgs<T>& a) {
+  __shared__ bool sh_rested;
+  if (threadIdx.x == 0) {
+    const volatile DevScratch* sc = a.scr;
+    const T vmax = T(bits_to_double(sc->vmax_bits)), dvmax = T(bits_to_double(sc->dvmax_bits));
+    sh_rested = sc->start_contacts == 0 && vmax < T(1e-6) && dvmax < T(1e-7);
+  }
+  __syncthreads();
+  const bool rested = sh_rested;
+  if (rested)
+    for (int j = blockIdx.x * blockDim.x + threadIdx.x; j < 3 * a.nnode; j += gridDim.x * blockDim.x) a.vel[j] = T(0);
+  if (blockIdx.x == 0 && threadIdx.x == 0) a.scr->rested = rested ? 1 : 0;
+}
+
+/// Launch configuration of the persistent kernel for n block rows. Default: blocks of 512
+/// threads, at most one per multiprocessor where the rows live in registers (fewer blocks
+/// make the grid barriers and the reductions cheaper: measured, docs/gpu-notes.md).
+struct PcgLaunch {
+  const void* fn = nullptr;
+  int grid = 1;
+  int block = kPcgMaxBlock;
+  bool cached = false;  // every row's matrix held in registers
+};
+
+/// The launch configuration of k_pcg for n block rows on this device, with the knobs of
+/// `tuning` (pcg_block, pcg_grid, pcg_blocks_per_sm, rows_in_registers).
+template <class T>
+PcgLaunch pcg_launch(int n, const CudaTuning& tuning);
+
+/// Launches the persistent kernel L.fn (cooperative) in stream s.
+template <class T>
+void launch_pcg(cudaStream_t s, const PcgLaunch& L, const PcgArgs<T>& a, const DetectArgs<T>& d, const FingersArg& F,
+                const StepConsts& k);
+
+}  // namespace palpation::sim::cuda

@@ -1,0 +1,35 @@
+// CudaTuning::from_environment: the one place where the CUDA backends read the environment.
+#include "cuda/tuning.h"
+
+#include <cstdlib>
+#include <string>
+
+namespace palpation::sim::cuda {
+
+namespace {
+
+int env_int(const char* name, int fallback) {
+  const char* s = std::getenv(name);
+  if (!s || !*s) return fallback;
+  return std::atoi(s);
+}
+
+std::string env_str(const char* name, const std::string& fallback) {
+  const char* s = std::getenv(name);
+  return (s && *s) ? std::string(s) : fallback;
+}
+
+}  // namespace
+
+CudaTuning CudaTuning::from_environment() {
+  CudaTuning t;
+  t.pcg_block = env_int("PALPATION_CUDA_PCG_BLOCK", 512) == 256 ? 256 : 512;
+  t.pcg_grid = env_int("PALPATION_CUDA_GRID", 0);
+  t.pcg_blocks_per_sm = env_int("PALPATION_CUDA_BLOCKS_PER_SM", 0);
+  t.rows_in_registers = env_int("PALPATION_CUDA_CACHE", 1) != 0;
+  t.fused_cg = env_str("PALPATION_CUDA_CG", "fused") != "3sync";
+  t.profile = env_int("PALPATION_CUDA_PROFILE", 0) != 0;
+  return t;
+}
+
+}  // namespace palpation::sim::cuda

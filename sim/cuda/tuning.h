@@ -1,0 +1,37 @@
+// Tuning knobs of the CUDA backends: the switches for measurements that
+// docs/gpu-notes.md (section 3) compares. Every one is read from the environment in one
+// place, CudaTuning::from_environment(), when a backend is made (and when the floor is
+// measured), and passed to the code that uses it. The defaults are the measured choices;
+// none of the knobs changes the arithmetic of a step, only how the work is laid out on the
+// GPU (CG iteration counts and results agree to rounding either way).
+#pragma once
+
+namespace palpation::sim::cuda {
+
+struct CudaTuning {
+  /// PALPATION_CUDA_PCG_BLOCK: threads per block of the persistent PCG kernel (k_pcg).
+  /// 256 when the variable is 256, else 512 (default: one fat block per multiprocessor).
+  int pcg_block = 512;
+  /// PALPATION_CUDA_GRID: blocks of the persistent PCG kernel, capped at what can be
+  /// resident at once. 0 (default, or any value <= 0): as many lane groups as block rows.
+  int pcg_grid = 0;
+  /// PALPATION_CUDA_BLOCKS_PER_SM: caps the resident PCG blocks per multiprocessor that the
+  /// launch plans with. 0 (default, or any value <= 0): the occupancy calculator's figure.
+  int pcg_blocks_per_sm = 0;
+  /// PALPATION_CUDA_CACHE: 0 streams the matrix from memory in every CG iteration; any
+  /// other value (default 1) holds each lane group's first block row in registers for the
+  /// whole solve where one pass of lane groups covers every row.
+  bool rows_in_registers = true;
+  /// PALPATION_CUDA_CG: "3sync" forms the search direction p = z + beta p in a phase of its
+  /// own (three grid barriers per iteration); anything else (default "fused") forms it
+  /// inside the SpMV (two barriers per iteration).
+  bool fused_cg = true;
+  /// PALPATION_CUDA_PROFILE: non-zero times the stages of each solved step with events and
+  /// prints their medians on stderr when the backend is destroyed. Default 0 (off).
+  bool profile = false;
+
+  /// Reads every knob above from the environment (unset or empty: the default).
+  static CudaTuning from_environment();
+};
+
+}  // namespace palpation::sim::cuda
