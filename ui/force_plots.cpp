@@ -140,7 +140,7 @@ void ForcePlots::changeEvent(QEvent* e) {
   QWidget::changeEvent(e);
 }
 
-void ForcePlots::add_sample(const app::TickSample& s) {
+void ForcePlots::add_sample(const app::live::TickSample& s) {
   if (paused_ || s.finger < 0 || s.finger >= 5) return;
   if (!data_[s.finger].empty() && s.t - last_t_[s.finger] < 0.02) return;  // 50 Hz is plenty for the eye
   last_t_[s.finger] = s.t;
@@ -150,7 +150,7 @@ void ForcePlots::add_sample(const app::TickSample& s) {
   while (!data_[s.finger].empty() && data_[s.finger].front().t < s.t - window_) data_[s.finger].pop_front();
 }
 
-void ForcePlots::add_step_sample(const app::StepSample& s) {
+void ForcePlots::add_step_sample(const app::live::StepSample& s) {
   for (int f = 0; f < 5; ++f) sim_force_[f] = s.in[f].active ? s.force[f] : Eigen::Vector3d::Zero();
 }
 

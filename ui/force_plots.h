@@ -3,8 +3,8 @@
 // Two forces per finger, told apart by line style: solid, the force sent to the device
 // (after the haptic loop's safety filter: clamped to the device limit, drawn as a dotted
 // line, and rate-limited); dashed, the simulated contact force (the FEM's, per
-// simulation step). Fed with the workstation's tick telemetry (app::TickSample,
-// decimated to 50 Hz) and step telemetry (app::StepSample).
+// simulation step). Fed with the workstation's tick telemetry (app::live::TickSample,
+// decimated to 50 Hz) and step telemetry (app::live::StepSample).
 #pragma once
 
 #include <array>
@@ -29,10 +29,10 @@ class ForcePlots : public QWidget {
  public:
   explicit ForcePlots(QWidget* parent = nullptr);
   /// A tick sample (GUI thread). Kept at most every 20 ms per finger.
-  void add_sample(const app::TickSample& s);
+  void add_sample(const app::live::TickSample& s);
   /// A simulation step (GUI thread): the simulated contact forces, shown with the next
   /// tick samples.
-  void add_step_sample(const app::StepSample& s);
+  void add_step_sample(const app::live::StepSample& s);
   /// The device's force limit (N), drawn as a line; default 4 N.
   void set_device_limit(double newtons);
   /// Largest force held for finger f (N): sent to the device, and simulated.

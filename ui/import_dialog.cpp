@@ -23,7 +23,7 @@
 
 namespace palpation::ui {
 
-ImportDialog::ImportDialog(app::PatientLibrary* library, QWidget* parent) : QDialog(parent), library_(library) {
+ImportDialog::ImportDialog(app::store::PatientLibrary* library, QWidget* parent) : QDialog(parent), library_(library) {
   setObjectName(QStringLiteral("ImportDialog"));
   file = new QLineEdit;
   browse = new QPushButton;
@@ -181,7 +181,7 @@ void ImportDialog::start_import() {
     error->setText(tr("Choose a scan file (STL, OBJ or PLY) first."));
     return;
   }
-  app::ImportOptions o;
+  app::scan::ImportOptions o;
   o.edge = edge();
   o.scale = scale->currentData().toDouble();
   if (!base_auto->isChecked()) {
@@ -190,7 +190,7 @@ void ImportDialog::start_import() {
       error->setText(tr("The base plane's normal must not be zero."));
       return;
     }
-    app::BasePlane b;
+    app::scan::BasePlane b;
     b.normal = n.normalized();
     b.offset = base[3]->value() / n.norm();
     b.automatic = false;
@@ -239,7 +239,7 @@ void ImportDialog::poll() {
                       .arg(r->base.normal.y(), 0, 'f', 3)
                       .arg(r->base.normal.z(), 0, 'f', 3)
                       .arg(r->base.area * 1e4, 0, 'f', 1));
-  preview->set_patient(app::preview_geometry(r->mesh, ++generation_));
+  preview->set_patient(app::scan::preview_geometry(r->mesh, ++generation_));
   preview->set_camera(VtkView::CameraPreset::Oblique);
   preview->update();
   save->setEnabled(library_ != nullptr);
@@ -260,7 +260,7 @@ void ImportDialog::save_patient() {
                          .arg(n, QString::fromStdString(library_->location())));
       return;
     }
-    library_->add(app::imported_patient_record(*r, n.toStdString(), imported_file_.toStdString(), imported_edge_));
+    library_->add(app::scan::imported_patient_record(*r, n.toStdString(), imported_file_.toStdString(), imported_edge_));
   } catch (const std::exception& e) {
     error->setText(QString::fromStdString(e.what()));
     return;

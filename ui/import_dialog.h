@@ -1,6 +1,6 @@
 // "Import scan..." (issue 6): a scanned breast (STL, OBJ, PLY) made into a library patient.
 // File, name, resolution, scale, base plane (found automatically, or given by hand),
-// progress with Cancel (the import runs on app::ScanImportJob's thread, never on the GUI
+// progress with Cancel (the import runs on app::scan::ScanImportJob's thread, never on the GUI
 // thread), a preview of the tetrahedral mesh in a 3-D view, "Save as patient". Errors
 // from the importer are shown as they come: the file and what is wrong with it.
 #pragma once
@@ -18,7 +18,7 @@ class QProgressBar;
 class QPushButton;
 class QTimer;
 
-namespace palpation::app {
+namespace palpation::app::store {
 class PatientLibrary;
 }
 
@@ -30,7 +30,7 @@ class ImportDialog : public QDialog {
   Q_OBJECT
  public:
   /// `library` may be null (then Save is disabled and says why).
-  ImportDialog(app::PatientLibrary* library, QWidget* parent = nullptr);
+  ImportDialog(app::store::PatientLibrary* library, QWidget* parent = nullptr);
   ~ImportDialog() override;
 
   QLineEdit *file = nullptr, *name = nullptr;
@@ -63,8 +63,8 @@ class ImportDialog : public QDialog {
   void save_patient();
   double edge() const;
 
-  app::PatientLibrary* library_;
-  app::ScanImportJob job_;
+  app::store::PatientLibrary* library_;
+  app::scan::ScanImportJob job_;
   QTimer* timer_ = nullptr;
   QString saved_, imported_file_;
   double imported_edge_ = 0;

@@ -59,9 +59,9 @@ int main(int argc, char** argv) {
 
   if (cli.isSet(review)) {
     // Review mode alone: a student's machine needs no device and no live simulation.
-    std::unique_ptr<palpation::app::ReviewSession> session;
+    std::unique_ptr<palpation::app::review::ReviewSession> session;
     try {
-      session = std::make_unique<palpation::app::ReviewSession>(cli.value(review).toStdString());
+      session = std::make_unique<palpation::app::review::ReviewSession>(cli.value(review).toStdString());
     } catch (const std::exception& e) {
       std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
       return 2;
@@ -103,8 +103,8 @@ int main(int argc, char** argv) {
     return app.exec();
   }
 
-  palpation::app::WorkstationOptions opt;
-  opt.scenario = palpation::app::default_workstation_scenario();
+  palpation::app::live::WorkstationOptions opt;
+  opt.scenario = palpation::app::live::default_workstation_scenario();
   const std::string res = cli.value(resolution).toStdString();
   if (auto e = palpation::sim::resolution_edge("breast", res)) {
     opt.scenario.patient.resolution = res;
@@ -134,9 +134,9 @@ int main(int argc, char** argv) {
     opt.robot_address = r.left(colon).toStdString();
     opt.robot_port = port;
   }
-  std::unique_ptr<palpation::app::Workstation> ws;
+  std::unique_ptr<palpation::app::live::Workstation> ws;
   try {
-    ws = std::make_unique<palpation::app::Workstation>(opt);
+    ws = std::make_unique<palpation::app::live::Workstation>(opt);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
     return 2;

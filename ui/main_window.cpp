@@ -37,7 +37,7 @@
 
 namespace palpation::ui {
 
-MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, const QString& record_path)
+MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent, const QString& record_path)
     : QMainWindow(parent), ws_(std::move(ws)) {
   setObjectName(QStringLiteral("MainWindow"));
   setWindowIcon(QIcon(QStringLiteral(":/icons/palpation.png")));
@@ -57,11 +57,11 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   patient_panel_ = new PatientPanel;
   try {
     // The CLI's library (palpation patient ...): $PALPATION_DB, else <data>/palpation/patients.sqlite.
-    app::PatientLibrary::Options lo;
+    app::store::PatientLibrary::Options lo;
     if (qEnvironmentVariableIsEmpty("PALPATION_DB"))
       lo.db = (QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation) + QStringLiteral("/palpation/patients.sqlite"))
                   .toStdString();
-    library_ = std::make_unique<app::PatientLibrary>(lo);
+    library_ = std::make_unique<app::store::PatientLibrary>(lo);
   } catch (const std::exception& e) {
     library_error_ = QString::fromStdString(e.what());
   }
@@ -125,7 +125,7 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
     ws_->set_params(p);
   });
   connect(device_panel_->mode, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int i) {
-    ws_->device().set_mode(i == 1 ? app::HandMode::Mouse : app::HandMode::Script);
+    ws_->device().set_mode(i == 1 ? app::live::HandMode::Mouse : app::live::HandMode::Script);
     if (i == 1) ws_->set_mouse_finger(Eigen::Vector3d::Zero(), false);
     view_->set_tool(i == 1 ? VtkView::Tool::Palpate : VtkView::Tool::Camera);
     if (i == 1)
@@ -148,16 +148,16 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   connect(view_, &VtkView::brushDab, this, &MainWindow::on_brush);
   connect(view_, &VtkView::brushStrokeEnded, this, [this] { editor_->end_stroke(); });
   connect(view_, &VtkView::palpateTarget, this, [this](const Eigen::Vector3d& c, bool present) {
-    if (ws_->device().mode() != app::HandMode::Mouse) {
-      ws_->device().set_mode(app::HandMode::Mouse);
+    if (ws_->device().mode() != app::live::HandMode::Mouse) {
+      ws_->device().set_mode(app::live::HandMode::Mouse);
     }
     ws_->set_mouse_finger(c, present);
   });
   connect(editor_, &TumourEditor::changed, this, [this] { view_->set_element_young(editor_->young()); });
-  ws_->add_tick_listener([this](const app::TickSample& s) { plots_->add_sample(s); });
-  ws_->add_step_listener([this](const app::StepSample& s) { plots_->add_step_sample(s); });
+  ws_->add_tick_listener([this](const app::live::TickSample& s) { plots_->add_sample(s); });
+  ws_->add_step_listener([this](const app::live::StepSample& s) { plots_->add_step_sample(s); });
   plots_->set_device_limit(std::min(ws_->device_config().loop.safety.max_force, ws_->device_config().hand.capabilities.max_force));
-  ws_->add_event_listener([this](const app::Event& e) {
+  ws_->add_event_listener([this](const app::live::Event& e) {
     statusBar()->showMessage(QString::fromStdString(e.text), 4000);
   });
 
@@ -187,7 +187,7 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
   const QString folder = recordings_folder();
   QDir().mkpath(folder);
   QStringList recovered;
-  for (const auto& line : app::recover_interrupted_recordings(folder.toStdString())) recovered << QString::fromStdString(line);
+  for (const auto& line : app::review::recover_interrupted_recordings(folder.toStdString())) recovered << QString::fromStdString(line);
   QString path = record_path;
   if (path.isEmpty())
     path = QDir(folder).filePath(QStringLiteral("session-%1.palrec").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-HHmmss-zzz"))));
@@ -197,7 +197,7 @@ MainWindow::MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent, co
                             {"stereo", int(view_->stereo())},
                             {"patient", patient_panel_->chosen().toStdString()},
                             {"library", library_ ? library_->location() : std::string()}};
-    recorder_ = std::make_unique<app::WorkstationRecorder>(*ws_, path.toStdString(), recorded_settings);
+    recorder_ = std::make_unique<app::review::WorkstationRecorder>(*ws_, path.toStdString(), recorded_settings);
   } catch (const std::exception& e) {
     statusBar()->showMessage(tr("This session is not recorded: %1").arg(QString::fromStdString(e.what())));
   }
@@ -240,7 +240,7 @@ bool MainWindow::choose_patient(const QString& name, QString* error) {
   sim::Scenario s;
   try {
     if (name == QLatin1String("phantom:breast") || name == QLatin1String("phantom:box")) {
-      s = app::default_workstation_scenario();
+      s = app::live::default_workstation_scenario();
       if (name.endsWith(QLatin1String("box"))) {
         s.patient.phantom = "box";
         s.patient.size = Eigen::Vector3d(0.1, 0.1, 0.05);
@@ -252,7 +252,7 @@ bool MainWindow::choose_patient(const QString& name, QString* error) {
       if (!library_) throw std::runtime_error(tr("no patient library is open: %1").arg(library_error_).toStdString());
       const auto rec = library_->find(name.toStdString());
       if (!rec) throw std::runtime_error(library_->location() + ": no patient named \"" + name.toStdString() + "\"");
-      s = app::library_patient_scenario(
+      s = app::scan::library_patient_scenario(
           *rec, (QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/meshes")).toStdString());
       if (!s.patient.phantom.empty()) {  // the workstation's resolution, not the library's default
         const std::string r = patient_panel_->resolution->currentData().toString().toStdString();
@@ -299,9 +299,9 @@ int MainWindow::mark_lump() {
 }
 
 ReviewWindow* MainWindow::open_recording(const QString& path, QString* error) {
-  std::unique_ptr<app::ReviewSession> s;
+  std::unique_ptr<app::review::ReviewSession> s;
   try {
-    s = std::make_unique<app::ReviewSession>(path.toStdString());
+    s = std::make_unique<app::review::ReviewSession>(path.toStdString());
   } catch (const std::exception& e) {
     if (error) *error = QString::fromStdString(e.what());
     return nullptr;
@@ -577,7 +577,7 @@ void MainWindow::tick() {
     last_status_ = now;
     update_status();
     const auto& s = ws_->stats();
-    if (ws_->device().mode() == app::HandMode::Mouse)
+    if (ws_->device().mode() == app::live::HandMode::Mouse)
       // Numbers and units only: VTK's built-in font has no Japanese glyphs.
       view_->set_overlay_text(QStringLiteral("F = %1 N    press %2 mm")
                                   .arg(s.force_n[1], 0, 'f', 2)
@@ -606,7 +606,7 @@ void MainWindow::update_status() {
   st_step_->setText(tr("Simulation: %1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
   st_haptic_->setText(tr("Haptic: %1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
   const QString dev = !ws_->simulated_device() ? QString::fromStdString(ws_->device_description())
-                      : ws_->device().mode() == app::HandMode::Mouse ? tr("mouse")
+                      : ws_->device().mode() == app::live::HandMode::Mouse ? tr("mouse")
                                                                                     : tr("simulated HandHIRO");
   st_device_->setText(tr("Device: %1, %2").arg(dev, s.connected ? tr("connected") : tr("not connected")));
   st_fps_->setText(tr("View: %1 fps").arg(fps_, 0, 'f', 0));

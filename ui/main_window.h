@@ -12,8 +12,10 @@
 
 #include "live/workstation.h"
 
-namespace palpation::app {
+namespace palpation::app::store {
 class PatientLibrary;
+}
+namespace palpation::app::review {
 class WorkstationRecorder;
 }
 
@@ -44,10 +46,10 @@ class MainWindow : public QMainWindow {
   /// Starts `ws` (the window owns it) and records the session (issue 6) into
   /// `record_path`, or, when empty, a new file in the recordings folder
   /// (recordings_folder()); interrupted recordings there are recovered first.
-  explicit MainWindow(std::unique_ptr<app::Workstation> ws, QWidget* parent = nullptr, const QString& record_path = {});
+  explicit MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent = nullptr, const QString& record_path = {});
   ~MainWindow() override;
 
-  app::Workstation& workstation() { return *ws_; }
+  app::live::Workstation& workstation() { return *ws_; }
   VtkView* view() const { return view_; }
   TumourEditor* editor() const { return editor_; }
   ForcePlots* plots() const { return plots_; }
@@ -60,9 +62,9 @@ class MainWindow : public QMainWindow {
   /// Where GUI sessions record: $PALPATION_RECORDINGS, else <app data>/recordings.
   static QString recordings_folder();
   /// The patient library (null when it could not be opened; the reason is in library_error()).
-  app::PatientLibrary* library() const { return library_.get(); }
+  app::store::PatientLibrary* library() const { return library_.get(); }
   QString library_error() const { return library_error_; }
-  app::WorkstationRecorder* recorder() const { return recorder_.get(); }
+  app::review::WorkstationRecorder* recorder() const { return recorder_.get(); }
   /// Chooses a patient (library name or "phantom:breast" / "phantom:box") and loads it.
   /// False (and `error` set) when it is unknown or cannot be built.
   bool choose_patient(const QString& name, QString* error = nullptr);
@@ -100,7 +102,7 @@ class MainWindow : public QMainWindow {
   void update_status();
   void on_brush(const Eigen::Vector3d& p, const Eigen::Vector3d& n, bool first);
 
-  std::unique_ptr<app::Workstation> ws_;
+  std::unique_ptr<app::live::Workstation> ws_;
   VtkView* view_ = nullptr;
   TumourEditor* editor_ = nullptr;
   ForcePlots* plots_ = nullptr;
@@ -129,9 +131,9 @@ class MainWindow : public QMainWindow {
   double fps_ = 0;
   sim::Scenario scenario_;
   sim::Scenario chosen_;  // the chosen patient, before the panel's resolution and tissue
-  std::unique_ptr<app::PatientLibrary> library_;
+  std::unique_ptr<app::store::PatientLibrary> library_;
   QString library_error_;
-  std::unique_ptr<app::WorkstationRecorder> recorder_;
+  std::unique_ptr<app::review::WorkstationRecorder> recorder_;
   QPointer<ReviewWindow> review_;
   QPointer<ImportDialog> import_;
   QAction *a_open_rec_ = nullptr, *a_mark_ = nullptr;

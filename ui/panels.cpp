@@ -340,8 +340,8 @@ void SimulationPanel::changeEvent(QEvent* e) {
   QWidget::changeEvent(e);
 }
 
-void SimulationPanel::show_stats(const app::LiveStats& s, const QString& be) {
-  // The state word translated (app::LiveStats::state is English); an error's reason stays as
+void SimulationPanel::show_stats(const app::live::LiveStats& s, const QString& be) {
+  // The state word translated (app::live::LiveStats::state is English); an error's reason stays as
   // the simulation wrote it.
   const std::string& st = s.state;
   const QString word = st == "stopped"                ? tr("stopped")
@@ -413,7 +413,7 @@ void DevicePanel::changeEvent(QEvent* e) {
   QWidget::changeEvent(e);
 }
 
-void DevicePanel::show_stats(const app::LiveStats& s) {
+void DevicePanel::show_stats(const app::live::LiveStats& s) {
   for (int f = 0; f < 5; ++f) {
     bars[f]->setValue(int(std::min(s.force_n[f], max_force_) * 100));
     attached[f]->setText(s.attached[f] ? tr("attached") : tr("released"));

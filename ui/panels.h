@@ -92,7 +92,7 @@ class SimulationPanel : public QWidget {
   Q_OBJECT
  public:
   explicit SimulationPanel(QWidget* parent = nullptr);
-  void show_stats(const app::LiveStats& s, const QString& backend);
+  void show_stats(const app::live::LiveStats& s, const QString& backend);
   QComboBox* backend = nullptr;
   QDoubleSpinBox* tolerance = nullptr;
   QSpinBox* iterations = nullptr;
@@ -111,7 +111,7 @@ class DevicePanel : public QWidget {
   Q_OBJECT
  public:
   explicit DevicePanel(double max_force, QWidget* parent = nullptr);
-  void show_stats(const app::LiveStats& s);
+  void show_stats(const app::live::LiveStats& s);
   QComboBox* mode = nullptr;
   QLineEdit* address = nullptr;
   std::array<QProgressBar*, 5> bars{};

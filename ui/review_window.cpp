@@ -94,7 +94,7 @@ void Timeline::mouseMoveEvent(QMouseEvent* e) {
 }
 
 // ---------------------------------------------------------------------------------------
-ReviewWindow::ReviewWindow(std::unique_ptr<app::ReviewSession> session, QWidget* parent)
+ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, QWidget* parent)
     : QMainWindow(parent), session_(std::move(session)) {
   setObjectName(QStringLiteral("ReviewWindow"));
   setAttribute(Qt::WA_DeleteOnClose, false);

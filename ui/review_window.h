@@ -1,8 +1,8 @@
 // Review mode for students (issue 6): a recorded session played back. The 3-D view shows
-// the session re-simulated from the recorded input (app::ReviewSession's worker thread),
+// the session re-simulated from the recorded input (app::review::ReviewSession's worker thread),
 // the force plots follow the timeline, instructor events and trainee marks sit on the
 // timeline and in a list; play, pause, scrub, speed 0.25x to 4x; CSV and PNG-frame export.
-// The widgets display app::ReviewSession; they hold no state of their own.
+// The widgets display app::review::ReviewSession; they hold no state of their own.
 #pragma once
 
 #include <array>
@@ -33,7 +33,7 @@ class Timeline : public QWidget {
   Q_OBJECT
  public:
   explicit Timeline(QWidget* parent = nullptr);
-  void show_session(const app::ReviewSession* s) { session_ = s; update(); }
+  void show_session(const app::review::ReviewSession* s) { session_ = s; update(); }
   /// Time at a widget x (s).
   double time_at(int x) const;
   int x_at(double t) const;
@@ -45,17 +45,17 @@ class Timeline : public QWidget {
   void mousePressEvent(QMouseEvent* e) override;
   void mouseMoveEvent(QMouseEvent* e) override;
  private:
-  const app::ReviewSession* session_ = nullptr;
+  const app::review::ReviewSession* session_ = nullptr;
 };
 
 class ReviewWindow : public QMainWindow {
   Q_OBJECT
  public:
   /// Opens the review of `session` and starts its re-simulation.
-  explicit ReviewWindow(std::unique_ptr<app::ReviewSession> session, QWidget* parent = nullptr);
+  explicit ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, QWidget* parent = nullptr);
   ~ReviewWindow() override;
 
-  app::ReviewSession& session() { return *session_; }
+  app::review::ReviewSession& session() { return *session_; }
   VtkView* view() const { return view_; }
   Timeline* timeline() const { return timeline_; }
   QPushButton* play_button() const { return play_; }
@@ -87,7 +87,7 @@ class ReviewWindow : public QMainWindow {
   void refresh_series();
   void update_difference();
 
-  std::unique_ptr<app::ReviewSession> session_;
+  std::unique_ptr<app::review::ReviewSession> session_;
   VtkView* view_ = nullptr;
   Timeline* timeline_ = nullptr;
   QPushButton *play_ = nullptr, *csv_ = nullptr, *png_ = nullptr;
@@ -103,7 +103,7 @@ class ReviewWindow : public QMainWindow {
   qint64 last_tick_ms_ = 0, last_series_ms_ = 0;
   std::uint64_t generation_ = 0;
   std::size_t series_done_ = 0;
-  const app::ReviewFrame* shown_ = nullptr;
+  const app::review::ReviewFrame* shown_ = nullptr;
 };
 
 }  // namespace palpation::ui

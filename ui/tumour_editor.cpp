@@ -74,9 +74,9 @@ class MaterialCommand : public QUndoCommand {
 
 }  // namespace
 
-TumourEditor::TumourEditor(app::Workstation* ws, QObject* parent) : QObject(parent), ws_(ws) {}
+TumourEditor::TumourEditor(app::live::Workstation* ws, QObject* parent) : QObject(parent), ws_(ws) {}
 
-void TumourEditor::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
+void TumourEditor::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
   g_ = std::move(g);
   young_ = g_ ? g_->young : std::vector<double>{};
   tumours_.clear();

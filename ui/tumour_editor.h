@@ -1,6 +1,6 @@
 // Tumours as the instructor edits them: per-element Young's modulus (the document), the
 // list of tumours (added by shape or painted), and undo commands. Every change goes to the
-// running simulation as one queued material command (app::Workstation::set_element_young:
+// running simulation as one queued material command (app::live::Workstation::set_element_young:
 // the model's per-element materials, then Backend::update_materials(), no remeshing).
 // A brush stroke (press, drag, release) is one undo step.
 #pragma once
@@ -32,9 +32,9 @@ class TumourEditor : public QObject {
   Q_OBJECT
 
  public:
-  explicit TumourEditor(app::Workstation* ws, QObject* parent = nullptr);
-  void set_patient(std::shared_ptr<const app::PatientGeometry> g);
-  std::shared_ptr<const app::PatientGeometry> patient() const { return g_; }
+  explicit TumourEditor(app::live::Workstation* ws, QObject* parent = nullptr);
+  void set_patient(std::shared_ptr<const app::live::PatientGeometry> g);
+  std::shared_ptr<const app::live::PatientGeometry> patient() const { return g_; }
   QUndoStack* undo_stack() { return &undo_; }
   const std::vector<double>& young() const { return young_; }
   QStringList tumour_names() const;
@@ -66,8 +66,8 @@ class TumourEditor : public QObject {
   void changed();
 
  private:
-  app::Workstation* ws_;
-  std::shared_ptr<const app::PatientGeometry> g_;
+  app::live::Workstation* ws_;
+  std::shared_ptr<const app::live::PatientGeometry> g_;
   std::vector<double> young_;
   struct Tumour {
     QString name;  // English (shown through RecordedText: tumour_names())

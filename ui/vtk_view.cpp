@@ -591,7 +591,7 @@ bool VtkView::quad_buffer_available(QString* why) {
   return granted == 1;
 }
 
-void VtkView::set_patient(std::shared_ptr<const app::PatientGeometry> g) {
+void VtkView::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
   geometry_ = std::move(g);
   if (!geometry_) return;
   const auto& rest = geometry_->rest;
@@ -648,7 +648,7 @@ void VtkView::update_normals() {
   normals_->Modified();
 }
 
-void VtkView::update_scalars(const app::RenderSnapshot* s) {
+void VtkView::update_scalars(const app::live::RenderSnapshot* s) {
   if (!geometry_ || colour_map_ == ColourMap::None) return;
   const auto& rest = geometry_->rest;
   float* out = scalars_->GetPointer(0);
@@ -666,7 +666,7 @@ void VtkView::update_scalars(const app::RenderSnapshot* s) {
   scalars_->Modified();
 }
 
-void VtkView::show_snapshot(const app::RenderSnapshot& s) {
+void VtkView::show_snapshot(const app::live::RenderSnapshot& s) {
   QElapsedTimer timer;
   timer.start();
   bool changed = false;

@@ -69,9 +69,9 @@ class VtkView : public QWidget {
   ~VtkView() override;
 
   /// A new patient: rebuilds the surface and tumour geometry.
-  void set_patient(std::shared_ptr<const app::PatientGeometry> g);
+  void set_patient(std::shared_ptr<const app::live::PatientGeometry> g);
   /// The newest snapshot (deformed nodes, fingertips). Schedules a render.
-  void show_snapshot(const app::RenderSnapshot& s);
+  void show_snapshot(const app::live::RenderSnapshot& s);
   /// Elements whose modulus is above the tissue's are drawn as tumours.
   void set_element_young(const std::vector<double>& young);
   void set_tumours_visible(bool on);
@@ -176,7 +176,7 @@ class VtkView : public QWidget {
   void palpate_at(const QPoint& pos);
   void forward_mouse(QMouseEvent* e, unsigned long vtk_event);
   void update_normals();
-  void update_scalars(const app::RenderSnapshot* s);
+  void update_scalars(const app::live::RenderSnapshot* s);
   void render_vtk();
   void apply_style();
   // The native window's side: first exposure creates the context and initializes VTK's
@@ -204,7 +204,7 @@ class VtkView : public QWidget {
   std::vector<vtkSmartPointer<vtkActor>> finger_actors_;
   vtkNew<vtkCellPicker> picker_;
   vtkNew<vtkTextActor> overlay_;
-  std::shared_ptr<const app::PatientGeometry> geometry_;
+  std::shared_ptr<const app::live::PatientGeometry> geometry_;
   std::vector<double> young_;
   std::vector<float> shown_positions_, shown_stress_;  // what the last render showed
   std::array<Eigen::Vector3d, 5> shown_fingers_{};

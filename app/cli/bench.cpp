@@ -21,7 +21,10 @@
 #include "simulation.h"
 #include "cli/trace.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::percentile;
+using store::OutputDir;
 
 namespace {
 
@@ -235,4 +238,4 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
   return report;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

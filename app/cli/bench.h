@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 struct BenchOptions {
   std::vector<std::string> meshes{"coarse", "paper", "xfine"};
@@ -34,4 +34,4 @@ struct BenchSetting {
 /// Runs the sweep; prints the table on stdout. Returns the JSON report.
 nlohmann::json run_bench(const BenchOptions& opt);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -9,7 +9,7 @@
 
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;
@@ -35,4 +35,4 @@ CommandAction add_replay_command(CLI::App& app);
 CommandAction add_patient_command(CLI::App& app);
 #endif
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -1,6 +1,6 @@
 #include "cli/cli.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend, const std::string& resolution) {
   sim::Scenario s;
@@ -21,4 +21,4 @@ sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backe
   return s;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

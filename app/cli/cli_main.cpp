@@ -5,7 +5,7 @@
 #include "scenario.h"
 
 int main(int argc, char** argv) {
-  using namespace palpation::app;
+  using namespace palpation::app::cli;
   CLI::App app{"palpation: breast-cancer palpation trainer, command line (see README)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("palpation ") + PALPATION_VERSION + " (" + PALPATION_GIT_COMMIT + ")");

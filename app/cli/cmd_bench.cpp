@@ -4,7 +4,7 @@
 #include "cli/bench.h"
 #include "cli/cli.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 CommandAction add_bench_command(CLI::App& app) {
   auto* sub = app.add_subcommand("bench", "Sweep mesh x backend x precision x solver setting: step time against error");
@@ -22,4 +22,4 @@ CommandAction add_bench_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -39,7 +39,10 @@
 #include "simulation.h"
 #include "cli/trace.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::percentile;
+using store::OutputDir;
 
 namespace {
 
@@ -267,4 +270,4 @@ CommandAction add_check_backends_command(CLI::App& app) {
   return [o]() { return run_check(*o); };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

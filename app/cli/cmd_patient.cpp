@@ -13,7 +13,18 @@
 #include "store/patient_library.h"
 #include "scan/scan_import.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using scan::BasePlane;
+using scan::ImportError;
+using scan::ImportOptions;
+using scan::ImportResult;
+using scan::import_scan;
+using scan::imported_patient_record;
+using store::LibraryError;
+using store::PatientLibrary;
+using store::PatientRecord;
+using store::patient_scenario;
 
 namespace {
 
@@ -181,4 +192,4 @@ CommandAction add_patient_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -9,7 +9,16 @@
 #include "store/recording.h"
 #include "review/replay.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::write_fingers_csv;
+using review::ReplayOptions;
+using review::ReplayResult;
+using review::replay_recording;
+using store::OutputDir;
+using store::Recording;
+using store::RecordingError;
+using store::read_recording;
 
 CommandAction add_replay_command(CLI::App& app) {
   auto* sub = app.add_subcommand("replay", "Re-simulate a session recording; writes DIR/fingers.csv and DIR/summary.json "
@@ -63,4 +72,4 @@ CommandAction add_replay_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -10,7 +10,13 @@
 #include "scenario.h"
 #include "cli/sweep_analysis.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::RunOptions;
+using live::RunResult;
+using live::run_headless;
+using live::write_fingers_csv;
+using store::OutputDir;
 
 
 CommandAction add_run_command(CLI::App& app) {
@@ -75,4 +81,4 @@ CommandAction add_run_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

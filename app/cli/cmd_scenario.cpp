@@ -4,7 +4,7 @@
 #include "cli/cli.h"
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 CommandAction add_scenario_command(CLI::App& app) {
   auto* sub = app.add_subcommand("scenario", "Print a built-in scenario as JSON (paper-sweep, paper-sweep-no-tumour, hertz, idle)");
@@ -22,4 +22,4 @@ CommandAction add_scenario_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -16,7 +16,17 @@
 #include "scenario.h"
 #include "live/session.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::SessionOptions;
+using live::SessionResult;
+using live::load_device_config;
+using live::run_session;
+using live::write_fingers_csv;
+using store::OutputDir;
+using store::RecordingError;
+using store::RecoverResult;
+using store::recover_recording;
 
 namespace {
 
@@ -141,4 +151,4 @@ CommandAction add_session_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -10,7 +10,9 @@
 #include "store/output_dir.h"
 #include "cli/stress.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using store::OutputDir;
 
 CommandAction add_stress_command(CLI::App& app) {
   auto* sub = app.add_subcommand("stress", "Numerical-stability stress matrix; writes DIR/stress.json and DIR/stress.md");
@@ -60,4 +62,4 @@ CommandAction add_stress_command(CLI::App& app) {
   };
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

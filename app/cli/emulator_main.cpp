@@ -52,9 +52,9 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : 2;
   }
   try {
-    app::DeviceConfig cfg = config.empty() ? app::default_device_config() : app::load_device_config(config);
+    app::live::DeviceConfig cfg = config.empty() ? app::live::default_device_config() : app::live::load_device_config(config);
     if (print_config) {
-      std::printf("%s\n", app::device_config_to_json(cfg).dump(2).c_str());
+      std::printf("%s\n", app::live::device_config_to_json(cfg).dump(2).c_str());
       return 0;
     }
     if (scenario.empty() == recording.empty()) {
@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
           builtin = true;
         }
       if (!builtin) s = sim::load_scenario(scenario);
-      script = app::script_from_scenario(s, cfg.hand.registration, cfg.finger_map);
+      script = app::live::script_from_scenario(s, cfg.hand.registration, cfg.finger_map);
     } else {
       std::vector<std::vector<dv::PathKey>> rec;
       try {
@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
     if (!quiet) std::fprintf(stderr, "handhiro-emulator: listening on %s:%u\n", bind.c_str(), unsigned(emu.port()));
     std::atomic<std::int64_t> last_cmd_ns{0};
     std::atomic<std::uint64_t> commands{0};
-    app::PeriodicThread thread;
+    app::live::PeriodicThread thread;
     thread.start(1000000, priority, [&](std::int64_t now, std::int64_t) {
       emu.tick(now);
       const auto c = emu.counters().commands;

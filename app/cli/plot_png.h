@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 struct PlotSeries {
   std::string name;
@@ -27,4 +27,4 @@ bool can_plot();
 /// Writes the plot. Returns false (and sets why) when it cannot.
 bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* why = nullptr);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

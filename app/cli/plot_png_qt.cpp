@@ -13,7 +13,7 @@
 
 #include "cli/plot_png.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 bool can_plot() { return true; }
 
@@ -168,4 +168,4 @@ bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* 
   return true;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -11,7 +11,7 @@
 #include "safety_filter.h"
 #include "simulation.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 namespace {
 
@@ -494,4 +494,4 @@ std::string stress_markdown(const std::vector<StressResult>& r, const StressOpti
   return md.str();
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -20,7 +20,7 @@
 #include "mesh.h"
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 struct StressCase {
   std::string name;
@@ -72,4 +72,4 @@ std::vector<StressResult> run_stress(const StressOptions& opt);
 nlohmann::json stress_json(const std::vector<StressResult>& r, const StressOptions& opt, double wall_s);
 std::string stress_markdown(const std::vector<StressResult>& r, const StressOptions& opt, double wall_s);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::FingerSample;
 
 SweepAnalysis analyze_sweep(const std::vector<FingerSample>& samples, int finger, double threshold) {
   SweepAnalysis out;
@@ -85,4 +87,4 @@ nlohmann::json SweepAnalysis::to_json() const {
   return j;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

@@ -9,7 +9,9 @@
 
 #include "live/headless_run.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
+
+using live::FingerSample;
 
 struct PushPeak {
   double t, x, fz;   // time, finger x and fz at the peak of one push
@@ -35,4 +37,4 @@ SweepAnalysis analyze_sweep(const std::vector<FingerSample>& samples, int finger
 /// Peak fz of the push nearest to x0 in each pass, for comparing two sweeps.
 std::vector<double> peaks_near(const SweepAnalysis& a, double x0);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

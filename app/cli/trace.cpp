@@ -11,7 +11,7 @@
 #include "backend.h"
 #include "model_cache.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 std::vector<int> snapshot_steps(int steps) { return {steps / 4, steps / 2, 3 * steps / 4, steps}; }
 
@@ -122,4 +122,4 @@ void save_trace(const std::string& path, const Trace& t) {
   std::filesystem::rename(tmp, path);
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

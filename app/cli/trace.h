@@ -9,7 +9,7 @@
 #include "model.h"
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::cli {
 
 struct Trace {
   std::vector<double> force;               // (steps x fingers x 3) filtered finger force, N
@@ -37,4 +37,4 @@ double displacement_error(const Trace& a, const Trace& ref, const sim::Model& m)
 bool load_trace(const std::string& path, Trace& t);
 void save_trace(const std::string& path, const Trace& t);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::cli

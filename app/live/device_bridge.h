@@ -14,7 +14,7 @@
 #include "scenario.h"
 #include "vec3.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 inline device::Vec3 to_dev(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 inline Eigen::Vector3d to_eigen(const device::Vec3& v) { return {v.x, v.y, v.z}; }
@@ -57,4 +57,4 @@ inline device::HandScript script_from_scenario(const sim::Scenario& s, const dev
   return script;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

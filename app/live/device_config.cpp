@@ -7,7 +7,7 @@
 
 #include "json_reader.h"  // sim::ScenarioError: bad input -> exit code 2
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 using nlohmann::json;
 namespace dv = palpation::device;
@@ -293,4 +293,4 @@ DeviceConfig load_device_config(const std::string& path) {
   return parse_device_config(ss.str(), path);
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

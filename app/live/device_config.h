@@ -13,7 +13,7 @@
 #include "handhiro_link.h"
 #include "handhiro_model.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 struct DeviceConfig {
   device::HandHiroParams hand = device::default_handhiro_params();
@@ -34,4 +34,4 @@ DeviceConfig parse_device_config(const std::string& json_text, const std::string
 /// The whole configuration as JSON (round-trips through parse_device_config).
 nlohmann::json device_config_to_json(const DeviceConfig& c);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

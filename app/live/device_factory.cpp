@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 namespace dv = palpation::device;
 
@@ -141,4 +141,4 @@ DeviceWiring open_device(DeviceRequest r) {
   return w;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

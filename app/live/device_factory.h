@@ -17,7 +17,7 @@
 #include "scripted_device.h"
 #include "simulated_hand.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 /// A child process (posix_spawn), ended with SIGTERM (SIGKILL after 3 s) when destroyed.
 class ChildProcess {
@@ -67,4 +67,4 @@ struct DeviceWiring {
 /// unreadable recording) and std::runtime_error when it cannot be opened (address in use).
 DeviceWiring open_device(DeviceRequest r);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

@@ -1,6 +1,6 @@
 #include "live/haptic_thread.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 void PeriodicThread::start(std::int64_t period_ns, int priority, Tick tick, Overrun overrun, Done done) {
   stop();
@@ -53,4 +53,4 @@ void HapticThread::start(int priority) {
       [this](std::int64_t now) { loop_.stop(now); });
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

@@ -17,7 +17,7 @@
 #include "haptic_loop.h"
 #include "rt_clock.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 class PeriodicThread {
  public:
@@ -62,4 +62,4 @@ class HapticThread {
   PeriodicThread thread_;
 };
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 using clock_type = std::chrono::steady_clock;
 
@@ -128,4 +128,4 @@ void write_fingers_csv(const std::string& path, const std::vector<FingerSample>&
   if (std::fclose(f) != 0) throw std::runtime_error(path + ": write failed (disk full?)");
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

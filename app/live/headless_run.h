@@ -11,7 +11,7 @@
 #include "scenario.h"
 #include "simulation.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 /// One row of fingers.csv: what a 1 kHz haptic tick sends for one finger.
 struct FingerSample {
@@ -43,4 +43,4 @@ void write_fingers_csv(const std::string& path, const std::vector<FingerSample>&
 /// Median and percentile of a sample (copy sorted), 0 for an empty one.
 double percentile(std::vector<double> v, double p);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

@@ -30,7 +30,10 @@
 #include "simulation.h"
 #include "live/simulation_loop.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
+
+using store::RecordingError;
+using store::RecordingWriter;
 
 namespace dv = palpation::device;
 using nlohmann::json;
@@ -435,4 +438,4 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   return res;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

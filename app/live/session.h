@@ -14,7 +14,7 @@
 #include "live/headless_run.h"
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 struct SessionOptions {
   std::string device = "emulator";   // "emulator" (UDP to handhiro-emulator) | "scripted" | "replay"
@@ -57,4 +57,4 @@ struct Vibration {
 };
 Vibration force_vibration(const std::vector<FingerSample>& samples, int finger, double from, double to);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

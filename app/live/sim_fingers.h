@@ -12,7 +12,7 @@
 #include "haptic_loop.h"
 #include "params.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 /// One simulated fingertip from device finger `d` of a pose frame. With the virtual
 /// coupling (kc > 0) the proxy balanced against `last` (the newest contact model this
@@ -48,4 +48,4 @@ inline sim::FingerOutput guard_force_spike(const sim::FingerOutput& now, const E
   return o;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

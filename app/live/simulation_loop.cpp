@@ -8,7 +8,7 @@
 #include "rt_clock.h"
 #include "live/sim_fingers.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 namespace dv = palpation::device;
 
@@ -187,4 +187,4 @@ void SimulationLoop::publish(const sim::Simulation::Outcome& r, std::int64_t now
   contacts_.publish();
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

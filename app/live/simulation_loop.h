@@ -23,7 +23,7 @@
 #include "simulation.h"
 #include "triple_buffer.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 /// The solver threads of a simulation that runs beside a haptic thread: solver.threads = 0
 /// (automatic) becomes 1 on a machine of 3 hardware threads or fewer, where the haptic
@@ -120,4 +120,4 @@ class SimulationLoop {
   std::array<device::FingerContactModel, device::kMaxFingers> good_{}, held_{};
 };
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

@@ -16,7 +16,9 @@
 #include "simulation.h"
 #include "live/simulation_loop.h"
 
-namespace palpation::app {
+namespace palpation::app::live {
+
+namespace dv = palpation::device;
 
 // ---------------------------------------------------------------------------------------
 // Defaults
@@ -463,4 +465,4 @@ bool Workstation::poll() {
   return snapshots_.update();
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

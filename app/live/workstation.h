@@ -53,7 +53,7 @@ class Simulation;
 struct Model;
 }
 
-namespace palpation::app {
+namespace palpation::app::live {
 
 namespace dv = palpation::device;
 class SimulationLoop;
@@ -305,4 +305,4 @@ class Workstation {
   double window_jitter_ = 0;
 };
 
-}  // namespace palpation::app
+}  // namespace palpation::app::live

@@ -2,7 +2,11 @@
 
 #include <cmath>
 
-namespace palpation::app {
+namespace palpation::app::review {
+
+using live::RunOptions;
+using live::run_headless;
+using store::Recording;
 
 sim::Scenario replay_scenario(const Recording& rec) {
   if (rec.ticks() < 2) throw sim::ScenarioError(rec.path + ": fewer than 2 ticks recorded: nothing to replay");
@@ -66,4 +70,4 @@ ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt) {
   return r;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::review

@@ -11,7 +11,10 @@
 #include "store/recording.h"
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::review {
+
+using live::RunResult;
+using store::Recording;
 
 struct ReplayOptions {
   std::string backend;        // non-empty: override the recorded backend (the difference is then expected)
@@ -35,4 +38,4 @@ sim::Scenario replay_scenario(const Recording& rec);
 /// Re-simulates and compares. Throws sim::ScenarioError / std::runtime_error.
 ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::review

@@ -12,7 +12,18 @@
 #include "simulation.h"
 #include "live/simulation_loop.h"
 
-namespace palpation::app {
+namespace palpation::app::review {
+
+namespace dv = palpation::device;
+
+using live::PatientGeometry;
+using live::RenderSnapshot;
+using live::apply_element_young;
+using live::apply_params;
+using live::configure_realtime_threads;
+using live::make_patient_geometry;
+using store::RecordedStep;
+using store::read_recording;
 
 using nlohmann::json;
 
@@ -405,4 +416,4 @@ void ReviewSession::advance(double wall_dt) {
   }
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::review

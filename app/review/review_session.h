@@ -23,7 +23,11 @@
 #include "store/recording.h"
 #include "live/workstation.h"
 
-namespace palpation::app {
+namespace palpation::app::review {
+
+using live::PatientGeometry;
+using live::RenderSnapshot;
+using store::Recording;
 
 /// What the timeline shows besides the forces.
 struct ReviewMarker {
@@ -141,4 +145,4 @@ class ReviewSession {
   bool playing_ = false;
 };
 
-}  // namespace palpation::app
+}  // namespace palpation::app::review

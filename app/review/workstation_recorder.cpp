@@ -8,7 +8,20 @@
 #include <cstdio>
 #include <filesystem>
 
-namespace palpation::app {
+namespace palpation::app::review {
+
+using live::CommandRecord;
+using live::DeviceConfig;
+using live::Event;
+using live::StepSample;
+using live::TickSample;
+using live::Workstation;
+using live::device_config_to_json;
+using store::RecordedStep;
+using store::RecordingError;
+using store::RecordingWriter;
+using store::RecoverResult;
+using store::recover_recording;
 
 using nlohmann::json;
 
@@ -178,4 +191,4 @@ std::vector<std::string> recover_interrupted_recordings(const std::string& dir) 
   return said;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::review

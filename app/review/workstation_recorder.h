@@ -4,7 +4,7 @@
 // review re-simulates from these exactly), instructor events, parameter changes as data
 // (tumour edits, tissue and solver changes, patient swaps) and trainee marks.
 //
-// Listens to app::Workstation's telemetry on the thread that calls Workstation::poll()
+// Listens to app::live::Workstation's telemetry on the thread that calls Workstation::poll()
 // (the GUI thread); the file is written by RecordingWriter (whole chunks at least every
 // 0.25 s, fdatasync at least every second). Qt-free.
 #pragma once
@@ -18,7 +18,13 @@
 #include "store/recording.h"
 #include "live/workstation.h"
 
-namespace palpation::app {
+namespace palpation::app::review {
+
+namespace dv = palpation::device;
+
+using live::TickSample;
+using live::Workstation;
+using store::RecordingWriter;
 
 class WorkstationRecorder {
  public:
@@ -73,4 +79,4 @@ std::vector<std::string> recover_interrupted_recordings(const std::string& dir);
 /// (the device input is what matters), `fingers` fingers of the first one's radius.
 nlohmann::json recorded_scenario_json(const sim::Scenario& s, int fingers);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::review

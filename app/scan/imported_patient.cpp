@@ -11,7 +11,9 @@
 
 #include "model_cache.h"
 
-namespace palpation::app {
+namespace palpation::app::scan {
+
+using store::PatientRecord;
 
 PatientRecord imported_patient_record(const ImportResult& r, const std::string& name, const std::string& scan_file, double edge) {
   namespace fs = std::filesystem;
@@ -56,4 +58,4 @@ PatientRecord imported_patient_record(const ImportResult& r, const std::string& 
   return p;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan

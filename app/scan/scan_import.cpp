@@ -15,7 +15,7 @@
 
 #include "mesh_gmsh.h"
 
-namespace palpation::app {
+namespace palpation::app::scan {
 
 namespace {
 
@@ -377,4 +377,4 @@ void write_test_dome(const std::string& path, double a, double h, bool drop_base
   }
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan

@@ -16,7 +16,7 @@
 
 #include "mesh.h"
 
-namespace palpation::app {
+namespace palpation::app::scan {
 
 /// A bad scan: what() names the file and says exactly what is wrong.
 class ImportError : public std::runtime_error {
@@ -101,4 +101,4 @@ ImportResult import_scan(const std::string& path, const ImportOptions& opt);
 void write_test_dome(const std::string& path, double a, double h, bool drop_base = false, bool extra = false,
                      bool rotate_x_90 = false);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan

@@ -7,7 +7,11 @@
 #include "model_cache.h"
 #include "scenario.h"
 
-namespace palpation::app {
+namespace palpation::app::scan {
+
+using live::PatientGeometry;
+using store::PatientRecord;
+using store::patient_scenario;
 
 ScanImportJob::~ScanImportJob() { cancel(); }
 
@@ -68,9 +72,9 @@ std::string ScanImportJob::error() const {
   return error_;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan
 
-namespace palpation::app {
+namespace palpation::app::scan {
 
 std::shared_ptr<PatientGeometry> preview_geometry(const sim::TetMesh& mesh, std::uint64_t generation) {
   auto g = std::make_shared<PatientGeometry>();
@@ -116,4 +120,4 @@ sim::Scenario library_patient_scenario(const PatientRecord& p, const std::string
   return s;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan

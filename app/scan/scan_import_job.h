@@ -15,7 +15,10 @@
 #include "scan/scan_import.h"
 #include "live/workstation.h"
 
-namespace palpation::app {
+namespace palpation::app::scan {
+
+using live::PatientGeometry;
+using store::PatientRecord;
 
 class ScanImportJob {
  public:
@@ -55,4 +58,4 @@ std::shared_ptr<PatientGeometry> preview_geometry(const sim::TetMesh& mesh, std:
 /// Throws sim::ScenarioError / std::runtime_error.
 sim::Scenario library_patient_scenario(const PatientRecord& p, const std::string& mesh_dir);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan

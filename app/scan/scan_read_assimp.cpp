@@ -14,16 +14,16 @@
 #include "scan/scan_import.h"
 #include "scan/scan_read_child.h"
 
-namespace palpation::app {
+namespace palpation::app::scan {
 
 bool scan_reader_available() { return true; }
 
 SurfaceMesh read_surface(const std::string& path, const std::function<bool()>& cancelled) {
-  scan_reader::check_file(path);
-  return scan_reader::read_in_child(path, scan_reader::limits_for(path), cancelled);
+  reader::check_file(path);
+  return reader::read_in_child(path, reader::limits_for(path), cancelled);
 }
 
-namespace scan_reader {
+namespace reader {
 
 void check_file(const std::string& path) {
   namespace fs = std::filesystem;
@@ -111,6 +111,6 @@ SurfaceMesh read_here(const std::string& path) {
   return s;
 }
 
-}  // namespace scan_reader
+}  // namespace reader
 
-}  // namespace palpation::app
+}  // namespace palpation::app::scan

@@ -41,7 +41,7 @@ extern char** environ;
 #endif
 #endif
 
-namespace palpation::app::scan_reader {
+namespace palpation::app::scan::reader {
 
 namespace {
 
@@ -253,4 +253,4 @@ SurfaceMesh read_in_child(const std::string& path, const Limits& lim, const std:
   throw ImportError(path + ": the scan reader failed (" + text + "): a malformed or hostile file?");
 }
 
-}  // namespace palpation::app::scan_reader
+}  // namespace palpation::app::scan::reader

@@ -24,7 +24,7 @@
 
 #include "scan/scan_import.h"
 
-namespace palpation::app::scan_reader {
+namespace palpation::app::scan::reader {
 
 /// The argv[1] that turns an executable into the scan reader's child.
 inline constexpr const char* kChildFlag = "--palpation-internal-scan-reader";
@@ -60,4 +60,4 @@ SurfaceMesh read_here(const std::string& path);
 /// when no child could be started.
 SurfaceMesh read_in_child(const std::string& path, const Limits& limits, const std::function<bool()>& cancelled = {});
 
-}  // namespace palpation::app::scan_reader
+}  // namespace palpation::app::scan::reader

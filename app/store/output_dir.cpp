@@ -5,7 +5,7 @@
 #include <system_error>
 #include <unistd.h>
 
-namespace palpation::app {
+namespace palpation::app::store {
 
 namespace fs = std::filesystem;
 
@@ -33,4 +33,4 @@ void OutputDir::commit() {
   committed_ = true;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::store

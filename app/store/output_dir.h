@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace palpation::app {
+namespace palpation::app::store {
 
 class OutputDir {
  public:
@@ -27,4 +27,4 @@ class OutputDir {
   bool committed_ = false;
 };
 
-}  // namespace palpation::app
+}  // namespace palpation::app::store

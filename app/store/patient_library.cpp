@@ -16,7 +16,7 @@
 #include <QUrl>
 #include <QVariant>
 
-namespace palpation::app {
+namespace palpation::app::store {
 
 using nlohmann::json;
 
@@ -412,4 +412,4 @@ void PatientLibrary::create_old_schema_for_test(const std::string& path, int ver
   QSqlDatabase::removeDatabase(conn);
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::store

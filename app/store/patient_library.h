@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace palpation::app {
+namespace palpation::app::store {
 
 /// A library failure: what() is one line naming the database and the reason.
 class LibraryError : public std::runtime_error {
@@ -87,4 +87,4 @@ class PatientLibrary {
 /// patient's mesh path.
 nlohmann::json patient_scenario(const PatientRecord& p, const std::string& mesh_file = {});
 
-}  // namespace palpation::app
+}  // namespace palpation::app::store

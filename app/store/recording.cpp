@@ -13,7 +13,7 @@
 
 #include "crc32.h"
 
-namespace palpation::app {
+namespace palpation::app::store {
 
 using nlohmann::json;
 
@@ -416,4 +416,4 @@ RecoverResult recover_recording(const std::string& path) {
   return res;
 }
 
-}  // namespace palpation::app
+}  // namespace palpation::app::store

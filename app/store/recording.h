@@ -25,7 +25,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-namespace palpation::app {
+namespace palpation::app::store {
 
 /// Version 2 added the steps chunk (type 4); version 1 files read unchanged.
 inline constexpr std::uint32_t kRecordingVersion = 2;
@@ -139,4 +139,4 @@ struct RecoverResult {
 /// {"recovered": true, ...}. Throws RecordingError for a file that is not recoverable.
 RecoverResult recover_recording(const std::string& path);
 
-}  // namespace palpation::app
+}  // namespace palpation::app::store

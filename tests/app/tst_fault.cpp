@@ -62,7 +62,7 @@ struct LiveRig {
   int every = 5;
   bool sim_running = true;
   double max_jump = 0, prev = 0, limit = 0, rate = 0;
-  LiveRig() : device(app::script_from_scenario(s, dv::RigidFrame{}, {dv::kIndex, 0, 0, 0, 0})) {
+  LiveRig() : device(app::live::script_from_scenario(s, dv::RigidFrame{}, {dv::kIndex, 0, 0, 0, 0})) {
     dv::HapticLoopParams p;
     p.virtual_coupling = false;
     p.safety.ramp_in = 0.1;
@@ -94,14 +94,14 @@ struct LiveRig {
     std::vector<sim::FingerInput> in(1);
     std::vector<sim::FingerOutput> out(1);
     in[0].radius = 0.008;
-    in[0].position = app::to_eigen(pf.fingers[dv::kIndex].position);
-    in[0].velocity = app::to_eigen(pf.fingers[dv::kIndex].velocity);
+    in[0].position = app::live::to_eigen(pf.fingers[dv::kIndex].position);
+    in[0].velocity = app::live::to_eigen(pf.fingers[dv::kIndex].velocity);
     in[0].active = pf.connected && pf.fingers[dv::kIndex].attached;
     const sim::StepStats st = sim.backend().step(in, out);
     const bool ok = !sim.check_divergence(st, out).diverged;
     dv::ContactFrame& cf = contacts.write_slot();
     cf.fingers = {};
-    if (ok && in[0].active) cf.fingers[dv::kIndex] = app::contact_model(out[0], in[0].position, dv::RigidFrame{});
+    if (ok && in[0].active) cf.fingers[dv::kIndex] = app::live::contact_model(out[0], in[0].position, dv::RigidFrame{});
     cf.sequence = ++seq;
     cf.published_ns = t;
     contacts.publish();
@@ -264,7 +264,7 @@ class TestFault : public QObject {
   // back to the CPU backend and goes on; the device sees no NaN, nothing above the limit
   // and no force step larger than the safety filter's rate limit.
   void cudaErrorMidSessionFallsBackToCpu() {
-    app::SessionOptions opt;
+    app::live::SessionOptions opt;
     opt.device = "scripted";
     opt.priority = 0;
     opt.duration = 1.5;
@@ -273,7 +273,7 @@ class TestFault : public QObject {
           sim::make_backend(sim::BackendKind::Cpu, s.model(), s.backend().params()), test::FaultBackend::Fault::Throw,
           150));
     };
-    const auto r = app::run_session(press_scenario(1.5), opt);
+    const auto r = app::live::run_session(press_scenario(1.5), opt);
     QVERIFY(!r.samples.empty());
     const double limit = opt.config.hand.capabilities.max_force;
     const double rate = opt.config.loop.safety.max_rate;

@@ -43,7 +43,7 @@ class TestFuzzCorpus : public QObject {
   void protocol() { QVERIFY(replay("protocol", fuzz_protocol_one) >= 3); }
   void recording() { QVERIFY(replay("recording", fuzz_recording_one) >= 1); }
   void scanImport() {
-    if (!palpation::app::scan_reader_available()) QSKIP("this build has no assimp (scan import)");
+    if (!palpation::app::scan::scan_reader_available()) QSKIP("this build has no assimp (scan import)");
     QVERIFY(replay("scan_import", fuzz_scan_import_one) >= 5);
   }
 };

@@ -217,7 +217,7 @@ class TestHandHiroModel : public QObject {
   }
 
   void configFileMatchesDefaults() {
-    using namespace palpation::app;
+    using namespace palpation::app::live;
     const std::string path = std::string(PALPATION_SOURCE_DIR) + "/resources/handhiro.json";
     const DeviceConfig file = load_device_config(path);
     const DeviceConfig def = default_device_config();
@@ -235,7 +235,7 @@ class TestHandHiroModel : public QObject {
   }
 
   void configErrorsNameFileAndField() {
-    using namespace palpation::app;
+    using namespace palpation::app::live;
     auto expect = [](const std::string& text, const std::string& needle) {
       try {
         parse_device_config(text, "dev.json");

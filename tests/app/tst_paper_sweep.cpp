@@ -58,15 +58,15 @@ class TestPaperSweep : public QObject {
   void tumourRaisesTheForceOverIt() {
     const sim::Scenario with = sweep("paper-sweep"), without = sweep("paper-sweep-no-tumour");
     sim::patient_mesh(with);  // mesh once (cached) before the two runs share it
-    app::RunResult rt, rn;
-    std::thread other([&] { rn = app::run_headless(without, {}); });
-    rt = app::run_headless(with, {});
+    app::live::RunResult rt, rn;
+    std::thread other([&] { rn = app::live::run_headless(without, {}); });
+    rt = app::live::run_headless(with, {});
     other.join();
     QVERIFY(rt.summary["finite"].get<bool>() && rn.summary["finite"].get<bool>());
     // A fingertip pressed 1.8 cm into 19 kPa tissue: a few newtons (measured 2-6 N from
     // the fine to the coarse mesh); 20 N would mean the contact went unstable.
     QVERIFY(rt.summary["max_force_n"].get<double>() < 20.0);
-    const app::SweepAnalysis at = app::analyze_sweep(rt.samples), an = app::analyze_sweep(rn.samples);
+    const app::cli::SweepAnalysis at = app::cli::analyze_sweep(rt.samples), an = app::cli::analyze_sweep(rn.samples);
     const bool light = rt.summary["steps"].get<int>() < 10000;
     QCOMPARE(int(at.passes.size()), light ? 1 : 4);
     int within = 0;
@@ -77,7 +77,7 @@ class TestPaperSweep : public QObject {
     }
     qInfo("passes peaking within 1 cm of the tumour: %d of %d", within, int(at.passes.size()));
     if (!light) QVERIFY2(within == 4, qPrintable(QString::number(within)));
-    auto mean_over_tumour = [](const app::SweepAnalysis& a) {
+    auto mean_over_tumour = [](const app::cli::SweepAnalysis& a) {
       double sum = 0;
       int n = 0;
       for (const auto& q : a.pushes)

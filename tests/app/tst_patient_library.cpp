@@ -14,7 +14,7 @@
 #include "scenario.h"
 
 using namespace palpation;
-using namespace palpation::app;
+using namespace palpation::app::store;
 namespace fs = std::filesystem;
 
 namespace {

@@ -19,7 +19,9 @@
 #include "live/session.h"
 
 using namespace palpation;
-using namespace palpation::app;
+using namespace palpation::app::store;
+using namespace palpation::app::live;
+using namespace palpation::app::review;
 namespace fs = std::filesystem;
 
 namespace {

@@ -23,7 +23,7 @@
 #include "simulation.h"
 
 using namespace palpation;
-using namespace palpation::app;
+using namespace palpation::app::scan;
 namespace fs = std::filesystem;
 
 namespace {
@@ -159,7 +159,7 @@ class TestScanImport : public QObject {
     // allocation limit ends the child, without a message.
     QVERIFY2(e.contains("a malformed or hostile file"), qPrintable(e));
 #else
-    const std::string limit = scan_reader::memory_words(scan_reader::limits_for(path).memory_bytes);
+    const std::string limit = reader::memory_words(reader::limits_for(path).memory_bytes);
     QVERIFY2(e == QString::fromStdString(path + ": the scan reader exceeded its " + limit +
                                          " memory limit (a malformed or hostile file)"),
              qPrintable(e));
@@ -181,7 +181,7 @@ class TestScanImport : public QObject {
     QFETCH(QString, file);
     const std::string path = data(file.toStdString());
     const SurfaceMesh child = read_surface(path);
-    const SurfaceMesh here = scan_reader::read_here(path);
+    const SurfaceMesh here = reader::read_here(path);
     QVERIFY(!here.triangles.empty());
     QCOMPARE(child.vertices.size(), here.vertices.size());
     QCOMPARE(child.triangles.size(), here.triangles.size());
@@ -195,17 +195,17 @@ class TestScanImport : public QObject {
     const std::string path = data("dome.stl");
     QString e;
     try {
-      scan_reader::read_in_child(path, scan_reader::limits_for(path), [] { return true; });
+      reader::read_in_child(path, reader::limits_for(path), [] { return true; });
     } catch (const std::runtime_error& ex) {
       e = ex.what();
     }
     QCOMPARE(e, QString("cancelled"));
     QVERIFY(no_children());
-    scan_reader::Limits lim = scan_reader::limits_for(path);
+    reader::Limits lim = reader::limits_for(path);
     lim.wall_seconds = 0.001;
     e.clear();
     try {
-      scan_reader::read_in_child(path, lim);
+      reader::read_in_child(path, lim);
     } catch (const ImportError& ex) {
       e = ex.what();
     }

@@ -105,13 +105,13 @@ class TestScenario : public QObject {
     const std::string dir = QDir::tempPath().toStdString() + "/palpation-tst-out";
     std::filesystem::remove_all(dir);
     {
-      app::OutputDir out(dir);
+      app::store::OutputDir out(dir);
       std::ofstream(out.path("fingers.csv")) << "half";
       out.commit();
     }
     QVERIFY(std::filesystem::exists(dir + "/fingers.csv"));
     {
-      app::OutputDir out(dir);
+      app::store::OutputDir out(dir);
       std::ofstream(out.path("fingers.csv")) << "new but failed";
       std::ofstream(out.path("summary.json")) << "{}";
       // no commit: the command failed

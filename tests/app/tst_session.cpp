@@ -36,7 +36,7 @@ sim::Scenario small_press(double duration = 1.5) {
   return s;
 }
 
-void check_forces(const app::SessionResult& r, double limit) {
+void check_forces(const app::live::SessionResult& r, double limit) {
   QVERIFY(!r.samples.empty());
   double max_f = 0;
   for (const auto& smp : r.samples) {
@@ -71,10 +71,10 @@ class TestSession : public QObject {
   Q_OBJECT
  private slots:
   void emulatorOverLoopback() {
-    app::SessionOptions opt;
+    app::live::SessionOptions opt;
     opt.device = "emulator";
     opt.priority = 0;  // CI: normal scheduling
-    const auto r = app::run_session(small_press(), opt);
+    const auto r = app::live::run_session(small_press(), opt);
     check_forces(r, opt.config.hand.capabilities.max_force);
     const auto& link = r.loop["link"];
     QVERIFY(link["states_accepted"].get<int>() > 100);
@@ -91,11 +91,11 @@ class TestSession : public QObject {
   }
 
   void scriptedDeviceFollowsThePath() {
-    app::SessionOptions opt;
+    app::live::SessionOptions opt;
     opt.device = "scripted";
     opt.priority = 0;
     const sim::Scenario s = small_press(1.0);
-    const auto r = app::run_session(s, opt);
+    const auto r = app::live::run_session(s, opt);
     check_forces(r, opt.config.hand.capabilities.max_force);
     QCOMPARE(r.loop["device_received"]["nonfinite"].get<int>(), 0);
     QCOMPARE(r.loop["device_received"]["over_limit"].get<int>(), 0);
@@ -112,12 +112,12 @@ class TestSession : public QObject {
   void emulatorChildProcess() {
     const sim::Scenario s = small_press(1.0);
     const std::string path = write_temp("tst_session_press.json", sim::scenario_to_json(s));
-    app::SessionOptions opt;
+    app::live::SessionOptions opt;
     opt.device = "emulator";
     opt.priority = 0;
     opt.emulator_exe = PALPATION_EMULATOR_EXE;
     opt.scenario_arg = path;
-    const auto r = app::run_session(sim::load_scenario(path), opt);
+    const auto r = app::live::run_session(sim::load_scenario(path), opt);
     check_forces(r, opt.config.hand.capabilities.max_force);
     QVERIFY(r.loop["link"]["states_accepted"].get<int>() > 100);
     QVERIFY(!r.loop.contains("emulator"));  // its counters stay in the child
@@ -125,17 +125,17 @@ class TestSession : public QObject {
   }
 
   void badInputIsRefused() {
-    app::SessionOptions opt;
+    app::live::SessionOptions opt;
     opt.priority = 0;
     sim::Scenario six = small_press();
     while (six.fingers.size() < 6) six.fingers.push_back(six.fingers[0]);
-    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::run_session(six, opt));
+    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::live::run_session(six, opt));
     opt.device = "phantom";
-    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::run_session(small_press(), opt));
+    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::live::run_session(small_press(), opt));
     opt.device = "replay";
-    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::run_session(small_press(), opt));
+    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::live::run_session(small_press(), opt));
     opt.recording = "/nonexistent/fingers.csv";
-    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::run_session(small_press(), opt));
+    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, app::live::run_session(small_press(), opt));
   }
 
   // The command line: exit 2 with one line naming the file and field; nothing written.

@@ -13,7 +13,7 @@ using namespace palpation;
 
 namespace {
 
-const app::StressCase& find_case(const std::vector<app::StressCase>& cs, const std::string& name) {
+const app::cli::StressCase& find_case(const std::vector<app::cli::StressCase>& cs, const std::string& name) {
   for (const auto& c : cs)
     if (c.name == name) return c;
   throw std::runtime_error("no stress case " + name);
@@ -58,8 +58,8 @@ class TestStress : public QObject {
   }
   void matrixSubset() {
     QFETCH(QString, name);
-    const auto cases = app::stress_cases(true);
-    const app::StressResult r = app::run_stress_case(find_case(cases, name.toStdString()), "cpu");
+    const auto cases = app::cli::stress_cases(true);
+    const app::cli::StressResult r = app::cli::run_stress_case(find_case(cases, name.toStdString()), "cpu");
     QString why;
     for (const auto& f : r.failures) why += QString::fromStdString(f) + "; ";
     QVERIFY2(!r.skipped, r.skip_reason.c_str());
@@ -76,16 +76,16 @@ class TestStress : public QObject {
   // Beyond the measured bounds the input is refused with one line naming the field:
   // stiffness contrast above 30x, sliver elements in a mesh file (docs/stability.md).
   void outOfBoundsIsRefused() {
-    const auto cases = app::stress_cases(true);
+    const auto cases = app::cli::stress_cases(true);
     for (const char* n : {"contrast-1000x", "sliver-0.1%"}) {
-      const app::StressResult r = app::run_stress_case(find_case(cases, n), "cpu");
+      const app::cli::StressResult r = app::cli::run_stress_case(find_case(cases, n), "cpu");
       QVERIFY2(r.skipped, n);
       QVERIFY(r.skip_reason.find('\n') == std::string::npos);
       QCOMPARE(r.steps, 0);
     }
-    const app::StressResult c = app::run_stress_case(find_case(cases, "contrast-1000x"), "cpu");
+    const app::cli::StressResult c = app::cli::run_stress_case(find_case(cases, "contrast-1000x"), "cpu");
     QVERIFY2(c.skip_reason.find("inclusions[0].young_modulus: must be within 30x") != std::string::npos, c.skip_reason.c_str());
-    const app::StressResult m = app::run_stress_case(find_case(cases, "sliver-0.1%"), "cpu");
+    const app::cli::StressResult m = app::cli::run_stress_case(find_case(cases, "sliver-0.1%"), "cpu");
     QVERIFY2(m.skip_reason.find("patient.mesh") != std::string::npos && m.skip_reason.find("sliver") != std::string::npos,
              m.skip_reason.c_str());
     QVERIFY(m.min_quality > 0 && m.min_quality < sim::kMinTetQuality);

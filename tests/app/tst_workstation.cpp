@@ -31,13 +31,13 @@ struct IndexForces {
 
 // Starts a workstation on the default patient with the mouse fingertip pressed in and
 // waits until the contact force has settled (two successive 0.5 s windows agree).
-double press_and_settle(app::Workstation& ws, IndexForces& f) {
-  ws.add_tick_listener([&f](const app::TickSample& s) {
+double press_and_settle(app::live::Workstation& ws, IndexForces& f) {
+  ws.add_tick_listener([&f](const app::live::TickSample& s) {
     f.finite = f.finite && s.force.allFinite();
     f.max_all = std::max(f.max_all, s.force.norm());
     if (s.finger == 1) f.sent.emplace_back(s.t, s.force.norm());
   });
-  ws.device().set_mode(app::HandMode::Mouse);
+  ws.device().set_mode(app::live::HandMode::Mouse);
   ws.set_mouse_finger(kPressed, true);
   ws.start();
   auto mean_since = [&f](double t0) {
@@ -71,19 +71,19 @@ class TstWorkstation : public QObject {
 
  private slots:
   void runs_and_applies_materials() {
-    app::WorkstationOptions opt;
-    opt.scenario = app::default_workstation_scenario();
+    app::live::WorkstationOptions opt;
+    opt.scenario = app::live::default_workstation_scenario();
     opt.haptic_priority = 0;
-    app::Workstation ws(opt);
+    app::live::Workstation ws(opt);
     int ticks = 0, steps = 0, patient_events = 0;
     double max_fz = 0;
-    ws.add_tick_listener([&](const app::TickSample& s) {
+    ws.add_tick_listener([&](const app::live::TickSample& s) {
       ++ticks;
       QVERIFY(s.force.allFinite());
       if (s.finger == 1) max_fz = std::max(max_fz, s.force.z());
     });
-    ws.add_step_listener([&](const app::StepSample&) { ++steps; });
-    ws.add_event_listener([&](const app::Event& e) { patient_events += e.kind == "patient"; });
+    ws.add_step_listener([&](const app::live::StepSample&) { ++steps; });
+    ws.add_event_listener([&](const app::live::Event& e) { patient_events += e.kind == "patient"; });
     ws.start();
     auto pump = [&] { ws.poll(); };
     QTRY_VERIFY_WITH_TIMEOUT((pump(), ws.geometry() != nullptr), 120000);
@@ -128,16 +128,16 @@ class TstWorkstation : public QObject {
   // The HandHIRO protocol path: the loop talks UDP to an in-process emulator whose hand
   // follows the same scripted palpation; forces come back through the link.
   void emulator_device() {
-    app::WorkstationOptions opt;
-    opt.scenario = app::default_workstation_scenario();
+    app::live::WorkstationOptions opt;
+    opt.scenario = app::live::default_workstation_scenario();
     opt.haptic_priority = 0;
     opt.device = "emulator";
-    app::Workstation ws(opt);
+    app::live::Workstation ws(opt);
     QVERIFY(!ws.simulated_device());
     QVERIFY(QString::fromStdString(ws.device_description()).contains(QLatin1String("emulator")));
     double max_fz = 0;
     int attached = 0;
-    ws.add_tick_listener([&](const app::TickSample& s) {
+    ws.add_tick_listener([&](const app::live::TickSample& s) {
       QVERIFY(s.force.allFinite());
       attached += s.attached;
       if (s.finger == 1) max_fz = std::max(max_fz, s.force.z());
@@ -150,9 +150,9 @@ class TstWorkstation : public QObject {
   }
 
   void bad_device_is_refused() {
-    app::WorkstationOptions opt;
+    app::live::WorkstationOptions opt;
     opt.device = "robot-arm";
-    QVERIFY_THROWS_EXCEPTION(std::runtime_error, app::Workstation{opt});
+    QVERIFY_THROWS_EXCEPTION(std::runtime_error, app::live::Workstation{opt});
   }
 
   // Issue 7 section 3: a CUDA error mid-session (the backend throws) and a divergence
@@ -173,10 +173,10 @@ class TstWorkstation : public QObject {
   // the 1 kHz haptic loop: ticks keep coming, the stale simulation ramps the force to zero,
   // and it comes back when the thread resumes.
   void stalled_simulation_does_not_stall_haptics() {
-    app::WorkstationOptions opt;
-    opt.scenario = app::default_workstation_scenario();
+    app::live::WorkstationOptions opt;
+    opt.scenario = app::live::default_workstation_scenario();
     opt.haptic_priority = 0;
-    app::Workstation ws(opt);
+    app::live::Workstation ws(opt);
     IndexForces f;
     const double before = press_and_settle(ws, f);
     QVERIFY2(before > 0.2, "the pressed fingertip never reached a steady force");
@@ -184,7 +184,7 @@ class TstWorkstation : public QObject {
     const auto unblock = qScopeGuard([&] { release.store(true); });  // before ws joins its threads
     std::atomic<double> stall_t{1e300}, release_t{1e300};
     int steps_while_stalled = 0;
-    ws.add_step_listener([&](const app::StepSample& s) { steps_while_stalled += s.t > stall_t && s.t < release_t; });
+    ws.add_step_listener([&](const app::live::StepSample& s) { steps_while_stalled += s.t > stall_t && s.t < release_t; });
     ws.post([&](sim::Simulation&) {
       stall_t.store(ws.now_s());
       stalled.store(true);
@@ -213,7 +213,7 @@ class TstWorkstation : public QObject {
   // workstation sends (guard_force_spike) never rises while the fingertip is lifted by
   // more than a fraction of a newton and stays near the dt = 1 ms peaks (4-6 N).
   void release_spikes_are_guarded() {
-    sim::Scenario s = app::default_workstation_scenario();
+    sim::Scenario s = app::live::default_workstation_scenario();
     s.backend = "cpu";
     s.params.solver.dt = 0.01;
     s.params.solver.threads = 1;
@@ -224,7 +224,7 @@ class TstWorkstation : public QObject {
     for (int k = 0; k < 160; ++k) {  // 1.6 s: four pushes
       sim.step();
       const sim::FingerOutput& o = sim.outputs()[0];
-      const double sent = app::guard_force_spike(o, prev).force.norm(), raw = o.force.norm();
+      const double sent = app::live::guard_force_spike(o, prev).force.norm(), raw = o.force.norm();
       prev = o.contacts > 0 ? Eigen::Vector3d(o.force) : Eigen::Vector3d::Zero();
       const double z = sim.fingers()[0].position.z();
       if (k > 0 && z > z_prev) {  // lifting
@@ -245,19 +245,19 @@ class TstWorkstation : public QObject {
 
  private:
   void fault_case(test::FaultBackend::Fault fault, double slow_s = 0, double sim_max_dt = 0.01) {
-    app::WorkstationOptions opt;
+    app::live::WorkstationOptions opt;
     opt.sim_max_dt = sim_max_dt;
     // The recovery is under test here, not the staleness watchdog (tst_safety): CI's two
     // shared cores can deschedule the simulation thread for more than the default 0.1 s,
     // and the designed ramp-out would then read as a dip in the recovery (CI's run of
     // 864479c: 62 % for a moment). Stale only after 1 s here.
     opt.config.loop.safety.stale_after = 1.0;
-    opt.scenario = app::default_workstation_scenario();
+    opt.scenario = app::live::default_workstation_scenario();
     opt.scenario.backend = "cpu";
     opt.haptic_priority = 0;
-    app::Workstation ws(opt);
-    std::vector<app::Event> events;
-    ws.add_event_listener([&](const app::Event& e) { events.push_back(e); });
+    app::live::Workstation ws(opt);
+    std::vector<app::live::Event> events;
+    ws.add_event_listener([&](const app::live::Event& e) { events.push_back(e); });
     IndexForces f;
     const double before = press_and_settle(ws, f);
     QVERIFY2(before > 0.2, "the pressed fingertip never reached a steady force");
@@ -292,7 +292,7 @@ class TstWorkstation : public QObject {
     QVERIFY(f.max_all <= 4.0 + 1e-9);
     QVERIFY2(hi <= 1.05 * before + 0.01, "force spike at the device after the fault");
     QVERIFY2(lo >= 0.9 * before - 0.01, "the force dropped out after the fault");
-    const app::LiveStats& st = ws.stats();
+    const app::live::LiveStats& st = ws.stats();
     if (fault == test::FaultBackend::Fault::Throw) {
       QCOMPARE(st.fallbacks, 1);
       QCOMPARE(QString::fromStdString(st.backend), QStringLiteral("cpu"));

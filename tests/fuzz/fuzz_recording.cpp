@@ -13,7 +13,7 @@
 #include "store/recording.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace palpation::app;
+  using namespace palpation::app::store;
   static const std::string path = "/tmp/palpation-fuzz-rec-" + std::to_string(::getpid()) + ".prec";
   auto write = [&] {
     std::FILE* f = std::fopen(path.c_str(), "wb");

@@ -28,7 +28,7 @@ namespace {
 void check(bool ok) {
   if (!ok) std::abort();
 }
-void check_indices(const palpation::app::SurfaceMesh& s) {
+void check_indices(const palpation::app::scan::SurfaceMesh& s) {
   const int n = int(s.vertices.size());
   for (const auto& v : s.vertices) check(v.allFinite());
   for (const auto& t : s.triangles)
@@ -37,7 +37,7 @@ void check_indices(const palpation::app::SurfaceMesh& s) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace palpation::app;
+  using namespace palpation::app::scan;
   if (size < 1) return 0;
   static const char* const kExt[3] = {".stl", ".obj", ".ply"};
   const std::string path = "/tmp/palpation-fuzz-scan-" + std::to_string(::getpid()) + kExt[data[0] % 3];

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   {
     nlohmann::json header = {{"scenario", nlohmann::json::parse(palpation::sim::scenario_to_json(
                                               palpation::sim::builtin_scenario("hertz")))}};
-    palpation::app::RecordingWriter w(dir + "/recording/short.prec", header, 1);
+    palpation::app::store::RecordingWriter w(dir + "/recording/short.prec", header, 1);
     for (int i = 0; i < 40; ++i) {
       const Eigen::Vector3d x(0.001 * i, 0, 0.05), f(0, 0, 0.01 * i);
       w.add_tick(0.001 * (i + 1), &x, &f);
@@ -69,12 +69,12 @@ int main(int argc, char** argv) {
     // Version 2: a workstation recording with simulation steps (two fingers).
     nlohmann::json header = {{"scenario", nlohmann::json::parse(palpation::sim::scenario_to_json(
                                               palpation::sim::builtin_scenario("hertz")))}};
-    palpation::app::RecordingWriter w(dir + "/recording/steps.prec", header, 2);
+    palpation::app::store::RecordingWriter w(dir + "/recording/steps.prec", header, 2);
     for (int i = 0; i < 12; ++i) {
       const Eigen::Vector3d x[2] = {{0.001 * i, 0, 0.05}, {0, 0.01, 0.06}}, f[2] = {{0, 0, 0.01 * i}, {0, 0, 0}};
       w.add_tick(0.001 * (i + 1), x, f);
       if (i % 4 == 0) {
-        palpation::app::RecordedStep st;
+        palpation::app::store::RecordedStep st;
         st.t = 0.001 * (i + 1);
         st.h = 0.004;
         st.commands_applied = std::uint64_t(i / 4);

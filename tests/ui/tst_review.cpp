@@ -53,10 +53,10 @@ class TstReview : public QObject {
   QString rec_path_;
 
   std::unique_ptr<ui::MainWindow> make_window(const QString& record) {
-    app::WorkstationOptions opt;
-    opt.scenario = app::default_workstation_scenario();
+    app::live::WorkstationOptions opt;
+    opt.scenario = app::live::default_workstation_scenario();
     opt.haptic_priority = 0;
-    auto w = std::make_unique<ui::MainWindow>(std::make_unique<app::Workstation>(opt), nullptr, record);
+    auto w = std::make_unique<ui::MainWindow>(std::make_unique<app::live::Workstation>(opt), nullptr, record);
     w->resize(1200, 800);
     w->show();
     return w;
@@ -83,7 +83,7 @@ class TstReview : public QObject {
     Eigen::Vector3d top = g->rest.front();
     for (const auto& p : g->rest)
       if (p.z() > top.z()) top = p;
-    ws.device().set_mode(app::HandMode::Mouse);
+    ws.device().set_mode(app::live::HandMode::Mouse);
     const double r = 0.008;
     QElapsedTimer clock;
     clock.start();
@@ -122,9 +122,9 @@ class TstReview : public QObject {
     QVERIFY2(steps > 20, qPrintable(QString::number(steps)));
     w.reset();  // closes the recording
 
-    const app::Recording rec = app::read_recording(rec_path_.toStdString());
+    const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
     QVERIFY(rec.complete);
-    QCOMPARE(rec.version, app::kRecordingVersion);
+    QCOMPARE(rec.version, app::store::kRecordingVersion);
     QCOMPARE(rec.fingers, 5);
     QVERIFY2(rec.ticks() > 1500, qPrintable(QString::number(rec.ticks())));  // 1 kHz over ~2.7 s (ticks are lost only to ring overflow)
     QVERIFY(rec.steps.size() >= steps);
@@ -149,7 +149,7 @@ class TstReview : public QObject {
 
   void review_resimulates_and_plays() {
     QVERIFY(QFileInfo::exists(rec_path_));
-    auto session = std::make_unique<app::ReviewSession>(rec_path_.toStdString());
+    auto session = std::make_unique<app::review::ReviewSession>(rec_path_.toStdString());
     QVERIFY(session->has_steps());
     ui::ReviewWindow rw(std::move(session));
     rw.show();
@@ -308,7 +308,7 @@ class TstReview : public QObject {
     auto* chooser = w->patient_panel()->phantom;
     QStringList names;
     for (int i = 0; i < chooser->count(); ++i) names << chooser->itemData(i).toString();
-    const auto builtins = app::PatientLibrary::builtin_patients();
+    const auto builtins = app::store::PatientLibrary::builtin_patients();
     QVERIFY(builtins.size() >= 17);
     for (const auto& p : builtins) QVERIFY2(names.contains(QString::fromStdString(p.name)), p.name.c_str());
     QVERIFY(names.contains(QLatin1String("phantom:box")));

@@ -126,10 +126,10 @@ class TstUiMainWindow : public QObject {
     QStandardPaths::setTestModeEnabled(true);
     QSettings().remove(QStringLiteral("language"));  // a failed run leaves Japanese stored
     ui::VtkView::use_default_surface_format();
-    app::WorkstationOptions opt;
-    opt.scenario = app::default_workstation_scenario();
+    app::live::WorkstationOptions opt;
+    opt.scenario = app::live::default_workstation_scenario();
     opt.haptic_priority = 0;
-    w_ = std::make_unique<ui::MainWindow>(std::make_unique<app::Workstation>(opt));
+    w_ = std::make_unique<ui::MainWindow>(std::make_unique<app::live::Workstation>(opt));
     w_->resize(1200, 800);
     w_->show();
     QVERIFY(QTest::qWaitForWindowExposed(w_.get()));
@@ -350,7 +350,7 @@ class TstUiMainWindow : public QObject {
     ed->undo_stack()->undo();
     QVERIFY(synced());
     // Palpating took the device over from the scripted hand (MainWindow): give it back.
-    w_->workstation().device().set_mode(app::HandMode::Script);
+    w_->workstation().device().set_mode(app::live::HandMode::Script);
   }
 
   // A window grab (the trainer's --screenshot, File > Save screenshot) shows the breast
@@ -515,7 +515,7 @@ class TstUiMainWindow : public QObject {
     w_->set_trainee(true);
     QVERIFY(!w_->view()->tumours_visible());
     for (auto* d : w_->instructor_docks()) QVERIFY(!d->widget()->isEnabled());
-    QVERIFY(w_->workstation().device().mode() == app::HandMode::Mouse);
+    QVERIFY(w_->workstation().device().mode() == app::live::HandMode::Mouse);
     QCOMPARE(w_->view()->tool(), ui::VtkView::Tool::Palpate);
     w_->set_trainee(false);
     QVERIFY(w_->view()->tumours_visible());
@@ -540,7 +540,7 @@ class TstUiMainWindow : public QObject {
     QVERIFY2(ja.contains(QStringLiteral("しこりをマーク (M)")), qPrintable(all));    // the trainee's mark
     QVERIFY2(ja.contains(QStringLiteral("スキャンを取り込む...")), qPrintable(all));  // Patient panel
     // Labels the panels fill: the chosen phantom's description (set when it was chosen, in
-    // English) and the simulation's state (app::LiveStats, English).
+    // English) and the simulation's state (app::live::LiveStats, English).
     QCOMPARE(w_->patient_panel()->chosen(), QStringLiteral("phantom:breast"));
     QCOMPARE(w_->patient_panel()->description->text(), QStringLiteral("論文の乳房と腫瘍（x = 12.5 cm、107 kPa）。"));
     auto* sim_panel = w_->findChild<ui::SimulationPanel*>();
