@@ -7,7 +7,7 @@
 # (breast meshes coarse/paper/xfine, generated on a machine with Gmsh, and the cached CPU
 # reference traces of check-backends). See docs/gpu-notes.md.
 #
-# Stages (arguments; default: build check micro bench idle): build check micro ncu bench idle
+# Stages (arguments; default: build check micro bench idle sweep):
 #   build  cmake + ninja (Release, -DCMAKE_CUDA_ARCHITECTURES=90)
 #   check  palpation check-backends (paper-sweep + hertz, 1,000 steps): exit 1 on disagreement
 #   micro  design alternatives on the paper and xfine meshes (palpation run + env switches)
@@ -17,12 +17,71 @@
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   sweep  the paper's Fig. 6 sweep on CUDA at SWEEP_MESHES (default paper), with and without
 #          the tumour: largest push per pass and the tumour/no-tumour ratio (sweep.txt)
+#   tests  the sim/ and device/ QtTest suites, packed here beforehand (below; tests.log,
+#          tests-summary.txt). Not a default stage; needs no build stage.
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
 # micro.txt, ncu.txt, bench.csv, bench.png (matplotlib where present), idle.csv.
+#
+# The QtTest suites of sim/ and device/ (tests/sim, tests/device) on the GPU: two steps,
+# neither a default stage. The GPU machine has no Qt and no Gmsh, so the suites are built
+# HERE and carried as one archive, .gpu-tests/gpu-tests.tar.xz (ignored):
+#   tools/gpu-check.sh tests-pack   here, on a machine with Qt 6, CUDA 13 (nvcc) and Ninja:
+#       configures TESTS_BUILD (default build-gpu-tests) with CUDA on (sm_90) and Gmsh off,
+#       builds the suites CTest lists under tests/sim and tests/device but TESTS_EXCLUDE
+#       (default tst_phantom: it meshes with Gmsh), and packs them with the shared
+#       libraries that the GPU machine lacks (by ldd: Qt6Test, Qt6Core and theirs; not
+#       libc/libm/libstdc++/libgcc_s, nor CUDA's, which are in /usr/local/cuda/lib64 there)
+#       and the *.pmesh of TESTS_MODELS_FROM (default build/model-cache: the breast
+#       meshes that a ctest run of a build with Gmsh cached; the suites load them there).
+#   run(command="bash tools/gpu-check.sh tests", carry=[".gpu-tests"])   on the GPU machine:
+#       unpacks into /tmp, runs each suite with LD_LIBRARY_PATH on the carried libraries,
+#       QT_QPA_PLATFORM=offscreen and PALPATION_CACHE_DIR on the carried models; writes
+#       $OUT/tests.log (all QtTest output; the CUDA cases of tst_backend_agreement print
+#       their force and position errors) and $OUT/tests-summary.txt (per suite: exit code,
+#       time, passed/failed/skipped). Exit 1 on a failure or crash, or when a CUDA case of
+#       tst_backend_agreement skipped (the GPU was not used).
 set -uo pipefail
+ROOT=$(pwd)
+if [[ ${1:-} == tests-pack ]]; then
+  # Here, not on the GPU machine (see above).
+  set -e
+  TB=${TESTS_BUILD:-$ROOT/build-gpu-tests}
+  MODELS_FROM=${TESTS_MODELS_FROM:-$ROOT/build/model-cache}
+  EXCLUDE=" ${TESTS_EXCLUDE:-tst_phantom} "
+  say() { echo "[gpu-check tests-pack $(date +%H:%M:%S)] $*"; }
+  say "configure $TB (CUDA sm_90, Gmsh off)"
+  cmake -S "$ROOT" -B "$TB" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPALPATION_WITH_CUDA=ON \
+    -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc -DPALPATION_WITH_GMSH=OFF \
+    >"/tmp/gpu-tests.cmake.log" 2>&1 || { tail -30 /tmp/gpu-tests.cmake.log; exit 2; }
+  grep -E "palpation:" /tmp/gpu-tests.cmake.log
+  suites=()
+  for d in sim device; do
+    for t in $(ctest --test-dir "$TB/tests/$d" -N | sed -n 's/^ *Test *#[0-9]*: *//p'); do
+      if [[ $EXCLUDE == *" $t "* ]]; then say "not packed: $t (TESTS_EXCLUDE)"; continue; fi
+      suites+=("$d/$t")
+    done
+  done
+  say "build ${#suites[@]} suites: ${suites[*]}"
+  ninja -C "$TB" -j"${JOBS:-2}" "${suites[@]##*/}"
+  P=$TB/gpu-tests
+  rm -rf "$P"
+  mkdir -p "$P/bin" "$P/lib" "$P/models"
+  for s in "${suites[@]}"; do cp "$TB/tests/$s" "$P/bin/"; done
+  strip --strip-debug "$P"/bin/*
+  # Shared libraries by ldd, less the system's own and CUDA's (the GPU machine has both).
+  ldd "$P"/bin/* | awk '/=> \// {print $1, $3}' | sort -u |
+    grep -Ev '^(libc|libm|libstdc\+\+|libgcc_s|ld-linux[^ ]*|libpthread|libdl|librt|libcu[A-Za-z]*|libnv[A-Za-z]*)\.so' |
+    while read -r name path; do cp -L "$path" "$P/lib/$name"; done
+  cp "$MODELS_FROM"/*.pmesh "$P/models/" 2>/dev/null || say "no *.pmesh in $MODELS_FROM: breast-mesh cases will fail"
+  say "libraries: $(ls "$P/lib" | tr '\n' ' ')"
+  say "models: $(ls "$P/models" | tr '\n' ' ')"
+  mkdir -p "$ROOT/.gpu-tests"
+  tar -C "$TB" -cf - gpu-tests | xz -T0 -6 >"$ROOT/.gpu-tests/gpu-tests.tar.xz"
+  say "packed $(du -sh "$P" | cut -f1) into .gpu-tests/gpu-tests.tar.xz ($(du -h "$ROOT/.gpu-tests/gpu-tests.tar.xz" | cut -f1))"
+  exit 0
+fi
 OUT=${OUT:-$PWD/gpu-out}
 mkdir -p "$OUT"
-ROOT=$(pwd)
 BUILD=${BUILD:-/tmp/palpation-build-gpu}
 export PALPATION_CACHE_DIR=${PALPATION_CACHE_DIR:-$ROOT/.gpu-carry/models}
 export PATH=/usr/local/cuda/bin:$PATH
@@ -50,7 +109,63 @@ if has build; then
   ninja -C "$BUILD" -j"$(nproc)" palpation >"$BUILD.ninja.log" 2>&1 || { grep -E "error|FAILED" -A3 "$BUILD.ninja.log" | head -60; say "build FAILED"; exit 2; }
   say "built $P"
 fi
-[[ -x $P ]] || { say "no $P"; exit 2; }
+if [[ " $STAGES " != " tests " ]]; then
+  [[ -x $P ]] || { say "no $P"; exit 2; }
+fi
+
+if has tests; then
+  # The sim/ and device/ QtTest suites packed by `tools/gpu-check.sh tests-pack` (above).
+  T=/tmp/palpation-gpu-tests
+  rm -rf "$T" && mkdir -p "$T"
+  xz -dc "$ROOT/.gpu-tests/gpu-tests.tar.xz" | tar -C "$T" -xf - ||
+    { say "no .gpu-tests/gpu-tests.tar.xz: run tools/gpu-check.sh tests-pack here and carry .gpu-tests"; exit 2; }
+  T=$T/gpu-tests
+  export LD_LIBRARY_PATH=$T/lib:/usr/local/cuda/lib64${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+  export QT_QPA_PLATFORM=offscreen OMP_NUM_THREADS=${OMP_NUM_THREADS:-8} QTEST_FUNCTION_TIMEOUT=${QTEST_FUNCTION_TIMEOUT:-300000}
+  grep -qw avx2 /proc/cpuinfo || say "no AVX2 here: suites built for x86-64-v3 die of SIGILL"
+  say "tests: $(ls "$T/bin" | tr '\n' ' '); models: $(ls "$T/models" | tr '\n' ' ')"
+  ldd "$T"/bin/* | grep "not found" | sort -u
+  TLOG=$OUT/tests.log
+  SUM=$OUT/tests-summary.txt
+  : >"$TLOG"
+  : >"$SUM"
+  for exe in "$T"/bin/*; do
+    name=$(basename "$exe")
+    say "suite $name"
+    t0=$(date +%s%N)
+    PALPATION_CACHE_DIR=$T/models timeout "${TESTS_TIMEOUT:-300}" "$exe" -o -,txt >"$T/$name.txt" 2>&1
+    rc=$?
+    ms=$(( ($(date +%s%N) - t0) / 1000000 ))
+    cat "$T/$name.txt" >>"$TLOG"
+    grep -E "^(FAIL!|SKIP|QINFO|QFATAL)|^   Loc:" "$T/$name.txt" | head -40
+    tot=$(grep -Eo "Totals: [0-9]+ passed, [0-9]+ failed, [0-9]+ skipped" "$T/$name.txt" | tail -1)
+    printf '%-24s exit %3d %8.1f s  %s\n' "$name" "$rc" "$(( ms / 100 ))e-1" "${tot:-no totals (crashed?)}" | tee -a "$SUM"
+    [[ $rc -ne 0 ]] && status=1
+  done
+  python3 - "$SUM" "$T/tst_backend_agreement.txt" <<'EOF' | tee -a "$SUM"
+# Sums of the suites' totals; the CUDA cases of tst_backend_agreement must have run.
+import re, sys
+n = p = f = s = 0
+for line in open(sys.argv[1]):
+    n += 1
+    m = re.search(r"Totals: (\d+) passed, (\d+) failed, (\d+) skipped", line)
+    if m:
+        p, f, s = p + int(m[1]), f + int(m[2]), s + int(m[3])
+print(f"{n} suites: {p} passed, {f} failed, {s} skipped (test functions and data rows, "
+      "initTestCase/cleanupTestCase included)")
+try:
+    lines = open(sys.argv[2]).read().splitlines()
+except FileNotFoundError:
+    lines = []
+cuda = [l for l in lines if re.match(r"(PASS   |FAIL!  |SKIP   ): .*::(autoPicksCudaWithGpu|doubleAgreesWithCpu|floatAgreesWithinTolerance)", l)]
+for l in cuda:
+    print("CUDA case:", l)
+if len(cuda) < 4 or not all(l.startswith("PASS") for l in cuda):
+    print("CUDA cases of tst_backend_agreement: not all ran and passed")
+    sys.exit(1)
+EOF
+  [[ ${PIPESTATUS[0]} -ne 0 ]] && status=1
+fi
 
 if has check; then
   say "check-backends (GPU vs CPU, 1,000 steps, CG 1e-10)"
