@@ -29,8 +29,9 @@ class Backend {
   virtual void positions(std::vector<double>& xyz) const = 0;
   /// All node velocities (nnode x 3, m/s).
   virtual void velocities(std::vector<double>& xyz) const = 0;
-  /// Re-reads per-element materials from the model (after painting a tumour).
-  virtual void update_materials() = 0;
+  /// Takes new per-element materials (painting a tumour): the Lame parameters of every
+  /// element, as many as the model has elements. The backend starts with the model's.
+  virtual void set_materials(const Materials& m) = 0;
   /// Changes solver/contact/damping parameters between steps.
   virtual void set_params(const SimParams& p) = 0;
   virtual const SimParams& params() const = 0;

@@ -108,7 +108,7 @@ class CpuBackend final : public Backend {
     vfree_.resize(3 * nf);
     build_element_tables();
     cg_.resize(3 * nf);
-    update_materials();
+    set_materials(m_.materials);
     reset();
   }
 
@@ -120,13 +120,13 @@ class CpuBackend final : public Backend {
   const SimParams& params() const override { return p_; }
   void set_params(const SimParams& p) override { p_ = p; }
 
-  void update_materials() override {
+  void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
     lambda_.resize(ne);
     mu_.resize(ne);
     for (int e = 0; e < ne; ++e) {
-      lambda_[e] = T(m_.lambda[e]);
-      mu_[e] = T(m_.mu[e]);
+      lambda_[e] = T(mat.lambda[e]);
+      mu_[e] = T(mat.mu[e]);
     }
     rested_ = false;
     assembled_ = false;  // every element's blocks change: assemble K afresh

@@ -23,29 +23,29 @@
 namespace palpation::sim {
 
 /// Von Mises stress (Pa) of one element with nodes at x0..x3 (m).
-inline double element_von_mises(const Model& m, int e, const Eigen::Vector3d* x) {
+inline double element_von_mises(const Model& m, const Materials& mat, int e, const Eigen::Vector3d* x) {
   const auto& g = m.grad[e];
   Eigen::Matrix3d F = x[0] * g[0].transpose() + x[1] * g[1].transpose() + x[2] * g[2].transpose() +
                       x[3] * g[3].transpose();
   const Eigen::Matrix3d E = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
   const double tr = E.trace();
-  Eigen::Matrix3d S = 2.0 * m.mu[e] * E;
-  S.diagonal().array() += m.lambda[e] * tr;
+  Eigen::Matrix3d S = 2.0 * mat.mu[e] * E;
+  S.diagonal().array() += mat.lambda[e] * tr;
   Eigen::Matrix3d s = S;
   s.diagonal().array() -= S.trace() / 3.0;
   return std::sqrt(1.5 * s.cwiseAbs2().sum());
 }
 
 /// Von Mises stress of every element (ntet, Pa) for node positions `xyz` (nnode x 3, m;
-/// float or double).
+/// float or double) and the elements' current materials.
 template <class Real>
-void element_von_mises(const Model& m, const Real* xyz, std::vector<double>& out) {
+void element_von_mises(const Model& m, const Materials& mat, const Real* xyz, std::vector<double>& out) {
   out.resize(m.tets.size());
   Eigen::Vector3d x[4];
   for (int e = 0; e < m.num_tets(); ++e) {
     const auto& t = m.tets[e];
     for (int a = 0; a < 4; ++a) x[a] = Eigen::Vector3d(double(xyz[3 * t[a]]), double(xyz[3 * t[a] + 1]), double(xyz[3 * t[a] + 2]));
-    out[e] = element_von_mises(m, e, x);
+    out[e] = element_von_mises(m, mat, e, x);
   }
 }
 
@@ -57,8 +57,8 @@ struct StressScratch {
 /// Von Mises stress at the nodes (nnode, Pa): the volume-weighted mean of the incident
 /// elements' values. `xyz`: node positions (nnode x 3, m; float or double).
 template <class Real, class Out>
-void nodal_von_mises(const Model& m, const Real* xyz, std::vector<Out>& out, StressScratch& s) {
-  element_von_mises(m, xyz, s.element);
+void nodal_von_mises(const Model& m, const Materials& mat, const Real* xyz, std::vector<Out>& out, StressScratch& s) {
+  element_von_mises(m, mat, xyz, s.element);
   const std::size_t n = m.rest.size();
   s.acc.assign(n, 0.0);
   s.weight.assign(n, 0.0);

@@ -32,6 +32,27 @@ class JsonReader {
     throw ScenarioError(msg);
   }
   static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+
+  /// The document of `text`; malformed JSON (and a number too large for a double,
+  /// "1e999", found by fuzzing: docs/fuzzing.md) fails as "(syntax)" with where and why.
+  json parse(const std::string& text) const {
+    try {
+      return json::parse(text);
+    } catch (const json::parse_error& e) {
+      fail("(syntax)", "malformed JSON at byte " + std::to_string(e.byte) + ": " + library_message(e.what()));
+    } catch (const json::exception& e) {
+      fail("(syntax)", library_message(e.what()));
+    }
+  }
+  /// nlohmann's message without its "[json.exception...]" and "parse error at ...:" prefixes,
+  /// at most 200 characters.
+  static std::string library_message(const std::string& what) {
+    std::string s = what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 1);
+    if (!s.empty() && s[0] == ' ') s.erase(0, 1);
+    if (s.rfind("parse error at ", 0) == 0 && s.find(": ") != std::string::npos) s = s.substr(s.find(": ") + 2);
+    if (s.size() > 200) s = s.substr(0, 200) + "...";
+    return s;
+  }
   static std::string fmt(double d) {
     std::ostringstream o;
     o << d;

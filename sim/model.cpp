@@ -11,10 +11,10 @@ FixedPredicate fix_base(double height) {
   return [height](const Eigen::Vector3d& p) { return p.z() <= height; };
 }
 
-void Model::set_element_material(int e, double young_modulus, double poisson_ratio) {
-  young[e] = young_modulus;
-  poisson[e] = poisson_ratio;
-  lame(young_modulus, poisson_ratio, lambda[e], mu[e]);
+void Materials::set(int e, double E, double nu) {
+  young[e] = E;
+  poisson[e] = nu;
+  lame(E, nu, lambda[e], mu[e]);
 }
 
 Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed) {
@@ -37,10 +37,10 @@ Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is
       if (on[i]) m.surface_nodes.push_back(i);
   }
 
-  m.young.assign(ne, tissue.young_modulus);
-  m.poisson.assign(ne, tissue.poisson_ratio);
-  m.lambda.resize(ne);
-  m.mu.resize(ne);
+  m.materials.young.assign(ne, tissue.young_modulus);
+  m.materials.poisson.assign(ne, tissue.poisson_ratio);
+  m.materials.lambda.resize(ne);
+  m.materials.mu.resize(ne);
   m.volume.resize(ne);
   m.grad.resize(ne);
   m.dm_inv.resize(ne);
@@ -55,7 +55,7 @@ Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is
     // Rows of Dm^-1 are the gradients of shape functions 1..3; g0 = -(g1 + g2 + g3).
     for (int k = 0; k < 3; ++k) m.grad[e][k + 1] = m.dm_inv[e].row(k).transpose();
     m.grad[e][0] = -(m.grad[e][1] + m.grad[e][2] + m.grad[e][3]);
-    lame(tissue.young_modulus, tissue.poisson_ratio, m.lambda[e], m.mu[e]);
+    lame(tissue.young_modulus, tissue.poisson_ratio, m.materials.lambda[e], m.materials.mu[e]);
     for (int k = 0; k < 4; ++k) m.mass[t[k]] += tissue.density * vol / 4.0;
   }
 

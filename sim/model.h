@@ -36,6 +36,17 @@ inline void lame(double E, double nu, double& lambda, double& mu) {
 ///   K_ab = V (lambda g_a g_b^T + mu g_b g_a^T + mu (g_a . g_b) I)
 /// so the four gradients, V, lambda and mu are all the element needs (12 numbers + 3)
 /// instead of a 12 x 12 matrix. Corotation replaces g_a by R g_a.
+/// Per-element materials: what painting a tumour changes. A Model holds those it was built
+/// with; a running Simulation holds the current ones and hands them to its backend.
+struct Materials {
+  std::vector<double> young;                // (ntet) Pa
+  std::vector<double> poisson;              // (ntet)
+  std::vector<double> lambda, mu;           // (ntet) Lame parameters, Pa
+  int size() const { return static_cast<int>(young.size()); }
+  /// Element e gets Young's modulus E (Pa) and Poisson's ratio nu (its Lame parameters follow).
+  void set(int e, double E, double nu);
+};
+
 struct Model {
   // Geometry ------------------------------------------------------------------
   std::vector<Eigen::Vector3d> rest;        // (nnode) rest positions, m
@@ -44,10 +55,8 @@ struct Model {
   std::vector<std::array<int, 3>> surface;  // (nsurf) boundary triangles, outward
   std::vector<int> surface_nodes;           // (nsurfnode) nodes on the boundary
   // Elements ------------------------------------------------------------------
-  std::vector<double> young;                // (ntet) Pa
-  std::vector<double> poisson;              // (ntet)
+  Materials materials;                      // (ntet) as built: tissue and inclusions
   std::vector<double> volume;               // (ntet) m^3
-  std::vector<double> lambda, mu;           // (ntet) Pa
   std::vector<std::array<Eigen::Vector3d, 4>> grad;  // (ntet x 4) shape gradients, 1/m
   std::vector<Eigen::Matrix3d> dm_inv;      // (ntet) inverse rest edge matrix
   // Nodes ---------------------------------------------------------------------
@@ -70,8 +79,11 @@ struct Model {
   int num_free() const { return static_cast<int>(free_nodes.size()); }
   int num_blocks() const { return static_cast<int>(col.size()); }
 
-  /// Changes one element's material (painting a tumour) without rebuilding anything else.
-  void set_element_material(int e, double young_modulus, double poisson_ratio);
+  /// Sets one element's material while the model is built (inclusions). A running body's
+  /// materials change through Simulation::set_element_young (the model stays as built).
+  void set_element_material(int e, double young_modulus, double poisson_ratio) {
+    materials.set(e, young_modulus, poisson_ratio);
+  }
 };
 
 /// Which nodes are fixed: by default the chest-wall base (z <= base_tolerance).

@@ -79,33 +79,9 @@ std::optional<double> resolution_edge(const std::string& phantom, const std::str
   return std::nullopt;
 }
 
-namespace {
-// The library's message without its "[json.exception...] " prefix, control characters
-// (the raw bytes it quotes may hold newlines) shown as '?': an error stays one line.
-std::string one_line(const std::string& what) {
-  std::string s = what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 1);
-  if (!s.empty() && s[0] == ' ') s.erase(0, 1);
-  if (s.rfind("parse error at ", 0) == 0 && s.find(": ") != std::string::npos) s = s.substr(s.find(": ") + 2);
-  for (char& c : s)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  if (s.size() > 200) s = s.substr(0, 200) + "...";
-  return s;
-}
-}  // namespace
-
 Scenario parse_scenario(const std::string& text, const std::string& source) {
   Reader rd(source);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw ScenarioError(source + ": (syntax): malformed JSON at byte " + std::to_string(e.byte) + ": " +
-                        one_line(e.what()));
-  } catch (const json::exception& e) {
-    // A number too large for a double ("1e999": out_of_range 406), found by fuzzing
-    // (docs/fuzzing.md): bad input like any other, not an internal error.
-    throw ScenarioError(source + ": (syntax): " + one_line(e.what()));
-  }
+  json j = rd.parse(text);
   rd.only_keys(j, "", {"patient", "tissue", "inclusions", "solver", "contact", "fingers", "duration", "gravity"});
   Scenario s;
   s.source = source;

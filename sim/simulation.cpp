@@ -81,6 +81,7 @@ Simulation::Simulation(const Scenario& s, Model model, const LogFn& log) : s_(s)
 
 void Simulation::init(const LogFn& log) {
   log_ = log;
+  materials_ = model_.materials;
   if (model_.num_nodes() > 0) {
     Eigen::Vector3d lo = model_.rest[0], hi = model_.rest[0];
     for (const auto& p : model_.rest) {
@@ -194,12 +195,24 @@ bool Simulation::fall_back_to_cpu(const std::string& why) {
   if (!backend_ || backend_->name() == "cpu") return false;
   const std::string was = backend_->name();
   auto cpu = make_backend(BackendKind::Cpu, model_, backend_->params());
+  cpu->set_materials(materials_);
   cpu->reset();
   backend_ = std::move(cpu);
   ++fallbacks_;
   reason_ = "fell back from " + was + " to cpu: " + why;
   if (log_) log_("backend: " + reason_);
   return true;
+}
+
+int Simulation::set_element_young(std::span<const std::pair<int, double>> changes) {
+  int n = 0;
+  for (const auto& [e, E] : changes)
+    if (e >= 0 && e < model_.num_tets() && std::isfinite(E) && E > 0) {
+      materials_.set(e, E, materials_.poisson[std::size_t(e)]);
+      ++n;
+    }
+  if (n > 0) backend_->set_materials(materials_);
+  return n;
 }
 
 void Simulation::reset() {

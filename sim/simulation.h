@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "backend.h"
@@ -66,8 +67,14 @@ class Simulation {
   Simulation(const Scenario& s, Model model, const LogFn& log = {});
 
   const Scenario& scenario() const { return s_; }
-  Model& model() { return model_; }
+  /// The body as built (mesh, rest state, the materials it was built with): never changed.
   const Model& model() const { return model_; }
+  /// The elements' current materials (the model's, then each change applied).
+  const Materials& materials() const { return materials_; }
+  /// Changes elements' Young's modulus (Pa), their Poisson's ratio kept (painting a
+  /// tumour). Elements out of range and moduli that are not positive and finite are
+  /// ignored. Returns how many changed.
+  int set_element_young(std::span<const std::pair<int, double>> changes);
   Backend& backend() { return *backend_; }
   std::string backend_reason() const { return reason_; }
 
@@ -112,7 +119,8 @@ class Simulation {
  private:
   void init(const LogFn& log);
   Scenario s_;
-  Model model_;
+  Model model_;                          // const after construction
+  Materials materials_;
   std::unique_ptr<Backend> backend_;
   std::string reason_;
   std::vector<FingerInput> fingers_;

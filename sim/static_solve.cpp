@@ -23,7 +23,7 @@ Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector
         const int ib = m.dof[m.tets[e][b]];
         if (ib < 0) continue;
         const Eigen::Matrix3d K =
-            fem::stiffness_block<double>(r[a], r[b], m.grad[e][a].dot(m.grad[e][b]), m.volume[e], m.lambda[e], m.mu[e]);
+            fem::stiffness_block<double>(r[a], r[b], m.grad[e][a].dot(m.grad[e][b]), m.volume[e], m.materials.lambda[e], m.materials.mu[e]);
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) trip.emplace_back(3 * ia + i, 3 * ib + j, K(i, j));
       }

@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="48"/>
         <source>Thumb</source>
         <translation>親指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="41"/>
+        <location filename="../ui/panels.cpp" line="48"/>
         <source>Index</source>
         <translation>人差し指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="42"/>
+        <location filename="../ui/panels.cpp" line="49"/>
         <source>Middle</source>
         <translation>中指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="42"/>
+        <location filename="../ui/panels.cpp" line="49"/>
         <source>Ring</source>
         <translation>薬指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="43"/>
+        <location filename="../ui/panels.cpp" line="50"/>
         <source>Little</source>
         <translation>小指</translation>
     </message>
@@ -58,14 +58,6 @@
     </message>
 </context>
 <context>
-    <name>QObject</name>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="19"/>
-        <source>Undo: %1</source>
-        <translation>取り消し: %1</translation>
-    </message>
-</context>
-<context>
     <name>ReviewWindow</name>
     <message>
         <location filename="../ui/review_window.cpp" line="32"/>
@@ -96,49 +88,253 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="401"/>
+        <location filename="../ui/panels.cpp" line="414"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation>シミュレーションの HandHIRO（自動触診）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="402"/>
+        <location filename="../ui/panels.cpp" line="415"/>
         <source>Mouse palpation (no robot)</source>
         <translation>マウス触診（ロボットなし）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="403"/>
+        <location filename="../ui/panels.cpp" line="416"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="404"/>
+        <location filename="../ui/panels.cpp" line="417"/>
         <source>HandHIRO address</source>
         <translation>HandHIRO アドレス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="405"/>
+        <location filename="../ui/panels.cpp" line="418"/>
         <source>Loop jitter</source>
         <translation>ループのジッタ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="406"/>
+        <location filename="../ui/panels.cpp" line="419"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation>HandHIRO のネットワーク接続は起動時に選びます: palpation-trainer --device emulator、または --device handhiro --robot アドレス:ポート</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="419"/>
+        <location filename="../ui/panels.cpp" line="432"/>
         <source>attached</source>
         <translation>装着</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="419"/>
+        <location filename="../ui/panels.cpp" line="432"/>
         <source>released</source>
         <translation>解放</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="421"/>
+        <location filename="../ui/panels.cpp" line="434"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation>%1 µs（0.5 秒間の最大）</translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::EventText</name>
+    <message>
+        <location filename="../ui/event_text.cpp" line="21"/>
+        <source>Patient&apos;s tumour</source>
+        <translation>患者の腫瘍</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="23"/>
+        <source>%1 at (%2, %3, %4) cm, %5 kPa</source>
+        <translation>%1 (%2, %3, %4) cm、%5 kPa</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="24"/>
+        <source>Sphere</source>
+        <translation>球</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="24"/>
+        <source>Ellipsoid</source>
+        <translation>楕円体</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="26"/>
+        <source>Painted tumour %1, %2 kPa</source>
+        <translation>描画した腫瘍 %1、%2 kPa</translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/event_text.cpp" line="31"/>
+        <source>%1 (%n elements)</source>
+        <translation>
+            <numerusform>%1（%n 要素）</numerusform>
+        </translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="36"/>
+        <source>Add tumour: %1</source>
+        <translation>腫瘍を追加: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="37"/>
+        <source>Remove tumour: %1</source>
+        <translation>腫瘍を削除: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="38"/>
+        <source>Erase</source>
+        <translation>消去</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="38"/>
+        <source>Paint</source>
+        <translation>描画</translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/event_text.cpp" line="40"/>
+        <source>Erase stroke (%n elements)</source>
+        <translation>
+            <numerusform>消去ストローク（%n 要素）</numerusform>
+        </translation>
+    </message>
+    <message numerus="yes">
+        <location filename="../ui/event_text.cpp" line="40"/>
+        <source>Paint stroke (%n elements)</source>
+        <translation>
+            <numerusform>描画ストローク（%n 要素）</numerusform>
+        </translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="43"/>
+        <source>Undo: %1</source>
+        <translation>取り消し: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="48"/>
+        <source>loading patient: %1</source>
+        <translation>患者を読み込み中: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="50"/>
+        <source>patient loaded: %1 nodes, %2 tetrahedra, backend %3</source>
+        <translation>患者を読み込みました: 節点 %1、四面体 %2、バックエンド %3</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="51"/>
+        <source>patient not loaded: %1</source>
+        <translation>患者を読み込めませんでした: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="52"/>
+        <source>solver/contact parameters changed</source>
+        <translation>ソルバー／接触のパラメータを変更</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="56"/>
+        <source>device: mouse palpation</source>
+        <translation>デバイス: マウスで触診</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="57"/>
+        <source>device: scripted hand</source>
+        <translation>デバイス: 自動触診ハンド</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="58"/>
+        <source>trainee mode</source>
+        <translation>研修生モード</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="59"/>
+        <source>instructor mode</source>
+        <translation>指導者モード</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="63"/>
+        <source>trainee mark %1 at (%2, %3, %4) cm</source>
+        <translation>研修生のマーク %1（%2, %3, %4 cm）</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="66"/>
+        <source>trainee mark %1</source>
+        <translation>研修生のマーク %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="67"/>
+        <source>: %1</source>
+        <translation>: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="70"/>
+        <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
+        <translation>バックエンドのエラー: %1。静止状態から CPU で続行します（力を保持してから滑らかに切り替え）</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="71"/>
+        <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
+        <translation>シミュレーションが発散しました（%1）: 物体を静止状態に戻しました（力を保持してから滑らかに切り替え）</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="73"/>
+        <source>simulation stopped: %1</source>
+        <translation>シミュレーションが停止しました: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="82"/>
+        <source>small</source>
+        <translation>小さめ</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="83"/>
+        <source>medium</source>
+        <translation>中くらい</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="84"/>
+        <source>large</source>
+        <translation>大きめ</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="85"/>
+        <source>wide and flat</source>
+        <translation>広く平ら</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="86"/>
+        <source>narrow and projecting</source>
+        <translation>細く突出</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="89"/>
+        <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
+        <translation>健康な乳房、%1（%2 mL、論文の大きさ）、腫瘍なし</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="90"/>
+        <source>Healthy breast, %1 (%2 mL), no tumour</source>
+        <translation>健康な乳房、%1（%2 mL）、腫瘍なし</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="92"/>
+        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
+        <translation>論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、皮膚の下 1.5 cm</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="94"/>
+        <source>soft</source>
+        <translation>柔らかい</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="94"/>
+        <source>hard</source>
+        <translation>硬い</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="94"/>
+        <source>firm</source>
+        <translation>硬めの</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="95"/>
+        <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
+        <translation>中くらいの乳房、%1腫瘍 直径 %2 cm（%3 kPa）、中心は皮膚の下 %4 cm</translation>
     </message>
 </context>
 <context>
@@ -421,364 +617,364 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="132"/>
+        <location filename="../ui/main_window.cpp" line="134"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation>マウス触診: 乳房の上で動かします。ホイールまたは下向きのドラッグで指先を押し込みます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="142"/>
+        <location filename="../ui/main_window.cpp" line="144"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation>その形状の中に要素がありません。追加されませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="202"/>
+        <location filename="../ui/main_window.cpp" line="212"/>
         <source>This session is not recorded: %1</source>
         <translation>このセッションは記録されていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="204"/>
+        <location filename="../ui/main_window.cpp" line="214"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation>中断された記録を復元しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="206"/>
+        <location filename="../ui/main_window.cpp" line="216"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation>患者ライブラリを使えません（内蔵ファントムのみ）: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="252"/>
+        <location filename="../ui/main_window.cpp" line="256"/>
         <source>no patient library is open: %1</source>
         <translation>患者ライブラリが開かれていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="286"/>
+        <location filename="../ui/main_window.cpp" line="285"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation>乳房に触れている指先がありません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="286"/>
+        <location filename="../ui/main_window.cpp" line="285"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation>このセッションは記録されていません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="292"/>
+        <location filename="../ui/main_window.cpp" line="291"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, recorded.</source>
         <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm を記録しました。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="324"/>
+        <location filename="../ui/main_window.cpp" line="323"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation>患者「%1」を保存しました。選んで「患者を読み込む」を押すと触診できます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="337"/>
+        <location filename="../ui/main_window.cpp" line="336"/>
         <source>Open a session recording</source>
         <translation>セッションの記録を開く</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="338"/>
+        <location filename="../ui/main_window.cpp" line="337"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation>セッションの記録 (*.palrec *.prec);;すべてのファイル (*)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="341"/>
+        <location filename="../ui/main_window.cpp" line="340"/>
         <source>Cannot open the recording</source>
         <translation>記録を開けません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="345"/>
+        <location filename="../ui/main_window.cpp" line="344"/>
         <source>Save screenshot</source>
         <translation>スクリーンショットを保存</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="345"/>
+        <location filename="../ui/main_window.cpp" line="344"/>
         <source>PNG images (*.png)</source>
         <translation>PNG 画像 (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="375"/>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="374"/>
+        <location filename="../ui/main_window.cpp" line="479"/>
         <source>Stereo</source>
         <translation>立体視</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="385"/>
+        <location filename="../ui/main_window.cpp" line="384"/>
         <source>Eye separation</source>
         <translation>眼間距離</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="385"/>
+        <location filename="../ui/main_window.cpp" line="384"/>
         <source>Eye angle (degrees):</source>
         <translation>視差角（度）:</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="466"/>
+        <location filename="../ui/main_window.cpp" line="465"/>
         <source>Palpation Trainer</source>
         <translation>触診トレーナー</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="467"/>
+        <location filename="../ui/main_window.cpp" line="466"/>
         <source>&amp;File</source>
         <translation>ファイル(&amp;F)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="468"/>
+        <location filename="../ui/main_window.cpp" line="467"/>
         <source>&amp;Open recording...</source>
         <translation>記録を開く(&amp;O)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="469"/>
+        <location filename="../ui/main_window.cpp" line="468"/>
         <source>Mark lump here (M)</source>
         <translation>しこりをマーク (M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="470"/>
+        <location filename="../ui/main_window.cpp" line="469"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation>研修生:「ここにしこりがある」― 人差し指の指先の位置を記録にマークします</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="471"/>
+        <location filename="../ui/main_window.cpp" line="470"/>
         <source>Save &amp;screenshot...</source>
         <translation>スクリーンショットを保存(&amp;S)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="472"/>
+        <location filename="../ui/main_window.cpp" line="471"/>
         <source>&amp;Quit</source>
         <translation>終了(&amp;Q)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="473"/>
+        <location filename="../ui/main_window.cpp" line="472"/>
         <source>&amp;Edit</source>
         <translation>編集(&amp;E)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="474"/>
+        <location filename="../ui/main_window.cpp" line="473"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="475"/>
+        <location filename="../ui/main_window.cpp" line="474"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="476"/>
+        <location filename="../ui/main_window.cpp" line="475"/>
         <source>&amp;View</source>
         <translation>表示(&amp;V)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="476"/>
         <source>Camera</source>
         <translation>カメラ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="478"/>
+        <location filename="../ui/main_window.cpp" line="477"/>
         <source>Oblique</source>
         <translation>斜め</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="478"/>
+        <location filename="../ui/main_window.cpp" line="477"/>
         <source>Top</source>
         <translation>上</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="478"/>
+        <location filename="../ui/main_window.cpp" line="477"/>
         <source>Side</source>
         <translation>側面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="478"/>
+        <location filename="../ui/main_window.cpp" line="477"/>
         <source>Front</source>
         <translation>正面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="481"/>
+        <location filename="../ui/main_window.cpp" line="480"/>
         <source>Mono</source>
         <translation>モノ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="481"/>
+        <location filename="../ui/main_window.cpp" line="480"/>
         <source>Anaglyph (red/cyan)</source>
         <translation>アナグリフ（赤/シアン）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="481"/>
+        <location filename="../ui/main_window.cpp" line="480"/>
         <source>Side by side</source>
         <translation>サイドバイサイド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="481"/>
+        <location filename="../ui/main_window.cpp" line="480"/>
         <source>Interlaced</source>
         <translation>インターレース</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="481"/>
+        <location filename="../ui/main_window.cpp" line="480"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation>クアッドバッファ（シャッターメガネ）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="483"/>
+        <location filename="../ui/main_window.cpp" line="482"/>
         <source>Eye separation...</source>
         <translation>眼間距離...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="484"/>
+        <location filename="../ui/main_window.cpp" line="483"/>
         <source>Mirrored (half-mirror display)</source>
         <translation>鏡像（ハーフミラー表示）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="485"/>
+        <location filename="../ui/main_window.cpp" line="484"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation>高速描画（ソフトウェア OpenGL）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="486"/>
+        <location filename="../ui/main_window.cpp" line="485"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation>軽い 3D 表示：単色の背景、皮膚のハイライトなし、陰影なしの胸壁。コンピューターが OpenGL をソフトウェアで描画するときは自動でオンになります。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="488"/>
+        <location filename="../ui/main_window.cpp" line="487"/>
         <source>Displacement colour map</source>
         <translation>変位カラーマップ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="489"/>
+        <location filename="../ui/main_window.cpp" line="488"/>
         <source>Stress colour map (von Mises)</source>
         <translation>応力カラーマップ（ミーゼス）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="490"/>
+        <location filename="../ui/main_window.cpp" line="489"/>
         <source>Show tumours</source>
         <translation>腫瘍を表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="491"/>
+        <location filename="../ui/main_window.cpp" line="490"/>
         <source>Panels</source>
         <translation>パネル</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="492"/>
+        <location filename="../ui/main_window.cpp" line="491"/>
         <source>&amp;Mode</source>
         <translation>モード(&amp;M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="493"/>
+        <location filename="../ui/main_window.cpp" line="492"/>
         <source>Trainee mode</source>
         <translation>研修生モード</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="494"/>
+        <location filename="../ui/main_window.cpp" line="493"/>
         <source>Instructor mode</source>
         <translation>指導者モード</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="495"/>
+        <location filename="../ui/main_window.cpp" line="494"/>
         <source>Tools</source>
         <translation>ツール</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="496"/>
+        <location filename="../ui/main_window.cpp" line="495"/>
         <source>Camera / scripted hand</source>
         <translation>カメラ / 自動触診ハンド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="497"/>
+        <location filename="../ui/main_window.cpp" line="496"/>
         <source>Palpate with the mouse</source>
         <translation>マウスで触診</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="614"/>
+        <location filename="../ui/main_window.cpp" line="605"/>
         <source>Not recording</source>
         <translation>記録していません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="615"/>
+        <location filename="../ui/main_window.cpp" line="606"/>
         <source>Recording stopped: %1</source>
         <translation>記録が停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="607"/>
         <source>Recording (%1 marks)</source>
         <translation>記録中（マーク %1 件）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="117"/>
-        <location filename="../ui/main_window.cpp" line="498"/>
+        <location filename="../ui/main_window.cpp" line="119"/>
+        <location filename="../ui/main_window.cpp" line="497"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="499"/>
+        <location filename="../ui/main_window.cpp" line="498"/>
         <source>Tumours</source>
         <translation>腫瘍</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="500"/>
+        <location filename="../ui/main_window.cpp" line="499"/>
         <source>Forces</source>
         <translation>力</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="501"/>
+        <location filename="../ui/main_window.cpp" line="500"/>
         <source>Simulation</source>
         <translation>シミュレーション</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="502"/>
+        <location filename="../ui/main_window.cpp" line="501"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
+        <location filename="../ui/main_window.cpp" line="555"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation>節点 %1、四面体 %2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="604"/>
+        <location filename="../ui/main_window.cpp" line="595"/>
         <source>Backend: %1</source>
         <translation>バックエンド: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="604"/>
+        <location filename="../ui/main_window.cpp" line="595"/>
         <source>Backend: %1 (fallback)</source>
         <translation>バックエンド: %1（フォールバック）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="606"/>
+        <location filename="../ui/main_window.cpp" line="597"/>
         <source>Simulation: %1 Hz</source>
         <translation>シミュレーション: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="607"/>
+        <location filename="../ui/main_window.cpp" line="598"/>
         <source>Haptic: %1 Hz</source>
         <translation>力覚: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="609"/>
+        <location filename="../ui/main_window.cpp" line="600"/>
         <source>mouse</source>
         <translation>マウス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="610"/>
+        <location filename="../ui/main_window.cpp" line="601"/>
         <source>simulated HandHIRO</source>
         <translation>シミュレーションの HandHIRO</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="611"/>
+        <location filename="../ui/main_window.cpp" line="602"/>
         <source>Device: %1, %2</source>
         <translation>デバイス: %1、%2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="611"/>
+        <location filename="../ui/main_window.cpp" line="602"/>
         <source>connected</source>
         <translation>接続中</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="611"/>
+        <location filename="../ui/main_window.cpp" line="602"/>
         <source>not connected</source>
         <translation>未接続</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="612"/>
+        <location filename="../ui/main_window.cpp" line="603"/>
         <source>View: %1 fps</source>
         <translation>表示: %1 fps</translation>
     </message>
@@ -786,217 +982,79 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="112"/>
+        <location filename="../ui/panels.cpp" line="120"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
         <translation>乳房ファントム（論文の腫瘍）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="113"/>
+        <location filename="../ui/panels.cpp" line="121"/>
         <source>Box phantom</source>
         <translation>直方体ファントム</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="114"/>
+        <location filename="../ui/panels.cpp" line="122"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
         <translation>論文の乳房と腫瘍（x = 12.5 cm、107 kPa）。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="115"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
         <translation>10 x 10 x 5 cm の組織ブロック、腫瘍なし。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="120"/>
+        <location filename="../ui/panels.cpp" line="130"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation>粗い（約 1,000 節点、CPU でリアルタイム）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="121"/>
+        <location filename="../ui/panels.cpp" line="131"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation>論文（約 9,100 節点、GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="132"/>
         <source>Fine (GPU)</source>
         <translation>細かい（GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="133"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="124"/>
+        <location filename="../ui/panels.cpp" line="134"/>
         <source>Resolution</source>
         <translation>解像度</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="125"/>
+        <location filename="../ui/panels.cpp" line="135"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation>組織のヤング率</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="126"/>
+        <location filename="../ui/panels.cpp" line="136"/>
         <source>Poisson ratio</source>
         <translation>ポアソン比</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="127"/>
+        <location filename="../ui/panels.cpp" line="137"/>
         <source>Load patient</source>
         <translation>患者を読み込む</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="128"/>
+        <location filename="../ui/panels.cpp" line="138"/>
         <source>Import scan...</source>
         <translation>スキャンを取り込む...</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="129"/>
+        <location filename="../ui/panels.cpp" line="139"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation>ライブラリの患者（内蔵の乳房形状、大きさ・深さ・硬さ別の腫瘍症例、取り込んだスキャン）と内蔵ファントム。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="130"/>
+        <location filename="../ui/panels.cpp" line="140"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation>ファントム患者のみ。取り込んだスキャンはメッシュ生成時の解像度のままです。</translation>
-    </message>
-</context>
-<context>
-    <name>palpation::ui::RecordedText</name>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="43"/>
-        <source>device: mouse palpation</source>
-        <translation>デバイス: マウスで触診</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="44"/>
-        <source>device: scripted hand</source>
-        <translation>デバイス: 自動触診ハンド</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="45"/>
-        <source>trainee mode</source>
-        <translation>研修生モード</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="46"/>
-        <source>instructor mode</source>
-        <translation>指導者モード</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="47"/>
-        <source>solver/contact parameters changed</source>
-        <translation>ソルバー／接触のパラメータを変更</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="51"/>
-        <source>trainee mark %1</source>
-        <translation>研修生のマーク %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="52"/>
-        <source>trainee mark %1 at (%2, %3, %4) cm</source>
-        <translation>研修生のマーク %1（%2, %3, %4 cm）</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="54"/>
-        <source>: %1</source>
-        <translation>: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="58"/>
-        <source>patient loaded: %1 nodes, %2 tetrahedra, backend %3</source>
-        <translation>患者を読み込みました: 節点 %1、四面体 %2、バックエンド %3</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="59"/>
-        <source>loading patient: %1</source>
-        <translation>患者を読み込み中: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="60"/>
-        <source>patient not loaded: %1</source>
-        <translation>患者を読み込めませんでした: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="61"/>
-        <source>simulation stopped: %1</source>
-        <translation>シミュレーションが停止しました: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="63"/>
-        <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
-        <translation>バックエンドのエラー: %1。静止状態から CPU で続行します（力を保持してから滑らかに切り替え）</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="65"/>
-        <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
-        <translation>シミュレーションが発散しました（%1）: 物体を静止状態に戻しました（力を保持してから滑らかに切り替え）</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="66"/>
-        <source>change: %1</source>
-        <translation>変更: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="79"/>
-        <source>small</source>
-        <translation>小さめ</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="80"/>
-        <source>medium</source>
-        <translation>中くらい</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="81"/>
-        <source>large</source>
-        <translation>大きめ</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="82"/>
-        <source>wide and flat</source>
-        <translation>広く平ら</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="83"/>
-        <source>narrow and projecting</source>
-        <translation>細く突出</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="84"/>
-        <source>Healthy breast, %1 (%2 mL), no tumour</source>
-        <translation>健康な乳房、%1（%2 mL）、腫瘍なし</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="85"/>
-        <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
-        <translation>健康な乳房、%1（%2 mL、論文の大きさ）、腫瘍なし</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="88"/>
-        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
-        <translation>論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、皮膚の下 1.5 cm</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="94"/>
-        <source>soft</source>
-        <translation>柔らかい</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="94"/>
-        <source>firm</source>
-        <translation>硬めの</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="94"/>
-        <source>hard</source>
-        <translation>硬い</translation>
-    </message>
-    <message>
-        <location filename="../ui/recorded_text.cpp" line="95"/>
-        <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
-        <translation>中くらいの乳房、%1腫瘍 直径 %2 cm（%3 kPa）、中心は皮膚の下 %4 cm</translation>
     </message>
 </context>
 <context>
@@ -1035,14 +1093,14 @@
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="248"/>
-        <location filename="../ui/review_window.cpp" line="299"/>
+        <location filename="../ui/review_window.cpp" line="300"/>
         <source>Pause</source>
         <translation>一時停止</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="248"/>
-        <location filename="../ui/review_window.cpp" line="299"/>
-        <location filename="../ui/review_window.cpp" line="308"/>
+        <location filename="../ui/review_window.cpp" line="300"/>
+        <location filename="../ui/review_window.cpp" line="309"/>
         <source>Play</source>
         <translation>再生</translation>
     </message>
@@ -1067,77 +1125,77 @@
         <translation>指導者のイベントと研修生のマーク（クリックでその時刻へ移動）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="260"/>
+        <location filename="../ui/review_window.cpp" line="261"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation>各指先の力 (N): デバイスへ送った力（実線）、再シミュレーションの力（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="261"/>
+        <location filename="../ui/review_window.cpp" line="262"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation>各指先の力 (N): 記録（実線）、再シミュレーション（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="265"/>
+        <location filename="../ui/review_window.cpp" line="266"/>
         <source>%1 (re-sim.)</source>
         <translation>%1（再計算）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="267"/>
+        <location filename="../ui/review_window.cpp" line="268"/>
         <source>now</source>
         <translation>現在</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="268"/>
+        <location filename="../ui/review_window.cpp" line="269"/>
         <source>Events</source>
         <translation>イベント</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="363"/>
+        <location filename="../ui/review_window.cpp" line="366"/>
         <source>Re-simulation stopped: %1</source>
         <translation>再シミュレーションが停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="366"/>
+        <location filename="../ui/review_window.cpp" line="369"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: %4 N（%6 秒の%5、記録された最大の力 %7 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="375"/>
+        <location filename="../ui/review_window.cpp" line="378"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: 0 N（記録された最大の力 %4 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="382"/>
+        <location filename="../ui/review_window.cpp" line="385"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation>再現しました: 同じバックエンドと設定で同じ力になります。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="383"/>
+        <location filename="../ui/review_window.cpp" line="386"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation>完全には再現されていません（バックエンドまたは設定が異なります）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="385"/>
+        <location filename="../ui/review_window.cpp" line="388"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation>1 kHz で送った力はシミュレーションの力と最大 %1 N 異なります（力覚ループの局所接触モデル、カップリング、安全フィルタによる）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="389"/>
+        <location filename="../ui/review_window.cpp" line="392"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation>記録されたデバイス入力から、シナリオの時間刻みで %2 ティック中 %1 ティックを再シミュレーションしました（バックエンド %3）。記録された力との最大差: %4 N（記録された最大の力 %5 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="398"/>
+        <location filename="../ui/review_window.cpp" line="401"/>
         <source>The recording was interrupted: %1</source>
         <translation>記録は途中で中断されています: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="399"/>
+        <location filename="../ui/review_window.cpp" line="402"/>
         <source>The recording was recovered after an interruption.</source>
         <translation>この記録は中断の後に復元されたものです。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="406"/>
+        <location filename="../ui/review_window.cpp" line="409"/>
         <source>Written: %1</source>
         <translation>書き出しました: %1</translation>
     </message>
@@ -1145,117 +1203,117 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="325"/>
+        <location filename="../ui/panels.cpp" line="337"/>
         <source>Backend</source>
         <translation>バックエンド</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="326"/>
+        <location filename="../ui/panels.cpp" line="338"/>
         <source>CG tolerance</source>
         <translation>CG 許容誤差</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="327"/>
+        <location filename="../ui/panels.cpp" line="339"/>
         <source>CG max. iterations</source>
         <translation>CG 最大反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="328"/>
+        <location filename="../ui/panels.cpp" line="340"/>
         <source>State</source>
         <translation>状態</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="329"/>
+        <location filename="../ui/panels.cpp" line="341"/>
         <source>Safety</source>
         <translation>安全</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="330"/>
+        <location filename="../ui/panels.cpp" line="342"/>
         <source>Step time</source>
         <translation>ステップ時間</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="331"/>
+        <location filename="../ui/panels.cpp" line="343"/>
         <source>CG iterations</source>
         <translation>CG 反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="332"/>
+        <location filename="../ui/panels.cpp" line="344"/>
         <source>Simulation rate</source>
         <translation>シミュレーション周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="333"/>
+        <location filename="../ui/panels.cpp" line="345"/>
         <source>Haptic rate</source>
         <translation>力覚ループ周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="334"/>
+        <location filename="../ui/panels.cpp" line="346"/>
         <source>Apply solver settings</source>
         <translation>ソルバー設定を適用</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="335"/>
+        <location filename="../ui/panels.cpp" line="347"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation>バックエンドの変更は患者の（再）読み込み時に反映されます。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="347"/>
+        <location filename="../ui/panels.cpp" line="360"/>
         <source>stopped</source>
         <translation>停止</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="348"/>
+        <location filename="../ui/panels.cpp" line="361"/>
         <source>loading</source>
         <translation>読み込み中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="362"/>
         <source>running</source>
         <translation>実行中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="350"/>
+        <location filename="../ui/panels.cpp" line="363"/>
         <source>swapping</source>
         <translation>患者を切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="351"/>
+        <location filename="../ui/panels.cpp" line="364"/>
         <source>error: %1</source>
         <translation>エラー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="356"/>
+        <location filename="../ui/panels.cpp" line="369"/>
         <source>no fault</source>
         <translation>異常なし</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="357"/>
+        <location filename="../ui/panels.cpp" line="370"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>バックエンドのフォールバック %n 回</numerusform>
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="358"/>
+        <location filename="../ui/panels.cpp" line="371"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>発散リセット %n 回</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="359"/>
+        <location filename="../ui/panels.cpp" line="372"/>
         <source>forces held and blended</source>
         <translation>力を保持して切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="363"/>
+        <location filename="../ui/panels.cpp" line="376"/>
         <source>%1 ms</source>
         <translation>%1 ms</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="365"/>
-        <location filename="../ui/panels.cpp" line="366"/>
+        <location filename="../ui/panels.cpp" line="378"/>
+        <location filename="../ui/panels.cpp" line="379"/>
         <source>%1 Hz</source>
         <translation>%1 Hz</translation>
     </message>
@@ -1342,173 +1400,107 @@
         <source>Samani et al. 2007: about 6.4 kPa</source>
         <translation>Samani ら 2007: 約 6.4 kPa</translation>
     </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="90"/>
-        <source>Patient&apos;s tumour</source>
-        <translation>患者の腫瘍</translation>
-    </message>
-    <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="98"/>
-        <source>%1 (%n elements)</source>
-        <translation>
-            <numerusform>%1（%n 要素）</numerusform>
-        </translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="142"/>
-        <source>%1 at (%2, %3, %4) cm, %5 kPa</source>
-        <translation>%1 (%2, %3, %4) cm、%5 kPa</translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="140"/>
-        <source>Sphere</source>
-        <translation>球</translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="141"/>
-        <source>Ellipsoid</source>
-        <translation>楕円体</translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="149"/>
-        <source>Add tumour: %1</source>
-        <translation>腫瘍を追加: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="164"/>
-        <source>Remove tumour: %1</source>
-        <translation>腫瘍を削除: %1</translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="191"/>
-        <source>Erase</source>
-        <translation>消去</translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="192"/>
-        <source>Paint</source>
-        <translation>描画</translation>
-    </message>
-    <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="204"/>
-        <source>Erase stroke (%n elements)</source>
-        <translation>
-            <numerusform>消去ストローク（%n 要素）</numerusform>
-        </translation>
-    </message>
-    <message numerus="yes">
-        <location filename="../ui/tumour_editor.cpp" line="205"/>
-        <source>Paint stroke (%n elements)</source>
-        <translation>
-            <numerusform>描画ストローク（%n 要素）</numerusform>
-        </translation>
-    </message>
-    <message>
-        <location filename="../ui/tumour_editor.cpp" line="209"/>
-        <source>Painted tumour %1, %2 kPa</source>
-        <translation>描画した腫瘍 %1、%2 kPa</translation>
-    </message>
 </context>
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="234"/>
-        <location filename="../ui/panels.cpp" line="260"/>
+        <location filename="../ui/panels.cpp" line="244"/>
+        <location filename="../ui/panels.cpp" line="272"/>
         <source>Source: %1</source>
         <translation>出典: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="261"/>
+        <location filename="../ui/panels.cpp" line="273"/>
         <source>Preset</source>
         <translation>プリセット</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="262"/>
+        <location filename="../ui/panels.cpp" line="274"/>
         <source>Stiffness</source>
         <translation>硬さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="263"/>
+        <location filename="../ui/panels.cpp" line="275"/>
         <source>Add by shape</source>
         <translation>形状で追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="264"/>
+        <location filename="../ui/panels.cpp" line="276"/>
         <source>Sphere</source>
         <translation>球</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="265"/>
+        <location filename="../ui/panels.cpp" line="277"/>
         <source>Ellipsoid</source>
         <translation>楕円体</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="266"/>
+        <location filename="../ui/panels.cpp" line="278"/>
         <source>Shape</source>
         <translation>形状</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="267"/>
+        <location filename="../ui/panels.cpp" line="279"/>
         <source>Centre x, y, z</source>
         <translation>中心 x, y, z</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="268"/>
+        <location filename="../ui/panels.cpp" line="280"/>
         <source>Radius (x, y, z)</source>
         <translation>半径 (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="269"/>
+        <location filename="../ui/panels.cpp" line="281"/>
         <source>Add tumour</source>
         <translation>腫瘍を追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="270"/>
+        <location filename="../ui/panels.cpp" line="282"/>
         <source>Remove selected</source>
         <translation>選択を削除</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="271"/>
+        <location filename="../ui/panels.cpp" line="283"/>
         <source>Brush</source>
         <translation>ブラシ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="284"/>
         <source>Radius</source>
         <translation>半径</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="285"/>
         <source>Depth below the skin</source>
         <translation>皮膚からの深さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="286"/>
         <source>Paint</source>
         <translation>描画</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="275"/>
+        <location filename="../ui/panels.cpp" line="287"/>
         <source>Erase</source>
         <translation>消去</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="276"/>
+        <location filename="../ui/panels.cpp" line="288"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation>乳房上をドラッグして腫瘍組織を描画（1 ストロークで 1 回の取り消し）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="277"/>
+        <location filename="../ui/panels.cpp" line="289"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation>乳房上をドラッグして正常組織に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="278"/>
+        <location filename="../ui/panels.cpp" line="290"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="279"/>
+        <location filename="../ui/panels.cpp" line="291"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
@@ -1516,22 +1508,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="579"/>
+        <location filename="../ui/vtk_view.cpp" line="578"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation>このプラットフォーム（%1）ではネイティブウィンドウの OpenGL コンテキストを作れません</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="582"/>
+        <location filename="../ui/vtk_view.cpp" line="581"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation>このディスプレイの OpenGL（%1）にはステレオバッファがありません。クアッドバッファ立体視にはステレオ対応の GPU、ドライバ、ディスプレイが必要です</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="775"/>
+        <location filename="../ui/vtk_view.cpp" line="761"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation>クアッドバッファ立体視は使えません: %1。代わりにアナグリフ（赤青メガネ）で表示します。サイドバイサイドとインターレースも使えます。</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="777"/>
+        <location filename="../ui/vtk_view.cpp" line="763"/>
         <source>the view is not initialised yet</source>
         <translation>ビューがまだ初期化されていません</translation>
     </message>

@@ -18,7 +18,7 @@
 #include <QVBoxLayout>
 
 #include "store/patient_library.h"
-#include "scenario.h"
+#include "live/patient_choice.h"
 #include "vtk_view.h"
 
 namespace palpation::ui {
@@ -166,7 +166,7 @@ void ImportDialog::reject() {
 }
 
 double ImportDialog::edge() const {
-  const auto e = sim::resolution_edge("breast", resolution->currentData().toString().toStdString());
+  const auto e = app::live::resolution_edge("breast", resolution->currentData().toString().toStdString());
   return e ? *e : 0.00515;
 }
 

@@ -16,6 +16,7 @@
 #include "main_window.h"
 #include "review_window.h"
 #include "vtk_view.h"
+#include "live/patient_choice.h"
 #include "live/workstation.h"
 
 int main(int argc, char** argv) {
@@ -106,20 +107,14 @@ int main(int argc, char** argv) {
   palpation::app::live::WorkstationOptions opt;
   opt.scenario = palpation::app::live::default_workstation_scenario();
   const std::string res = cli.value(resolution).toStdString();
-  if (auto e = palpation::sim::resolution_edge("breast", res)) {
-    opt.scenario.patient.resolution = res;
-    opt.scenario.patient.edge = *e;
-  } else {
+  if (!palpation::app::live::set_phantom_resolution(opt.scenario, res)) {
     std::fprintf(stderr, "palpation-trainer: --resolution: unknown level \"%s\" (coarse, paper, fine)\n", res.c_str());
     return 2;
   }
   if (!cli.isSet(resolution) && !cli.isSet(shot)) {  // screenshots: always the default scene
     // The last patient's resolution (QSettings), when it names a known level.
     const std::string last = QSettings().value(QStringLiteral("patient/resolution")).toString().toStdString();
-    if (auto e = palpation::sim::resolution_edge("breast", last)) {
-      opt.scenario.patient.resolution = last;
-      opt.scenario.patient.edge = *e;
-    }
+    palpation::app::live::set_phantom_resolution(opt.scenario, last);
   }
   opt.device = cli.value(device).toStdString();
   if (cli.isSet(robot)) {

@@ -25,7 +25,9 @@
 
 #include <QStandardPaths>
 
+#include "event_text.h"
 #include "force_plots.h"
+#include "live/patient_choice.h"
 #include "import_dialog.h"
 #include "panels.h"
 #include "store/patient_library.h"
@@ -130,7 +132,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
     view_->set_tool(i == 1 ? VtkView::Tool::Palpate : VtkView::Tool::Camera);
     if (i == 1)
       statusBar()->showMessage(tr("Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in."), 8000);
-    ws_->log_event("mode", i == 1 ? "device: mouse palpation" : "device: scripted hand");
+    ws_->log_event(app::live::Event::mode_change(i == 1 ? app::live::ModeChange::MousePalpation : app::live::ModeChange::ScriptedHand));
   });
   connect(tumour_panel_->add, &QPushButton::clicked, this, [this] {
     Eigen::Vector3d c, r;
@@ -138,14 +140,22 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
       c[i] = tumour_panel_->centre[i]->value() * 0.01;
       r[i] = tumour_panel_->radii[i]->value() * 0.01;
     }
-    const int n = editor_->add_shape(tumour_panel_->shape->currentData().toString(), c, r, tumour_panel_->preset_young());
+    const int n = editor_->add_shape(tumour_panel_->chosen_shape(), c, r, tumour_panel_->preset_young());
     if (n == 0) statusBar()->showMessage(tr("No element lies inside that shape: nothing added."), 5000);
   });
   connect(tumour_panel_->remove, &QPushButton::clicked, this, [this] { editor_->remove_tumour(tumour_panel_->list->currentRow()); });
   connect(tumour_panel_, &TumourPanel::toolRequested, this, [this](int t) {
     view_->set_tool(t == 1 ? VtkView::Tool::Paint : t == 2 ? VtkView::Tool::Erase : VtkView::Tool::Camera);
   });
-  connect(view_, &VtkView::brushDab, this, &MainWindow::on_brush);
+  connect(view_, &VtkView::brushStrokeStarted, this, [this] {
+    if (trainee_) return;
+    editor_->set_brush(tumour_panel_->brush_radius->value() * 0.01, tumour_panel_->brush_depth->value() * 0.01,
+                       tumour_panel_->preset_young());
+    editor_->begin_stroke(view_->tool() == VtkView::Tool::Erase);
+  });
+  connect(view_, &VtkView::brushDab, this, [this](const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
+    if (!trainee_) editor_->dab(p, n);
+  });
   connect(view_, &VtkView::brushStrokeEnded, this, [this] { editor_->end_stroke(); });
   connect(view_, &VtkView::palpateTarget, this, [this](const Eigen::Vector3d& c, bool present) {
     if (ws_->device().mode() != app::live::HandMode::Mouse) {
@@ -153,12 +163,12 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
     }
     ws_->set_mouse_finger(c, present);
   });
-  connect(editor_, &TumourEditor::changed, this, [this] { view_->set_element_young(editor_->young()); });
+  connect(editor_, &TumourEditor::changed, this, [this] { view_->show_tumours(ws_->tumours()); });
   ws_->add_tick_listener([this](const app::live::TickSample& s) { plots_->add_sample(s); });
   ws_->add_step_listener([this](const app::live::StepSample& s) { plots_->add_step_sample(s); });
   plots_->set_device_limit(std::min(ws_->device_config().loop.safety.max_force, ws_->device_config().hand.capabilities.max_force));
   ws_->add_event_listener([this](const app::live::Event& e) {
-    statusBar()->showMessage(QString::fromStdString(e.text), 4000);
+    statusBar()->showMessage(EventText::event(e), 4000);
   });
 
   QSettings settings;
@@ -228,7 +238,8 @@ void MainWindow::refresh_patients() {
   if (library_) {
     try {
       for (const auto& p : library_->list())
-        entries.append({QString::fromStdString(p.name), QString::fromStdString(p.category), QString::fromStdString(p.description)});
+        entries.append({QString::fromStdString(p.name), QString::fromStdString(p.category), QString::fromStdString(p.description),
+                        p.builtin});
     } catch (const std::exception& e) {
       library_error_ = QString::fromStdString(e.what());
     }
@@ -239,28 +250,16 @@ void MainWindow::refresh_patients() {
 bool MainWindow::choose_patient(const QString& name, QString* error) {
   sim::Scenario s;
   try {
-    if (name == QLatin1String("phantom:breast") || name == QLatin1String("phantom:box")) {
-      s = app::live::default_workstation_scenario();
-      if (name.endsWith(QLatin1String("box"))) {
-        s.patient.phantom = "box";
-        s.patient.size = Eigen::Vector3d(0.1, 0.1, 0.05);
-        s.inclusions.clear();
-        if (auto e = sim::resolution_edge("box", s.patient.resolution)) s.patient.edge = *e;
-      }
-      s.source = name.toStdString();
+    if (auto phantom = app::live::phantom_patient(name.toStdString())) {
+      s = *phantom;
     } else {
       if (!library_) throw std::runtime_error(tr("no patient library is open: %1").arg(library_error_).toStdString());
       const auto rec = library_->find(name.toStdString());
       if (!rec) throw std::runtime_error(library_->location() + ": no patient named \"" + name.toStdString() + "\"");
       s = app::scan::library_patient_scenario(
           *rec, (QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + QStringLiteral("/meshes")).toStdString());
-      if (!s.patient.phantom.empty()) {  // the workstation's resolution, not the library's default
-        const std::string r = patient_panel_->resolution->currentData().toString().toStdString();
-        if (auto e = sim::resolution_edge(s.patient.phantom, r)) {
-          s.patient.resolution = r;
-          s.patient.edge = *e;
-        }
-      }
+      // The workstation's resolution, not the library's default (phantoms only).
+      app::live::set_phantom_resolution(s, patient_panel_->resolution->currentData().toString().toStdString());
     }
   } catch (const std::exception& e) {
     if (error) *error = QString::fromStdString(e.what());
@@ -288,7 +287,7 @@ int MainWindow::mark_lump() {
   }
   const Eigen::Vector3d p = snap.finger_position[k];
   const int n = recorder_->add_mark(p);
-  ws_->log_event("mark", "trainee mark " + std::to_string(n));
+  ws_->log_event(app::live::Event::trainee_mark(n));
   statusBar()->showMessage(tr("Mark %1: \"I feel a lump here\" at (%2, %3, %4) cm, recorded.")
                                .arg(n)
                                .arg(p.x() * 100, 0, 'f', 1)
@@ -541,26 +540,18 @@ void MainWindow::set_trainee(bool on) {
     device_panel_->mode->setCurrentIndex(1);  // mouse palpation
     a_palpate_tool_->setChecked(true);
   }
-  ws_->log_event("mode", on ? "trainee mode" : "instructor mode");
-}
-
-void MainWindow::on_brush(const Eigen::Vector3d& p, const Eigen::Vector3d& n, bool first) {
-  if (trainee_) return;
-  if (first) {
-    editor_->set_brush(tumour_panel_->brush_radius->value() * 0.01, tumour_panel_->brush_depth->value() * 0.01,
-                       tumour_panel_->preset_young());
-    editor_->begin_stroke(view_->tool() == VtkView::Tool::Erase);
-  }
-  if (p.x() < 1e8) editor_->dab(p, n);
+  ws_->log_event(app::live::Event::mode_change(on ? app::live::ModeChange::Trainee : app::live::ModeChange::Instructor));
 }
 
 void MainWindow::tick() {
   const bool fresh = ws_->poll();
-  const auto g = ws_->geometry();
+  // The patient as the tumour document has it (poll() moved it to a new one).
+  const auto& g = ws_->tumours().patient();
   if (g && g->generation != generation_) {
     generation_ = g->generation;
     view_->set_patient(g);
-    editor_->set_patient(g);
+    view_->show_tumours(ws_->tumours());
+    editor_->patient_changed();
     patient_panel_->info->setText(tr("%1 nodes, %2 tetrahedra").arg(g->rest.size()).arg(g->tets.size()));
   }
   if (fresh) view_->show_snapshot(ws_->snapshot());

@@ -100,7 +100,6 @@ class MainWindow : public QMainWindow {
   void build_actions();
   void retranslate();
   void update_status();
-  void on_brush(const Eigen::Vector3d& p, const Eigen::Vector3d& n, bool first);
 
   std::unique_ptr<app::live::Workstation> ws_;
   VtkView* view_ = nullptr;

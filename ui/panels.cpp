@@ -19,8 +19,8 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 
-#include "backend.h"
-#include "recorded_text.h"
+#include "event_text.h"
+#include "live/patient_choice.h"
 #include "tumour_editor.h"
 
 namespace palpation::ui {
@@ -37,6 +37,13 @@ QDoubleSpinBox* spin(double lo, double hi, double v, int decimals, double step, 
 }
 void set_label(QFormLayout* form, QWidget* field, const QString& text) {
   if (auto* l = qobject_cast<QLabel*>(form->labelForField(field))) l->setText(text);
+}
+// A library patient's description in the current language: a built-in patient's from its
+// data, any other as stored.
+QString shown_description(const QString& name, bool builtin, const QString& stored) {
+  if (builtin)
+    if (const auto d = app::store::builtin_description(name.toStdString())) return EventText::patient_description(*d);
+  return stored;
 }
 const char* const kFingers[5] = {QT_TRANSLATE_NOOP("DevicePanel", "Thumb"), QT_TRANSLATE_NOOP("DevicePanel", "Index"),
                                  QT_TRANSLATE_NOOP("DevicePanel", "Middle"), QT_TRANSLATE_NOOP("DevicePanel", "Ring"),
@@ -85,7 +92,8 @@ void PatientPanel::set_patients(const QList<Entry>& entries) {
   for (const auto& e : entries) {
     phantom->addItem(e.name, e.name);
     phantom->setItemData(phantom->count() - 1, e.description, Qt::UserRole + 2);  // as stored (English for built-ins)
-    phantom->setItemData(phantom->count() - 1, RecordedText::patient_description(e.description.toStdString()), Qt::ToolTipRole);
+    phantom->setItemData(phantom->count() - 1, e.builtin, Qt::UserRole + 3);
+    phantom->setItemData(phantom->count() - 1, shown_description(e.name, e.builtin, e.description), Qt::ToolTipRole);
     phantom->setItemData(phantom->count() - 1, e.category, Qt::UserRole + 1);
   }
   // The built-in phantoms, always there (also without a library).
@@ -114,7 +122,9 @@ void PatientPanel::retranslate() {
   phantom->setItemData(n - 2, tr("The paper's breast with its tumour (107 kPa at x = 12.5 cm)."), Qt::ToolTipRole);
   phantom->setItemData(n - 1, tr("A 10 x 10 x 5 cm block of tissue, no tumour."), Qt::ToolTipRole);
   for (int i = 0; i < n - 2; ++i)  // the library's patients: their stored descriptions in the new language
-    phantom->setItemData(i, RecordedText::patient_description(phantom->itemData(i, Qt::UserRole + 2).toString().toStdString()),
+    phantom->setItemData(i,
+                         shown_description(phantom->itemData(i).toString(), phantom->itemData(i, Qt::UserRole + 3).toBool(),
+                                           phantom->itemData(i, Qt::UserRole + 2).toString()),
                          Qt::ToolTipRole);
   if (description) description->setText(phantom->currentData(Qt::ToolTipRole).toString());  // the chosen one's, in the new language
   resolution->setItemText(0, tr("Coarse (about 1,000 nodes, real time on a CPU)"));
@@ -145,8 +155,8 @@ void PatientPanel::show_scenario(const sim::Scenario& s) {
 sim::Scenario PatientPanel::scenario(const sim::Scenario& base) const {
   sim::Scenario s = base;
   if (!s.patient.phantom.empty()) {
-    s.patient.resolution = resolution->currentData().toString().toStdString();
-    if (auto e = sim::resolution_edge(s.patient.phantom, s.patient.resolution)) s.patient.edge = *e;
+    if (!app::live::set_phantom_resolution(s, resolution->currentData().toString().toStdString()))
+      s.patient.resolution = resolution->currentData().toString().toStdString();
   }
   s.young_modulus = young->value() * 1000.0;
   s.poisson_ratio = poisson->value();
@@ -163,8 +173,8 @@ TumourPanel::TumourPanel(TumourEditor* editor, QWidget* parent) : QWidget(parent
   source->setWordWrap(true);
   young = spin(1, 1000, 107, 1, 5, QStringLiteral(" kPa"));
   shape = new QComboBox;
-  shape->addItem(QString(), QStringLiteral("sphere"));
-  shape->addItem(QString(), QStringLiteral("ellipsoid"));
+  shape->addItem(QString(), int(app::live::TumourShape::Sphere));
+  shape->addItem(QString(), int(app::live::TumourShape::Ellipsoid));
   const double c0[3] = {12.5, 0, 3.5};
   for (int i = 0; i < 3; ++i) {
     centre[i] = spin(-30, 30, c0[i], 1, 0.5, QStringLiteral(" cm"));
@@ -248,6 +258,8 @@ TumourPanel::TumourPanel(TumourEditor* editor, QWidget* parent) : QWidget(parent
 
 double TumourPanel::preset_young() const { return young->value() * 1000.0; }
 
+app::live::TumourShape TumourPanel::chosen_shape() const { return app::live::TumourShape(shape->currentData().toInt()); }
+
 void TumourPanel::refresh_list() {
   list->clear();
   list->addItems(editor_->tumour_names());
@@ -288,7 +300,7 @@ void TumourPanel::changeEvent(QEvent* e) {
 // ---------------------------------------------------------------------------------------
 SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   backend = new QComboBox;
-  for (const auto& b : sim::available_backends()) backend->addItem(QString::fromStdString(b));
+  for (const auto& b : app::live::available_backends()) backend->addItem(QString::fromStdString(b));
   tolerance = new QDoubleSpinBox;
   tolerance->setDecimals(6);
   tolerance->setRange(1e-6, 1e-1);
@@ -341,15 +353,16 @@ void SimulationPanel::changeEvent(QEvent* e) {
 }
 
 void SimulationPanel::show_stats(const app::live::LiveStats& s, const QString& be) {
-  // The state word translated (app::live::LiveStats::state is English); an error's reason stays as
-  // the simulation wrote it.
-  const std::string& st = s.state;
-  const QString word = st == "stopped"                ? tr("stopped")
-                       : st == "loading"              ? tr("loading")
-                       : st == "running"              ? tr("running")
-                       : st == "swapping"             ? tr("swapping")
-                       : st.rfind("error: ", 0) == 0 ? tr("error: %1").arg(QString::fromStdString(st.substr(7)))
-                                                      : QString::fromStdString(st);
+  // The state in words; an error's reason stays as the simulation wrote it.
+  using app::live::SimState;
+  QString word;
+  switch (s.state) {
+    case SimState::Stopped: word = tr("stopped"); break;
+    case SimState::Loading: word = tr("loading"); break;
+    case SimState::Running: word = tr("running"); break;
+    case SimState::Swapping: word = tr("swapping"); break;
+    case SimState::Error: word = tr("error: %1").arg(QString::fromStdString(s.error)); break;
+  }
   state->setText(word + (be.isEmpty() ? QString() : QStringLiteral(" (") + be + QStringLiteral(")")));
   // Backend fallbacks and divergence resets (design.md section 7), with the newest reason.
   QString text = s.fallbacks == 0 && s.divergences == 0

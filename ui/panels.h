@@ -6,7 +6,6 @@
 
 #include <QWidget>
 
-#include "scenario.h"
 #include "live/workstation.h"
 
 class QCheckBox;
@@ -36,7 +35,8 @@ class PatientPanel : public QWidget {
   struct Entry {
     QString name;         // library name, or "phantom:breast" / "phantom:box"
     QString category;     // "breast", "tumour", "imported", "phantom"
-    QString description;
+    QString description;  // as stored (English for the built-in patients)
+    bool builtin = false;  // a built-in patient: its description is data (app::store::builtin_description)
   };
   /// Fills the chooser (the current choice is kept when still there).
   void set_patients(const QList<Entry>& entries);
@@ -68,6 +68,7 @@ class TumourPanel : public QWidget {
   TumourPanel(TumourEditor* editor, QWidget* parent = nullptr);
   void refresh_list();
   double preset_young() const;
+  app::live::TumourShape chosen_shape() const;
   QListWidget* list = nullptr;
   QComboBox *preset = nullptr, *shape = nullptr;
   QLabel* source = nullptr;

@@ -23,7 +23,7 @@
 #include <QValueAxis>
 #include <QVBoxLayout>
 
-#include "recorded_text.h"
+#include "event_text.h"
 #include "vtk_view.h"
 
 namespace palpation::ui {
@@ -250,11 +250,12 @@ void ReviewWindow::retranslate() {
   csv_->setText(tr("Export CSV..."));
   png_->setText(tr("Export PNG frames..."));
   markers_title_->setText(tr("Instructor events and trainee marks (click to go there)"));
-  // The events as recorded (English) in the chosen language (RecordedText).
+  // The events in the chosen language from their data (EventText); those recorded without
+  // their arguments (older recordings) as recorded.
   const auto& markers = session_->markers();
   for (int i = 0; i < markers_->count() && i < int(markers.size()); ++i) {
     const auto& m = markers[std::size_t(i)];
-    markers_->item(i)->setText(QStringLiteral("%1  %2").arg(clock(m.t), RecordedText::event(m.text)));
+    markers_->item(i)->setText(QStringLiteral("%1  %2").arg(clock(m.t), m.event ? EventText::event(*m.event) : QString::fromStdString(m.text)));
   }
   chart_->setTitle(session_->has_steps()
                        ? tr("Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)")
@@ -348,6 +349,8 @@ void ReviewWindow::show_time() {
   if (fr->geometry && fr->geometry->generation != generation_) {
     generation_ = fr->geometry->generation;
     view_->set_patient(fr->geometry);
+    // The recorded patient's tumours as it was loaded.
+    view_->show_tumours(app::live::TumourDocument(fr->geometry));
   }
   if (fr.get() != shown_) {
     shown_ = fr.get();

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <utility>
 
 #include <QCoreApplication>
@@ -613,7 +612,9 @@ void VtkView::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
   shown_stress_.clear();
   update_normals();
   surface_->Modified();
-  set_element_young(geometry_->young);
+  tumour_poly_->SetPolys(vtkNew<vtkCellArray>());
+  tumour_poly_->Modified();
+  tumour_cells_ = 0;
   request_render();
 }
 
@@ -704,31 +705,16 @@ void VtkView::show_snapshot(const app::live::RenderSnapshot& s) {
   request_render();
 }
 
-void VtkView::set_element_young(const std::vector<double>& young) {
-  young_ = young;
-  // The boundary of the stiff elements: their faces that no other stiff element shares,
-  // oriented outward (away from the element's fourth node). Once per material change.
+void VtkView::show_tumours(const app::live::TumourDocument& doc) {
+  // The boundary of the tumour elements, once per material change.
   vtkNew<vtkCellArray> faces;
   tumour_cells_ = 0;
-  if (geometry_) {
-    const double threshold = geometry_->tissue_young * 1.2;
-    std::map<std::array<int, 3>, std::array<int, 3>> open;  // sorted face -> oriented face
-    static const int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (std::size_t e = 0; e < young.size() && e < geometry_->tets.size(); ++e) {
-      if (young[e] <= threshold) continue;
-      ++tumour_cells_;
-      const auto& t = geometry_->tets[e];
-      for (const auto& f : kFace) {
-        std::array<int, 3> o{t[f[0]], t[f[1]], t[f[2]]}, key = o;
-        std::sort(key.begin(), key.end());
-        auto it = open.find(key);
-        if (it != open.end()) open.erase(it);
-        else open.emplace(key, o);
-      }
-    }
-    faces->AllocateExact(vtkIdType(open.size()), vtkIdType(open.size() * 3));
-    for (const auto& [key, o] : open) {
-      const vtkIdType ids[3] = {o[0], o[1], o[2]};
+  if (geometry_ && doc.patient() && doc.generation() == geometry_->generation) {
+    tumour_cells_ = doc.tumour_element_count();
+    const auto tris = doc.tumour_faces();
+    faces->AllocateExact(vtkIdType(tris.size()), vtkIdType(tris.size() * 3));
+    for (const auto& f : tris) {
+      const vtkIdType ids[3] = {f[0], f[1], f[2]};
       faces->InsertNextCell(3, ids);
     }
   }
@@ -862,22 +848,21 @@ void VtkView::set_overlay_text(const QString& text) {
   request_render();
 }
 
-bool VtkView::pick_surface(const QPoint& pos, Eigen::Vector3d& point, Eigen::Vector3d& normal) {
-  if (!geometry_) return false;
+std::optional<VtkView::SurfacePick> VtkView::pick_surface(const QPoint& pos) {
+  if (!geometry_) return std::nullopt;
   const qreal r = devicePixelRatioF();
   int x = int(pos.x() * r);
   const int y = int((height() - pos.y() - 1) * r);
   if (mirrored_) x = int(width() * r) - 1 - x;
-  if (!picker_->Pick(x, y, 0, renderer_)) return false;
-  if (picker_->GetActor() != surface_actor_.Get()) return false;
+  if (!picker_->Pick(x, y, 0, renderer_)) return std::nullopt;
+  if (picker_->GetActor() != surface_actor_.Get()) return std::nullopt;
   double p[3], n[3];
   picker_->GetPickPosition(p);
   picker_->GetPickNormal(n);
-  point = Eigen::Vector3d(p[0], p[1], p[2]);
-  normal = Eigen::Vector3d(n[0], n[1], n[2]);
-  if (normal.norm() < 1e-9) normal = Eigen::Vector3d::UnitZ();
-  normal.normalize();
-  return true;
+  SurfacePick pick{Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Vector3d(n[0], n[1], n[2])};
+  if (pick.normal.norm() < 1e-9) pick.normal = Eigen::Vector3d::UnitZ();
+  pick.normal.normalize();
+  return pick;
 }
 
 void VtkView::forward_mouse(QMouseEvent* e, unsigned long vtk_event) {
@@ -890,23 +875,22 @@ void VtkView::forward_mouse(QMouseEvent* e, unsigned long vtk_event) {
 }
 
 void VtkView::palpate_at(const QPoint& pos) {
-  Eigen::Vector3d p, n;
-  if (!pick_surface(pos, p, n)) {
+  const auto pick = pick_surface(pos);
+  if (!pick) {
     emit palpateTarget(Eigen::Vector3d::Zero(), false);
     return;
   }
   // The fingertip touches the skin at the cursor, pressed in by press_ along -n.
   const double radius = 0.008;
-  emit palpateTarget(p + n * (radius - press_), true);
+  emit palpateTarget(pick->point + pick->normal * (radius - press_), true);
 }
 
 void VtkView::mousePressEvent(QMouseEvent* e) {
   last_pos_ = e->position().toPoint();
   if ((tool_ == Tool::Paint || tool_ == Tool::Erase) && e->button() == Qt::LeftButton) {
-    Eigen::Vector3d p, n;
     stroke_ = true;
-    if (pick_surface(last_pos_, p, n)) emit brushDab(p, n, true);
-    else emit brushDab(Eigen::Vector3d::Constant(1e9), Eigen::Vector3d::UnitZ(), true);
+    emit brushStrokeStarted();
+    if (const auto pick = pick_surface(last_pos_)) emit brushDab(pick->point, pick->normal);
     return;
   }
   if (tool_ == Tool::Palpate && e->button() == Qt::LeftButton) {
@@ -921,8 +905,7 @@ void VtkView::mousePressEvent(QMouseEvent* e) {
 void VtkView::mouseMoveEvent(QMouseEvent* e) {
   const QPoint pos = e->position().toPoint();
   if (stroke_) {
-    Eigen::Vector3d p, n;
-    if (pick_surface(pos, p, n)) emit brushDab(p, n, false);
+    if (const auto pick = pick_surface(pos)) emit brushDab(pick->point, pick->normal);
     last_pos_ = pos;
     return;
   }

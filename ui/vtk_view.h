@@ -16,8 +16,8 @@
 // Cost per frame (docs/gui.md, measured under Xvfb with llvmpipe): a snapshot only
 // rewrites the points array, the point normals (area-weighted, over the surface
 // triangles) and the scalars in place and marks them Modified(); nothing is re-created
-// and no VTK filter runs per frame; the tumour's boundary faces are extracted when the
-// materials change, not per frame. A snapshot that moves nothing renders nothing. Under
+// and no VTK filter runs per frame; the tumour's boundary faces (from the tumour document,
+// app/live/tumour_document.h) are taken when the materials change, not per frame. A snapshot that moves nothing renders nothing. Under
 // software OpenGL (llvmpipe and the like) the view draws in a light style by itself
 // (set_render_style; View > Fast rendering): a plain background, no specular on the skin,
 // an unlit chest, which the renderer shades per pixel at a cost and which inform nobody.
@@ -25,6 +25,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <QImage>
@@ -68,12 +69,13 @@ class VtkView : public QWidget {
   explicit VtkView(QWidget* parent = nullptr);
   ~VtkView() override;
 
-  /// A new patient: rebuilds the surface and tumour geometry.
+  /// A new patient: rebuilds the surface; no tumours until show_tumours.
   void set_patient(std::shared_ptr<const app::live::PatientGeometry> g);
   /// The newest snapshot (deformed nodes, fingertips). Schedules a render.
   void show_snapshot(const app::live::RenderSnapshot& s);
-  /// Elements whose modulus is above the tissue's are drawn as tumours.
-  void set_element_young(const std::vector<double>& young);
+  /// Draws the document's tumours (its tumour elements' boundary faces) on the patient
+  /// shown (the document's patient must be it).
+  void show_tumours(const app::live::TumourDocument& doc);
   void set_tumours_visible(bool on);
   bool tumours_visible() const { return tumours_visible_; }
   int tumour_cell_count() const;
@@ -121,8 +123,12 @@ class VtkView : public QWidget {
   void set_overlay_text(const QString& text);
   /// Press depth of the mouse fingertip (m, >= 0).
   double press_depth() const { return press_; }
-  /// Surface point under a widget position (world, m) and the outward normal.
-  bool pick_surface(const QPoint& pos, Eigen::Vector3d& point, Eigen::Vector3d& normal);
+  /// A point of the skin (world, m) and its outward unit normal.
+  struct SurfacePick {
+    Eigen::Vector3d point, normal;
+  };
+  /// The skin under a widget position; nothing when the position misses it.
+  std::optional<SurfacePick> pick_surface(const QPoint& pos);
   /// Frames rendered so far (for the measured frame rate).
   quint64 frames() const { return frames_; }
   /// Schedules a new frame (the native window's next update request). Not QWidget::update:
@@ -155,8 +161,10 @@ class VtkView : public QWidget {
   double update_ms() const { return snapshots_ ? update_ns_ * 1e-6 / double(snapshots_) : 0.0; }
 
  signals:
-  /// A brush dab at a surface point (Paint or Erase tool); `first` starts a stroke.
-  void brushDab(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, bool first);
+  /// A brush stroke starts (Paint or Erase tool, left button pressed), dabs at the skin
+  /// points it passes over, and ends (released).
+  void brushStrokeStarted();
+  void brushDab(const Eigen::Vector3d& point, const Eigen::Vector3d& normal);
   void brushStrokeEnded();
   /// Where the mouse fingertip should be (Palpate tool); present = false lifts it away.
   void palpateTarget(const Eigen::Vector3d& centre, bool present);
@@ -205,7 +213,6 @@ class VtkView : public QWidget {
   vtkNew<vtkCellPicker> picker_;
   vtkNew<vtkTextActor> overlay_;
   std::shared_ptr<const app::live::PatientGeometry> geometry_;
-  std::vector<double> young_;
   std::vector<float> shown_positions_, shown_stress_;  // what the last render showed
   std::array<Eigen::Vector3d, 5> shown_fingers_{};
   std::array<bool, 5> shown_active_{};

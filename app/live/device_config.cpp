@@ -122,12 +122,7 @@ json device_config_to_json(const DeviceConfig& c) {
 
 DeviceConfig parse_device_config(const std::string& text, const std::string& source) {
   Reader r(source);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw sim::ScenarioError(source + ": (top level): not valid JSON (" + std::string(e.what()) + ")");
-  }
+  json j = r.parse(text);
   DeviceConfig c = default_device_config();
   c.source = source;
   auto& h = c.hand;

@@ -76,7 +76,7 @@ std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulati
   g->rest = m.rest;
   g->tets = m.tets;
   g->surface = m.surface;
-  g->young = m.young;
+  g->young = simulation.materials().young;
   g->centroid.resize(m.tets.size());
   for (std::size_t e = 0; e < m.tets.size(); ++e) {
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -148,7 +148,7 @@ void Workstation::start() {
   t0_ns_ = dv::monotonic_ns();
   rate_window_ns_ = t0_ns_;
   stop_.store(false);
-  sim_state_.store(1);
+  sim_state_.store(SimState::Loading);
   sim_thread_ = std::thread([this] { sim_main(); });
   if (wiring_->emulator) {
     dv::HandHiroEmulator* em = wiring_->emulator.get();
@@ -164,7 +164,7 @@ void Workstation::stop() {
   threads_->emulator.stop();
   stop_.store(true, std::memory_order_release);
   sim_thread_.join();
-  sim_state_.store(0);
+  sim_state_.store(SimState::Stopped);
 }
 
 void Workstation::post(Command c) {
@@ -173,9 +173,29 @@ void Workstation::post(Command c) {
   posted_.fetch_add(1);
 }
 
-void Workstation::log_event(const std::string& kind, const std::string& text) {
+const char* command_kind_name(CommandKind k) {
+  switch (k) {
+    case CommandKind::Young: return "young";
+    case CommandKind::Params: return "params";
+    case CommandKind::Patient: return "patient";
+  }
+  return "";
+}
+
+const char* sim_state_name(SimState s) {
+  switch (s) {
+    case SimState::Stopped: return "stopped";
+    case SimState::Loading: return "loading";
+    case SimState::Running: return "running";
+    case SimState::Swapping: return "swapping";
+    case SimState::Error: return "error";
+  }
+  return "";
+}
+
+void Workstation::log_event(Event e) {
   std::lock_guard<std::mutex> lk(mu_);
-  Event e{now_s(), kind, text};
+  e.t = now_s();
   events_.push_back(e);
   new_events_.push_back(std::move(e));
 }
@@ -197,10 +217,7 @@ std::vector<double> Workstation::applied_young(std::uint64_t* applied) const {
 }
 
 void apply_element_young(sim::Simulation& s, const std::vector<std::pair<int, double>>& changes) {
-  sim::Model& m = s.model();
-  for (const auto& [e, E] : changes)
-    if (e >= 0 && e < m.num_tets() && E > 0) m.set_element_material(e, E, m.poisson[e]);
-  s.backend().update_materials();
+  s.set_element_young(changes);
 }
 
 void apply_params(sim::Simulation& s, const sim::SimParams& p) {
@@ -215,21 +232,26 @@ void Workstation::notify_command(CommandRecord r) {
   for (auto& l : command_listeners_) l(r);
 }
 
-void Workstation::set_element_young(std::vector<std::pair<int, double>> changes, const std::string& event_text) {
-  if (!event_text.empty()) log_event("material", event_text);
-  if (!command_listeners_.empty()) notify_command({0, "young", changes, {}, {}, event_text});
+void Workstation::set_element_young(std::vector<std::pair<int, double>> changes, const std::optional<MaterialEdit>& edit) {
+  tumours_.set_young(changes);
+  std::optional<Event> e;
+  if (edit) {
+    e = Event::material(*edit);
+    log_event(*e);
+  }
+  if (!command_listeners_.empty()) notify_command({0, CommandKind::Young, changes, {}, {}, e});
   post([changes = std::move(changes)](sim::Simulation& s) { apply_element_young(s, changes); });
 }
 
 void Workstation::set_params(const sim::SimParams& p) {
-  log_event("params", "solver/contact parameters changed");
-  if (!command_listeners_.empty()) notify_command({0, "params", {}, p, {}, "solver/contact parameters changed"});
+  log_event(Event::params());
+  if (!command_listeners_.empty()) notify_command({0, CommandKind::Params, {}, p, {}, Event::params()});
   post([p](sim::Simulation& s) { apply_params(s, p); });
 }
 
 void Workstation::load_patient(const sim::Scenario& s) {
-  log_event("patient", "loading patient: " + s.source);
-  if (!command_listeners_.empty()) notify_command({0, "patient", {}, {}, s, "loading patient: " + s.source});
+  log_event(Event::patient_loading(s.source));
+  if (!command_listeners_.empty()) notify_command({0, CommandKind::Patient, {}, {}, s, Event::patient_loading(s.source)});
   post([this, s](sim::Simulation&) {
     std::lock_guard<std::mutex> lk(mu_);
     opt_.scenario = s;
@@ -245,7 +267,7 @@ void Workstation::set_mouse_finger(const Eigen::Vector3d& world, bool present) {
 }
 
 void Workstation::build(const sim::Scenario& s) {
-  sim_state_.store(sim_ ? 3 : 1);
+  sim_state_.store(sim_ ? SimState::Swapping : SimState::Loading);
   // A patient that cannot be built leaves the current one running.
   auto simulation = std::make_unique<sim::Simulation>(s);
   simulation->reset();
@@ -257,13 +279,12 @@ void Workstation::build(const sim::Scenario& s) {
   {
     std::lock_guard<std::mutex> lk(mu_);
     geometry_ = g;
-    applied_young_ = m.young;
+    applied_young_ = simulation->materials().young;
     backend_name_ = g->backend;
   }
   sim_ = std::move(simulation);
-  log_event("patient", "patient loaded: " + std::to_string(m.num_nodes()) + " nodes, " + std::to_string(m.num_tets()) +
-                           " tetrahedra, backend " + g->backend);
-  sim_state_.store(2);
+  log_event(Event::patient_loaded(m.num_nodes(), m.num_tets(), g->backend));
+  sim_state_.store(SimState::Running);
 }
 
 void Workstation::sim_main() {
@@ -272,7 +293,7 @@ void Workstation::sim_main() {
   } catch (const std::exception& e) {
     std::lock_guard<std::mutex> lk(mu_);
     load_error_ = e.what();
-    sim_state_.store(4);
+    sim_state_.store(SimState::Error);
     return;
   }
   const auto& reg = opt_.config.hand.registration;
@@ -295,7 +316,7 @@ void Workstation::sim_main() {
       try {
         c(*sim_);
       } catch (const std::exception& e) {
-        log_event("error", e.what());
+        log_event(Event::with_detail(EventKind::Error, e.what()));
       }
     }
     const std::uint64_t n = cmds.size();
@@ -304,7 +325,7 @@ void Workstation::sim_main() {
       swap_pending_ = false;
       // Patient swap: fade the forces to zero (empty contact models, blended out by the
       // haptic loop over its blend window), then rebuild. The haptic loop keeps running.
-      sim_state_.store(3);
+      sim_state_.store(SimState::Swapping);
       const std::int64_t fade_end = dv::monotonic_ns() + 100000000;  // 100 ms
       while (dv::monotonic_ns() < fade_end) {
         loop.publish_empty();
@@ -318,14 +339,14 @@ void Workstation::sim_main() {
       try {
         build(s);
       } catch (const std::exception& e) {
-        log_event("error", std::string("patient not loaded: ") + e.what());
-        sim_state_.store(2);
+        log_event(Event::with_detail(EventKind::PatientNotLoaded, e.what()));
+        sim_state_.store(SimState::Running);
       }
       loop.restart(*sim_, std::vector<double>(nf, finger_radius(s)));
     }
     {
       std::lock_guard<std::mutex> lk(mu_);
-      applied_young_ = sim_->model().young;
+      applied_young_ = sim_->materials().young;
     }
     applied_.fetch_add(n);
   };
@@ -337,7 +358,7 @@ void Workstation::sim_main() {
         backend_name_ = sim_->backend().name();
         safety_note_ = sim_->backend_reason();
       }
-      log_event("fallback", "backend error: " + r.error + "; continuing on the CPU from rest (forces held, then blended)");
+      log_event(Event::with_detail(EventKind::Fallback, r.error));
     }
     if (!r.ok) {
       divergences_.fetch_add(1);
@@ -347,7 +368,7 @@ void Workstation::sim_main() {
         std::lock_guard<std::mutex> lk(mu_);
         safety_note_ = "divergence reset: " + why;
       }
-      log_event("reset", "simulation diverged (" + why + "): body reset to rest (forces held, then blended)");
+      log_event(Event::with_detail(EventKind::Reset, why));
     }
   };
   hooks.after_step = [&](const LoopStep& ls) {
@@ -375,7 +396,7 @@ void Workstation::sim_main() {
       rs.finger_active[d] = ls.poses->fingers[d].present;
     }
     rs.finger_radius = ls.in[0].radius;
-    if (stress_enabled_.load(std::memory_order_acquire)) sim::nodal_von_mises(sim_->model(), xyz.data(), rs.von_mises, stress_scratch);
+    if (stress_enabled_.load(std::memory_order_acquire)) sim::nodal_von_mises(sim_->model(), sim_->materials(), xyz.data(), rs.von_mises, stress_scratch);
     else rs.von_mises.clear();
     snapshots_.publish();
   };
@@ -384,12 +405,12 @@ void Workstation::sim_main() {
   } catch (const std::exception& e) {
     // The CPU backend itself failed: nothing left to step. Fade the forces out.
     const std::string why = e.what();
-    log_event("error", "simulation stopped: " + why);
+    log_event(Event::with_detail(EventKind::Stopped, why));
     {
       std::lock_guard<std::mutex> lk(mu_);
       load_error_ = "simulation stopped: " + why;
     }
-    sim_state_.store(4);
+    sim_state_.store(SimState::Error);
     loop.publish_empty();
   }
 }
@@ -452,16 +473,15 @@ bool Workstation::poll() {
   }
   if (any_tick) stats_.connected = running() && any_attached;
   if (!running()) stats_.connected = false;
-  switch (sim_state_.load()) {
-    case 0: stats_.state = "stopped"; break;
-    case 1: stats_.state = "loading"; break;
-    case 2: stats_.state = "running"; break;
-    case 3: stats_.state = "swapping"; break;
-    default: {
-      std::lock_guard<std::mutex> lk(mu_);
-      stats_.state = "error: " + load_error_;
-    }
+  stats_.state = sim_state_.load();
+  std::shared_ptr<const PatientGeometry> g;
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    stats_.error = stats_.state == SimState::Error ? load_error_ : std::string();
+    g = geometry_;
   }
+  // The tumour document follows a new patient.
+  if (g && g->generation != tumours_.generation()) tumours_.set_patient(std::move(g));
   return snapshots_.update();
 }
 

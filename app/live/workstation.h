@@ -17,7 +17,10 @@
 //     is dropped unless the 32k-tick ring overflows between polls (counted: dropped()).
 //   - add_step_listener(fn): every simulation step (time, step ms, CG iterations, contacts).
 //   - add_event_listener(fn) / events(): instructor and system events (patient loaded,
-//     material change, tumour added/painted, mode change, divergence reset), time-stamped.
+//     material change, tumour added/painted, mode change, divergence reset), time-stamped,
+//     as data (live/event.h: a kind and its arguments; the English line from event_text).
+// The tumour document (live/tumour_document.h, tumours()) is the GUI's copy of the
+// patient's moduli and tumour list: set_element_young changes it and queues the change.
 // Changes (materials, parameters, patient) are queued with post() and applied on the
 // simulation thread between steps; a patient swap first fades the forces to zero.
 #pragma once
@@ -28,6 +31,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -35,6 +39,8 @@
 #include <Eigen/Core>
 
 #include "live/device_config.h"
+#include "live/event.h"
+#include "live/tumour_document.h"
 #include "hand_script.h"
 #include "haptic_device.h"
 #include "haptic_loop.h"
@@ -100,27 +106,26 @@ struct StepSample {
   std::array<Eigen::Vector3d, dv::kMaxFingers> force{};  // on the finger, N (zero after a reset)
 };
 
+/// What a posted command changes: element moduli, solver/contact parameters, the patient.
+enum class CommandKind { Young, Params, Patient };
+/// The kind's name in recordings: "young", "params", "patient".
+const char* command_kind_name(CommandKind k);
+
 /// A change posted through set_element_young / set_params / load_patient, as data (for
 /// the recorder): `index` is its place among all posted commands (the count applied
 /// before a step says which ones that step saw).
 struct CommandRecord {
   std::uint64_t index = 0;
-  std::string kind;                                  // "young", "params", "patient"
-  std::vector<std::pair<int, double>> young;         // element, Pa
-  sim::SimParams params;                             // "params"
-  sim::Scenario scenario;                            // "patient"
-  std::string text;
+  CommandKind kind = CommandKind::Young;
+  std::vector<std::pair<int, double>> young;         // Young: element, Pa
+  sim::SimParams params;                             // Params
+  sim::Scenario scenario;                            // Patient
+  std::optional<Event> event;                        // the event logged with it (Young: when described)
 };
 
 /// The commands' effects, shared with the review's re-simulation (app/review/review_session.h).
 void apply_element_young(sim::Simulation& s, const std::vector<std::pair<int, double>>& changes);
 void apply_params(sim::Simulation& s, const sim::SimParams& p);
-
-struct Event {
-  double t = 0;             // s since start()
-  std::string kind;         // "patient", "material", "tumour", "paint", "mode", "reset", "params"
-  std::string text;         // English, one line
-};
 
 /// Geometry of the loaded patient that the GUI needs (picking, painting): a copy, never
 /// changed after loading.
@@ -141,6 +146,11 @@ struct PatientGeometry {
 /// name is read through sim::Simulation::backend().
 std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulation, std::uint64_t generation);
 
+/// The simulation thread's state.
+enum class SimState { Stopped, Loading, Running, Swapping, Error };
+/// In English: "stopped", "loading", "running", "swapping", "error".
+const char* sim_state_name(SimState s);
+
 /// Live figures (GUI thread, updated by poll()).
 struct LiveStats {
   double step_rate_hz = 0, haptic_rate_hz = 0, step_ms = 0, jitter_us = 0;
@@ -149,7 +159,8 @@ struct LiveStats {
   std::array<bool, dv::kMaxFingers> attached{};
   std::array<double, dv::kMaxFingers> force_n{};
   std::uint64_t dropped = 0;
-  std::string state = "stopped";  // "loading", "running", "swapping", "error: ..."
+  SimState state = SimState::Stopped;
+  std::string error;              // Error: why (English, as the simulation said it)
   std::string backend;            // the backend stepping now ("cpu" after a fallback)
   int fallbacks = 0;              // backend errors survived by falling back to the CPU
   int divergences = 0;            // divergence resets (body put back to rest)
@@ -217,8 +228,10 @@ class Workstation {
   // Commands: applied on the simulation thread between steps. ---------------------
   using Command = std::function<void(sim::Simulation&)>;
   void post(Command c);
-  /// Sets the Young's modulus of elements (Pa); Poisson ratio unchanged.
-  void set_element_young(std::vector<std::pair<int, double>> changes, const std::string& event_text = {});
+  /// Sets the Young's modulus of elements (Pa; Poisson ratio unchanged) in the tumour
+  /// document and queues it for the simulation; an instructor's edit is logged as a
+  /// Material event. GUI thread.
+  void set_element_young(std::vector<std::pair<int, double>> changes, const std::optional<MaterialEdit>& edit = {});
   void set_params(const sim::SimParams& p);
   /// Replaces the patient (forces fade to zero first, then the model is rebuilt).
   void load_patient(const sim::Scenario& s);
@@ -227,6 +240,10 @@ class Workstation {
   std::vector<double> applied_young(std::uint64_t* applied = nullptr) const;
   std::uint64_t commands_posted() const { return posted_.load(); }
   std::uint64_t commands_applied() const { return applied_.load(); }
+  /// The tumour document: the patient's moduli and tumour list as the GUI knows them,
+  /// following each new patient at poll(). GUI thread.
+  TumourDocument& tumours() { return tumours_; }
+  const TumourDocument& tumours() const { return tumours_; }
 
   // Device ---------------------------------------------------------------------------
   /// The simulated device (scripted hand / mouse targets). With "emulator" or "handhiro"
@@ -251,8 +268,8 @@ class Workstation {
   /// Called on the posting thread (the GUI) when set_element_young / set_params /
   /// load_patient posts a command.
   void add_command_listener(std::function<void(const CommandRecord&)> f) { command_listeners_.push_back(std::move(f)); }
-  /// Logs an event (any thread).
-  void log_event(const std::string& kind, const std::string& text);
+  /// Logs an event (any thread); its time is set here.
+  void log_event(Event e);
   std::vector<Event> events() const;
   double now_s() const;
 
@@ -286,7 +303,7 @@ class Workstation {
   std::int64_t t0_ns_ = 0;
   std::string load_error_;
   bool swap_pending_ = false;        // simulation thread only
-  std::atomic<int> sim_state_{0};  // 0 stopped, 1 loading, 2 running, 3 swapping, 4 error
+  std::atomic<SimState> sim_state_{SimState::Stopped};
   std::string backend_name_, safety_note_;            // guarded by mu_
   std::atomic<int> fallbacks_{0}, divergences_{0};
   std::atomic<bool> stress_enabled_{false};
@@ -294,6 +311,7 @@ class Workstation {
 
   // GUI-thread side
   LiveStats stats_;
+  TumourDocument tumours_;
   std::vector<std::function<void(const TickSample&)>> tick_listeners_;
   std::vector<std::function<void(const StepSample&)>> step_listeners_;
   std::vector<std::function<void(const Event&)>> event_listeners_;

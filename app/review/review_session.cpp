@@ -29,19 +29,29 @@ using nlohmann::json;
 
 namespace {
 
-std::string one_line(const json& e) {
+// The event a recorded entry holds as data: a trainee's mark (data in every version), or
+// an instructor or parameter entry with its kind and arguments (live/event.h).
+std::optional<live::Event> recorded_event(const json& e, double t) {
   const std::string kind = e.value("kind", "");
   if (kind == "mark") {
-    std::string s = "trainee mark " + std::to_string(e.value("mark", 0));
-    if (e.contains("position") && e["position"].is_array() && e["position"].size() == 3) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, " at (%.1f, %.1f, %.1f) cm", e["position"][0].get<double>() * 100,
-                    e["position"][1].get<double>() * 100, e["position"][2].get<double>() * 100);
-      s += buf;
-    }
-    if (e.contains("note") && e["note"].is_string()) s += ": " + e["note"].get<std::string>();
-    return s;
+    std::optional<Eigen::Vector3d> at;
+    const json& p = e.contains("position") ? e["position"] : json();
+    if (p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() && p[2].is_number())
+      at = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    const int n = e.contains("mark") && e["mark"].is_number_integer() ? e["mark"].get<int>() : 0;
+    const std::string note = e.contains("note") && e["note"].is_string() ? e["note"].get<std::string>() : std::string();
+    live::Event ev = live::Event::trainee_mark(n, at, note);
+    ev.t = t;
+    return ev;
   }
+  if ((kind == "instructor" || kind == "parameter") && e.contains("event") && e["event"].is_string() && e.contains("args"))
+    return live::event_from_json(e["event"].get<std::string>(), e["args"], t);
+  return std::nullopt;
+}
+
+// The one-line text of an entry recorded without its arguments.
+std::string one_line(const json& e) {
+  const std::string kind = e.value("kind", "");
   if (e.contains("text") && e["text"].is_string() && !e["text"].get<std::string>().empty()) return e["text"].get<std::string>();
   if (e.contains("event") && e["event"].is_string()) return kind + ": " + e["event"].get<std::string>();
   if (e.contains("command") && e["command"].is_string()) return "change: " + e["command"].get<std::string>();
@@ -77,7 +87,8 @@ ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path
     ReviewMarker m;
     m.t = e["t"].get<double>();
     m.kind = e.value("kind", "");
-    m.text = one_line(e);
+    m.event = recorded_event(e, m.t);
+    m.text = m.event ? m.event->text() : one_line(e);
     if (m.kind == "mark" && e.contains("position") && e["position"].is_array() && e["position"].size() == 3 &&
         e["position"][0].is_number()) {
       m.has_position = true;

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -33,7 +34,10 @@ using store::Recording;
 struct ReviewMarker {
   double t = 0;
   std::string kind;   // "instructor", "parameter", "mark", "session"
-  std::string text;   // one line, English
+  std::string text;   // one line, English (as recorded, for events recorded without arguments)
+  /// The event as data (kind and arguments): marks, and the events of recordings that
+  /// keep their arguments; nothing for older ones (shown as `text`).
+  std::optional<live::Event> event;
   bool has_position = false;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // marks: where, world m
 };

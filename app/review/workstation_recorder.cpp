@@ -10,6 +10,7 @@
 
 namespace palpation::app::review {
 
+using live::CommandKind;
 using live::CommandRecord;
 using live::DeviceConfig;
 using live::Event;
@@ -83,21 +84,26 @@ WorkstationRecorder::WorkstationRecorder(Workstation& ws, const std::string& pat
   ws_.add_event_listener([this, alive](const Event& e) {
     if (!alive.lock()) return;
     emit_tick();
-    writer_->add_event(e.t, "instructor", {{"event", e.kind}, {"text", e.text}});
+    // The kind and its arguments as data, the English line beside them (live/event.h).
+    writer_->add_event(e.t, "instructor", {{"event", live::event_kind_name(e.kind)}, {"text", e.text()}, {"args", live::event_args_json(e)}});
   });
   ws_.add_command_listener([this, alive](const CommandRecord& c) {
     if (!alive.lock()) return;
     emit_tick();
-    json d{{"command", c.kind}, {"index", c.index}, {"text", c.text}};
-    if (c.kind == "young") {
+    json d{{"command", live::command_kind_name(c.kind)}, {"index", c.index}, {"text", c.event ? c.event->text() : std::string()}};
+    if (c.event) {
+      d["event"] = live::event_kind_name(c.event->kind);
+      d["args"] = live::event_args_json(*c.event);
+    }
+    if (c.kind == CommandKind::Young) {
       json ch = json::array();
       for (const auto& [e, E] : c.young) ch.push_back({e, E});
       d["changes"] = std::move(ch);
-    } else if (c.kind == "params") {
+    } else if (c.kind == CommandKind::Params) {
       sim::Scenario s = scenario_;
       s.params = c.params;
       d["scenario"] = recorded_scenario_json(s, 1);
-    } else if (c.kind == "patient") {
+    } else if (c.kind == CommandKind::Patient) {
       scenario_ = c.scenario;
       d["scenario"] = recorded_scenario_json(c.scenario, 1);
       d["source"] = c.scenario.source;

@@ -76,16 +76,66 @@ json fragment(const json& patient, double e = 19000.0, json inclusions = json::a
 
 // ---------------------------------------------------------------- built-in patients
 
+std::string english_description(const BuiltinDescription& d) {
+  using D = BuiltinDescription;
+  char buf[200];
+  switch (d.kind) {
+    case D::Kind::Healthy: {
+      const char* size = d.size == D::Size::Small      ? "small"
+                         : d.size == D::Size::Medium   ? "medium"
+                         : d.size == D::Size::Large    ? "large"
+                         : d.size == D::Size::WideFlat ? "wide and flat"
+                                                       : "narrow and projecting";
+      std::string ml = std::to_string(d.volume_ml);
+      if (d.volume_ml >= 1000) ml.insert(ml.size() - 3, ",");
+      return std::string("Healthy breast, ") + size + " (" + ml + " mL)" + (d.paper_size ? ", the paper's size" : "") +
+             ", no tumour";
+    }
+    case D::Kind::PaperCase: return "The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin";
+    case D::Kind::Tumour: {
+      const char* hard = d.hardness == D::Hardness::Soft ? "soft" : d.hardness == D::Hardness::Hard ? "hard" : "firm";
+      std::snprintf(buf, sizeof buf, "Medium breast, %s tumour %.1f cm diameter (%.0f kPa), centre %.1f cm below the skin", hard,
+                    d.diameter_cm, d.young_kpa, d.depth_cm);
+      return buf;
+    }
+  }
+  return {};
+}
+
+namespace {
+// The built-in patients with their descriptions as data.
+struct Builtin {
+  PatientRecord record;
+  BuiltinDescription description;
+};
+std::vector<Builtin> make_builtins();
+}  // namespace
+
+std::optional<BuiltinDescription> builtin_description(const std::string& name) {
+  static const std::vector<Builtin> all = make_builtins();
+  for (const auto& b : all)
+    if (b.record.name == name) return b.description;
+  return std::nullopt;
+}
+
 std::vector<PatientRecord> PatientLibrary::builtin_patients() {
   std::vector<PatientRecord> v;
-  auto add = [&](std::string name, std::string cat, std::string desc, json body) {
+  for (auto& b : make_builtins()) v.push_back(std::move(b.record));
+  return v;
+}
+
+namespace {
+std::vector<Builtin> make_builtins() {
+  using D = BuiltinDescription;
+  std::vector<Builtin> v;
+  auto add = [&](std::string name, std::string cat, const D& desc, json body) {
     PatientRecord p;
     p.name = std::move(name);
     p.category = std::move(cat);
-    p.description = std::move(desc);
+    p.description = english_description(desc);
     p.body = std::move(body);
     p.builtin = true;
-    v.push_back(std::move(p));
+    v.push_back({std::move(p), desc});
   };
   // Breast sizes and shapes: half-ellipsoid domes, volume 2/3 pi a^2 h (facts.md: about
   // 250 mL small to 1,250 mL large, 560-975 mL typical). Fat-like tissue 19 kPa (the
@@ -93,20 +143,29 @@ std::vector<PatientRecord> PatientLibrary::builtin_patients() {
   struct Shape {
     const char* name;
     double a, h;
-    const char* what;
+    D::Size size;
+    int ml;
+    bool paper;
   };
-  const Shape shapes[] = {{"breast-small", 0.060, 0.045, "small (339 mL)"},
-                          {"breast-medium", 0.080, 0.065, "medium (871 mL), the paper's size"},
-                          {"breast-large", 0.088, 0.077, "large (1,249 mL)"},
-                          {"breast-flat", 0.085, 0.045, "wide and flat (681 mL)"},
-                          {"breast-projecting", 0.065, 0.075, "narrow and projecting (664 mL)"}};
+  const Shape shapes[] = {{"breast-small", 0.060, 0.045, D::Size::Small, 339, false},
+                          {"breast-medium", 0.080, 0.065, D::Size::Medium, 871, true},
+                          {"breast-large", 0.088, 0.077, D::Size::Large, 1249, false},
+                          {"breast-flat", 0.085, 0.045, D::Size::WideFlat, 681, false},
+                          {"breast-projecting", 0.065, 0.075, D::Size::NarrowProjecting, 664, false}};
   for (const auto& s : shapes) {
     json p = {{"phantom", "breast"}, {"resolution", "paper"}, {"base_radius", s.a}, {"height", s.h}};
-    add(s.name, "breast", std::string("Healthy breast, ") + s.what + ", no tumour", fragment(p));
+    D d;
+    d.kind = D::Kind::Healthy;
+    d.size = s.size;
+    d.volume_ml = s.ml;
+    d.paper_size = s.paper;
+    add(s.name, "breast", d, fragment(p));
   }
   // The paper's case: tumour radius 1.5 cm, E 107 kPa, on the axis at x = 0.125 m.
   const json medium = {{"phantom", "breast"}, {"resolution", "paper"}};
-  add("paper-case", "tumour", "The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin",
+  D paper_case;
+  paper_case.kind = D::Kind::PaperCase;
+  add("paper-case", "tumour", paper_case,
       fragment(medium, 19000.0,
                json::array({{{"shape", "sphere"}, {"center", {0.125, 0.0, 0.035}}, {"radius", 0.015}, {"young_modulus", 107000}}})));
   // Graded cases on the medium breast (skin at z = 0.065 m on the axis, chest wall z = 0).
@@ -122,10 +181,14 @@ std::vector<PatientRecord> PatientLibrary::builtin_patients() {
     if (depth == "superficial") z = skin - 0.005 - r;
     if (depth == "deep") z = 0.012;
     const double e = hard == "soft" ? 38000.0 : hard == "hard" ? 460000.0 : 107000.0;
-    char name[64], desc[200];
+    char name[64];
     std::snprintf(name, sizeof name, "tumour-%.1fcm-%s-%s", d_cm, depth.c_str(), hard.c_str());
-    std::snprintf(desc, sizeof desc, "Medium breast, %s tumour %.1f cm diameter (%.0f kPa), centre %.1f cm below the skin",
-                  hard.c_str(), d_cm, e / 1000.0, (skin - z) * 100.0);
+    D desc;
+    desc.kind = D::Kind::Tumour;
+    desc.hardness = hard == "soft" ? D::Hardness::Soft : hard == "hard" ? D::Hardness::Hard : D::Hardness::Firm;
+    desc.diameter_cm = d_cm;
+    desc.young_kpa = e / 1000.0;
+    desc.depth_cm = (skin - z) * 100.0;
     add(name, "tumour", desc,
         fragment(medium, 19000.0,
                  json::array({{{"shape", "sphere"}, {"center", {0.125, 0.0, z}}, {"radius", r}, {"young_modulus", e}}})));
@@ -137,6 +200,7 @@ std::vector<PatientRecord> PatientLibrary::builtin_patients() {
   tumour(2.0, "superficial", "hard");                                            // the easiest
   return v;
 }
+}  // namespace
 
 json patient_scenario(const PatientRecord& p, const std::string& mesh_file) {
   json s = p.body;

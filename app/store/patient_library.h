@@ -31,6 +31,27 @@ struct PatientRecord {
   std::string created;       // UTC, set by the library
 };
 
+/// What a built-in patient is, as data: its English description is composed from this
+/// (english_description) and the GUI composes the description in the user's language from
+/// the same (ui/event_text.h). Keyed by the built-in patient's name (builtin_description).
+struct BuiltinDescription {
+  enum class Kind { Healthy, PaperCase, Tumour };
+  enum class Size { Small, Medium, Large, WideFlat, NarrowProjecting };
+  enum class Hardness { Soft, Firm, Hard };
+  Kind kind = Kind::Healthy;
+  Size size = Size::Medium;          // Healthy
+  int volume_ml = 0;                 // Healthy
+  bool paper_size = false;           // Healthy: the paper's breast size
+  Hardness hardness = Hardness::Firm;  // Tumour
+  double diameter_cm = 0;            // Tumour
+  double young_kpa = 0;              // Tumour
+  double depth_cm = 0;               // Tumour: centre below the skin
+};
+/// The English description (PatientRecord::description of a built-in patient).
+std::string english_description(const BuiltinDescription& d);
+/// A built-in patient's description as data, by its name; nothing for other names.
+std::optional<BuiltinDescription> builtin_description(const std::string& name);
+
 class PatientLibrary {
  public:
   static constexpr int kSchemaVersion = 3;

@@ -257,7 +257,7 @@ class CudaBackend final : public Backend {
 #endif
     }
     prof_.init(tuning.profile);
-    update_materials();
+    set_materials(m_.materials);
     reset();
   }
 
@@ -274,11 +274,11 @@ class CudaBackend final : public Backend {
   const SimParams& params() const override { return p_; }
   void set_params(const SimParams& p) override { p_ = p; }
 
-  void update_materials() override {
+  void set_materials(const Materials& mat) override {
     std::vector<T> l(ne_), mu(ne_);
     for (int e = 0; e < ne_; ++e) {
-      l[e] = T(m_.lambda[e]);
-      mu[e] = T(m_.mu[e]);
+      l[e] = T(mat.lambda[e]);
+      mu[e] = T(mat.mu[e]);
     }
     CU(cudaStreamSynchronize(stream_));
     lambda_.upload(l, stream_);

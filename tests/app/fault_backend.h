@@ -50,7 +50,7 @@ class FaultBackend : public sim::Backend {
     if (blown_)
       for (std::size_t i = 0; i < v.size(); ++i) v[i] += (i % 3 == 2) ? 1e3 : 0.0;
   }
-  void update_materials() override { inner_->update_materials(); }
+  void set_materials(const sim::Materials& m) override { inner_->set_materials(m); }
   void set_params(const sim::SimParams& p) override { inner_->set_params(p); }
   const sim::SimParams& params() const override { return inner_->params(); }
   int steps() const { return steps_; }

@@ -263,6 +263,52 @@ class TestFault : public QObject {
   // A CUDA error mid-session (injected: this machine may have no GPU): the session falls
   // back to the CPU backend and goes on; the device sees no NaN, nothing above the limit
   // and no force step larger than the safety filter's rate limit.
+  // Painting a tumour changes the running body's materials, never the model it was built
+  // from, and the change survives a CPU fallback: the restarted CPU backend gets the
+  // painted materials, not the model's (it was built from the model alone before).
+  void paintedMaterialsSurviveAFallback() {
+    const sim::Scenario s = press_scenario(1.0);
+    // The finger's force after 0.6 s of pressing; the checks along the way (QtTest's macros
+    // return from this function, so it reports through `fz`).
+    auto press = [&](bool stiffer, bool fall_back, double& fz) {
+      sim::Simulation sim(s);
+      if (fall_back)
+        sim.replace_backend(std::make_unique<test::FaultBackend>(
+            sim::make_backend(sim::BackendKind::Cpu, sim.model(), s.params), test::FaultBackend::Fault::Throw, 0));
+      sim.reset();
+      const std::vector<double> built = sim.model().materials.young;
+      if (stiffer) {
+        std::vector<std::pair<int, double>> all;
+        for (int e = 0; e < sim.model().num_tets(); ++e) all.push_back({e, 3 * s.young_modulus});
+        QCOMPARE(sim.set_element_young(all), sim.model().num_tets());
+        // Not a modulus, or no such element: ignored.
+        QCOMPARE(sim.set_element_young(std::vector<std::pair<int, double>>{{0, -1.0}, {-1, 1e5}, {1 << 30, 1e5}}), 0);
+        QCOMPARE(sim.materials().young.front(), 3 * s.young_modulus);
+      }
+      for (int k = 0; k < 600; ++k) sim.step();
+      if (fall_back) {
+        QCOMPARE(sim.fallbacks(), 1);
+        QCOMPARE(sim.backend().name(), std::string("cpu"));
+      }
+      // The model is as built whatever was painted.
+      QVERIFY(sim.model().materials.young == built);
+      fz = sim.outputs().at(0).force.z();
+    };
+    double soft = 0, stiff = 0, stiff_after_fallback = 0;
+    press(false, false, soft);
+    press(true, false, stiff);
+    press(true, true, stiff_after_fallback);
+    if (QTest::currentTestFailed()) return;
+    QVERIFY2(soft > 0.05, qPrintable(QString::number(soft)));
+    // A body three times as stiff pushes back clearly harder at the same 4 mm press (with
+    // the penalty contact in series not three times: the contact spring gives way too).
+    QVERIFY2(stiff > 1.5 * soft, qPrintable(QString("%1 vs %2").arg(stiff).arg(soft)));
+    // On the CPU from the first step, with the painted materials: the same arithmetic as
+    // the CPU run without a fault (before, the fallback's backend had the model's).
+    QVERIFY2(std::abs(stiff_after_fallback - stiff) <= 1e-9 * stiff,
+             qPrintable(QString("%1 vs %2").arg(stiff_after_fallback).arg(stiff)));
+  }
+
   void cudaErrorMidSessionFallsBackToCpu() {
     app::live::SessionOptions opt;
     opt.device = "scripted";

@@ -246,7 +246,7 @@ class TestHandHiroModel : public QObject {
         QVERIFY(m.find('\n') == std::string::npos);
       }
     };
-    expect("{", "not valid JSON");
+    expect("{", "(syntax): malformed JSON");
     expect(R"({"capabilities": {"max_forse": 3}})", "capabilities.max_forse: unknown key");
     expect(R"({"capabilities": {"max_force": -1}})", "capabilities.max_force: must be > 0");
     expect(R"({"capabilities": {"max_force": 10}})", "capabilities.release_force");

@@ -83,7 +83,7 @@ class TstWorkstation : public QObject {
       if (s.finger == 1) max_fz = std::max(max_fz, s.force.z());
     });
     ws.add_step_listener([&](const app::live::StepSample&) { ++steps; });
-    ws.add_event_listener([&](const app::live::Event& e) { patient_events += e.kind == "patient"; });
+    ws.add_event_listener([&](const app::live::Event& e) { patient_events += e.kind == app::live::EventKind::PatientLoaded; });
     ws.start();
     auto pump = [&] { ws.poll(); };
     QTRY_VERIFY_WITH_TIMEOUT((pump(), ws.geometry() != nullptr), 120000);
@@ -103,7 +103,7 @@ class TstWorkstation : public QObject {
     // A material command: elements 0..9 to 250 kPa, applied between steps.
     std::vector<std::pair<int, double>> ch;
     for (int e = 0; e < 10; ++e) ch.emplace_back(e, 250000.0);
-    ws.set_element_young(ch, "test");
+    ws.set_element_young(ch);
     const std::uint64_t want = ws.commands_posted();
     QTRY_VERIFY_WITH_TIMEOUT(ws.commands_applied() >= want, 10000);
     const auto young = ws.applied_young();
@@ -267,7 +267,7 @@ class TstWorkstation : public QObject {
       auto inner = sim::make_backend(sim::BackendKind::Cpu, s.model(), s.backend().params());
       s.replace_backend(std::make_unique<test::FaultBackend>(std::move(inner), fault, 0, "cuda", slow_s));
     });
-    const char* kind = fault == test::FaultBackend::Fault::Throw ? "fallback" : "reset";
+    const auto kind = fault == test::FaultBackend::Fault::Throw ? app::live::EventKind::Fallback : app::live::EventKind::Reset;
     auto seen = [&] {
       for (const auto& e : events)
         if (e.kind == kind) return true;

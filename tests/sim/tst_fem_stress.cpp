@@ -39,10 +39,10 @@ class TstFemStress : public QObject {
   void zero_at_rest_and_under_rotation() {
     const Model m = box();
     std::vector<double> vm;
-    element_von_mises(m, mapped(m, [](const V3& p) { return p; }).data(), vm);
+    element_von_mises(m, m.materials, mapped(m, [](const V3& p) { return p; }).data(), vm);
     for (double v : vm) QVERIFY(std::abs(v) < 1e-9);
     const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, V3(1, 2, 3).normalized()).toRotationMatrix();
-    element_von_mises(m, mapped(m, [&](const V3& p) { return V3(R * p + V3(0.1, -0.2, 0.05)); }).data(), vm);
+    element_von_mises(m, m.materials, mapped(m, [&](const V3& p) { return V3(R * p + V3(0.1, -0.2, 0.05)); }).data(), vm);
     for (double v : vm) QVERIFY(std::abs(v) < 1e-6 * kE);
   }
 
@@ -52,11 +52,11 @@ class TstFemStress : public QObject {
     lame(kE, kNu, lambda, mu);
     std::vector<double> vm;
     const double eps = 0.05;
-    element_von_mises(m, mapped(m, [&](const V3& p) { return V3(p.x() * (1 + eps), p.y(), p.z()); }).data(), vm);
+    element_von_mises(m, m.materials, mapped(m, [&](const V3& p) { return V3(p.x() * (1 + eps), p.y(), p.z()); }).data(), vm);
     const double green = eps + 0.5 * eps * eps;
     for (double v : vm) QVERIFY(std::abs(v - 2 * mu * green) < 1e-9 * kE);
     const double gamma = 1e-3;
-    element_von_mises(m, mapped(m, [&](const V3& p) { return V3(p.x() + gamma * p.y(), p.y(), p.z()); }).data(), vm);
+    element_von_mises(m, m.materials, mapped(m, [&](const V3& p) { return V3(p.x() + gamma * p.y(), p.y(), p.z()); }).data(), vm);
     for (double v : vm) QVERIFY(std::abs(v - std::sqrt(3.0) * mu * gamma) < 1e-3 * std::sqrt(3.0) * mu * gamma);
   }
 
@@ -66,7 +66,7 @@ class TstFemStress : public QObject {
     const auto xyz = mapped(m, [&](const V3& p) { return V3(p.x() * (1 + eps), p.y(), p.z()); });
     std::vector<float> node;
     StressScratch scratch;
-    nodal_von_mises(m, xyz.data(), node, scratch);
+    nodal_von_mises(m, m.materials, xyz.data(), node, scratch);
     QCOMPARE(node.size(), m.rest.size());
     double lambda, mu;
     lame(kE, kNu, lambda, mu);
@@ -75,7 +75,7 @@ class TstFemStress : public QObject {
     // A tumour element (10x stiffer) raises the stress at its nodes, not elsewhere.
     m.set_element_material(0, 10 * kE, kNu);
     std::vector<float> stiff;
-    nodal_von_mises(m, xyz.data(), stiff, scratch);
+    nodal_von_mises(m, m.materials, xyz.data(), stiff, scratch);
     for (int a = 0; a < 4; ++a) QVERIFY(stiff[m.tets[0][a]] > node[m.tets[0][a]] * 1.01f);
     int changed = 0;
     for (std::size_t i = 0; i < node.size(); ++i) changed += std::abs(stiff[i] - node[i]) > 1e-6f * want;

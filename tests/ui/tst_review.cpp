@@ -93,7 +93,7 @@ class TstReview : public QObject {
       const double depth = std::min(1.0, 3 * s) * 0.006;
       ws.set_mouse_finger(top + Eigen::Vector3d(0.02 * s - 0.01, 0, r - depth), true);
       if (!added && s > 0.3) {  // the instructor adds a tumour under the finger's path
-        added = w->editor()->add_shape(QStringLiteral("sphere"), top + Eigen::Vector3d(0.005, 0, -0.02),
+        added = w->editor()->add_shape(app::live::TumourShape::Sphere, top + Eigen::Vector3d(0.005, 0, -0.02),
                                        Eigen::Vector3d::Constant(0.01), 200000.0) > 0;
         QVERIFY(added);
       }
@@ -170,8 +170,8 @@ class TstReview : public QObject {
     // In Japanese (the .qm compiled from translations/palpation_ja.ts): the review's own
     // strings follow a language change; a missing or stale catalogue leaves them English.
     {
-      // The recorded events are English in the file (data); the list shows them in the
-      // chosen language (ui/recorded_text.h).
+      // The recorded events are data in the file (kind, arguments, English line); the list
+      // shows them in the chosen language (ui/event_text.h).
       QStringList events_en;
       for (int i = 0; i < rw.marker_list()->count(); ++i) events_en << rw.marker_list()->item(i)->text();
       // Each change and mark once, though the file holds it as data and as a log line
@@ -386,7 +386,7 @@ class TstReview : public QObject {
     QString err;
     QVERIFY2(w->choose_patient(QStringLiteral("scan-dome"), &err), qPrintable(err));
     QTRY_VERIFY_WITH_TIMEOUT(w->workstation().geometry()->generation > gen, 120000);
-    QVERIFY(w->workstation().stats().state.rfind("error", 0) != 0);
+    QVERIFY(w->workstation().stats().state != app::live::SimState::Error);
   }
 };
 

@@ -153,7 +153,7 @@ class TstUiMainWindow : public QObject {
     const std::vector<double> before = ed->young();
     // A 1 cm sphere of 300 kPa at x = 0.10 m, 2 cm up: outside the patient's tumour.
     const Eigen::Vector3d c(0.10, 0.02, 0.02);
-    const int n = ed->add_shape(QStringLiteral("sphere"), c, Eigen::Vector3d::Constant(0.01), 300000.0);
+    const int n = ed->add_shape(app::live::TumourShape::Sphere, c, Eigen::Vector3d::Constant(0.01), 300000.0);
     QVERIFY(n > 0);
     QVERIFY(synced());
     const auto young = ws.applied_young();
@@ -221,7 +221,7 @@ class TstUiMainWindow : public QObject {
     ui::TumourEditor* ed = w_->editor();
     QVERIFY(set_language(QStringLiteral("ja")));
     const std::size_t events0 = ws.events().size();
-    QVERIFY(ed->add_shape(QStringLiteral("sphere"), Eigen::Vector3d(0.10, 0.02, 0.02), Eigen::Vector3d::Constant(0.01),
+    QVERIFY(ed->add_shape(app::live::TumourShape::Sphere, Eigen::Vector3d(0.10, 0.02, 0.02), Eigen::Vector3d::Constant(0.01),
                           300000.0) > 0);
     ed->set_brush(0.01, 0.01, 200000.0);
     ed->begin_stroke(false);
@@ -246,7 +246,7 @@ class TstUiMainWindow : public QObject {
     QStringList logged;
     const auto events = ws.events();
     for (std::size_t i = events0; i < events.size(); ++i)
-      if (events[i].kind == "material") logged << QString::fromStdString(events[i].text);
+      if (events[i].kind == app::live::EventKind::Material) logged << QString::fromStdString(events[i].text());
     QVERIFY2(logged.size() == 5, qPrintable(logged.join(QStringLiteral(" | "))));
     QVERIFY2(logged[0].startsWith(QLatin1String("Add tumour: Sphere at (10.0, 2.0, 2.0) cm, 300 kPa")), qPrintable(logged[0]));
     QCOMPARE(logged[1], QStringLiteral("Paint"));  // the dab, applied at once
@@ -260,11 +260,12 @@ class TstUiMainWindow : public QObject {
   void paint_with_the_mouse() {
     ui::VtkView* v = w_->view();
     ui::TumourEditor* ed = w_->editor();
-    Eigen::Vector3d p, n;
     const QPoint c = v->rect().center();
-    QVERIFY(v->pick_surface(c, p, n));
-    QVERIFY(p.z() > 0.01);   // on the dome, above the chest wall
-    QVERIFY(n.z() > 0.0);    // outward, toward the camera side
+    const auto pick = v->pick_surface(c);
+    QVERIFY(pick);
+    QVERIFY(pick->point.z() > 0.01);   // on the dome, above the chest wall
+    QVERIFY(pick->normal.z() > 0.0);   // outward, toward the camera side
+    QVERIFY(!v->pick_surface(QPoint(2, 2)));  // the corner: no skin there
     const int index0 = ed->undo_stack()->index();
     // The window takes the brush from the Tumours panel at the start of a stroke.
     w_->tumour_panel()->young->setValue(150.0);  // kPa: differs from tissue and the patient's tumour

@@ -1,0 +1,36 @@
+#include "live/patient_choice.h"
+
+#include "backend.h"
+#include "live/workstation.h"
+
+namespace palpation::app::live {
+
+std::vector<std::string> available_backends() { return sim::available_backends(); }
+
+std::optional<sim::Scenario> phantom_patient(const std::string& name) {
+  if (name != "phantom:breast" && name != "phantom:box") return std::nullopt;
+  sim::Scenario s = default_workstation_scenario();
+  if (name == "phantom:box") {
+    s.patient.phantom = "box";
+    s.patient.size = Eigen::Vector3d(0.1, 0.1, 0.05);
+    s.inclusions.clear();
+    if (auto e = sim::resolution_edge("box", s.patient.resolution)) s.patient.edge = *e;
+  }
+  s.source = name;
+  return s;
+}
+
+std::optional<double> resolution_edge(const std::string& phantom, const std::string& level) {
+  return sim::resolution_edge(phantom, level);
+}
+
+bool set_phantom_resolution(sim::Scenario& s, const std::string& level) {
+  if (s.patient.phantom.empty()) return false;
+  const auto e = sim::resolution_edge(s.patient.phantom, level);
+  if (!e) return false;
+  s.patient.resolution = level;
+  s.patient.edge = *e;
+  return true;
+}
+
+}  // namespace palpation::app::live

@@ -1,0 +1,30 @@
+// What the workstation's patient and simulation choosers offer, for the GUI (which does
+// not reach into sim/): the backends of this build, the built-in phantoms, resolution
+// levels.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenario.h"
+
+namespace palpation::app::live {
+
+/// The backends this build can step with ("auto", "cpu", "cuda" where built).
+std::vector<std::string> available_backends();
+
+/// A built-in phantom by its chooser name: "phantom:breast" (the default patient: the
+/// paper's breast and tumour) or "phantom:box" (a 10 x 10 x 5 cm block, no tumour);
+/// nothing for other names.
+std::optional<sim::Scenario> phantom_patient(const std::string& name);
+
+/// The target edge length (m) of a named resolution level ("coarse", "paper", "fine")
+/// for a phantom ("breast", "box"); nothing when unknown.
+std::optional<double> resolution_edge(const std::string& phantom, const std::string& level);
+
+/// Sets a phantom patient's resolution level and its edge length. False, and `s`
+/// unchanged, for a patient with its own mesh or an unknown level.
+bool set_phantom_resolution(sim::Scenario& s, const std::string& level);
+
+}  // namespace palpation::app::live
