@@ -67,7 +67,7 @@ constexpr int kParallelMinFree = 3000;
 // 2-core machine the other core is the haptic loop's, the GUI's or another job's, and
 // OpenMP's spinning barriers then wait on a descheduled thread: paper mesh under load
 // 3-4, 96.7 ms median and 1.70 s p99 a step with two threads against 23.5 / 46 ms with one
-// (docs/benchmarks.md, session 5).
+// (docs/benchmarks.md).
 constexpr unsigned kParallelMinCores = 4;
 
 // Full re-assembly of K after this many steps of element-wise updates. Each update adds

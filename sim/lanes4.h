@@ -2,7 +2,7 @@
 // -march=x86-64-v3 a float vector is one SSE register and a double one AVX register) for
 // the CPU backend's 3-vectors and 3x3 columns: lanes 0-2 hold x, y, z, lane 3 is 0 or
 // ignored. Used where the scalar Eigen 3x3 code measured slow in the per-step passes
-// (docs/benchmarks.md, session 5): the block product of CG and the element pass.
+// (docs/benchmarks.md): the block product of CG and the element pass.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// "Import scan..." (issue 6): a scanned breast (STL, OBJ, PLY) made into a library patient.
+// "Import scan...": a scanned breast (STL, OBJ, PLY) made into a library patient.
 // File, name, resolution, scale, base plane (found automatically, or given by hand),
 // progress with Cancel (the import runs on app::scan::ScanImportJob's thread, never on the GUI
 // thread), a preview of the tetrahedral mesh in a 3-D view, "Save as patient". Errors

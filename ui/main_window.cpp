@@ -193,7 +193,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   timer_->start(16);
   fps_t0_ = QDateTime::currentMSecsSinceEpoch();
 
-  // Every session records (issue 6): interrupted recordings of earlier sessions first.
+  // Every session records: interrupted recordings of earlier sessions first.
   const QString folder = recordings_folder();
   QDir().mkpath(folder);
   QStringList recovered;

@@ -43,7 +43,7 @@ class MainWindow : public QMainWindow {
   Q_OBJECT
 
  public:
-  /// Starts `ws` (the window owns it) and records the session (issue 6) into
+  /// Starts `ws` (the window owns it) and records the session into
   /// `record_path`, or, when empty, a new file in the recordings folder
   /// (recordings_folder()); interrupted recordings there are recovered first.
   explicit MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent = nullptr, const QString& record_path = {});

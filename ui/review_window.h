@@ -1,4 +1,4 @@
-// Review mode for students (issue 6): a recorded session played back. The 3-D view shows
+// Review mode for students: a recorded session played back. The 3-D view shows
 // the session re-simulated from the recorded input (app::review::ReviewSession's worker thread),
 // the force plots follow the timeline, instructor events and trainee marks sit on the
 // timeline and in a list; play, pause, scrub, speed 0.25x to 4x; CSV and PNG-frame export.

@@ -1,4 +1,4 @@
-// palpation bench: step time against error (design.md section 6, issue 3).
+// palpation bench: step time against error (design.md section 6).
 //
 // For each mesh level x backend x precision x solver setting, the paper-sweep scenario is
 // stepped for a fixed window (dt = 1 ms, the first pushes over the tumour). Per point:

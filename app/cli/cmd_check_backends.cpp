@@ -1,4 +1,4 @@
-// palpation check-backends: GPU against CPU on the same scenes (issue 3, agreement).
+// palpation check-backends: GPU against CPU on the same scenes (agreement).
 //
 // For each scenario (default: paper-sweep and hertz) the CPU backend in double precision
 // and each CUDA backend are stepped for N steps (default 1,000) with a tight CG tolerance
@@ -153,7 +153,7 @@ int run_check(const CheckOptions& o) {
     keymesh.nodes = model.rest;
     keymesh.tets = model.tets;
     std::ostringstream key;
-    // v2: area-weighted contact (session 2); bump whenever the CPU step changes results.
+    // v2: area-weighted contact; bump whenever the CPU step changes results.
     key << "cpu-trace-v3-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sd)) << std::dec
         << '-' << o.steps << ".bin";
     const std::string path = (std::filesystem::path(sim::cache_dir()) / key.str()).string();

@@ -1,4 +1,4 @@
-// Numerical-stability stress test (issue 7, `palpation stress`): a matrix of extreme
+// Numerical-stability stress test (`palpation stress`): a matrix of extreme
 // scenarios (time step, stiffness contrast, Poisson ratio, fingers to the chest wall, fast
 // and jumping fingers, five fingers squeezing, sliver and inverted elements, long runs),
 // each run on every available backend and checked for:

@@ -29,7 +29,7 @@ sim::Scenario default_workstation_scenario() {
   s.patient.resolution = "coarse";
   s.patient.edge = *sim::resolution_edge("breast", "coarse");
   s.backend = "auto";
-  // Real time on a CPU (docs/benchmarks.md, session 5): on the coarse breast float and CG
+  // Real time on a CPU (docs/benchmarks.md): on the coarse breast float and CG
   // 1e-2 give the same force error as double and CG 1e-6 (1.2e-4: the kept rotations'
   // error dominates) at 0.6-0.8 ms a step on this project's 2-core VM, against 1.3 ms at
   // the scenario defaults (double, 1e-3). The Simulation panel changes them.

@@ -1,5 +1,5 @@
 // The workstation's real-time composition (design.md section 3), Qt-free so that the GUI
-// (ui/), the recorder (issue 6) and tests drive the same object:
+// (ui/), the recorder and tests drive the same object:
 //
 //   device::SimulatedHand (scripted hand, looped | mouse targets)
 //        ^ forces        | poses
@@ -10,7 +10,7 @@
 //   GUI thread: Workstation::poll() drains the rings, hands TickSample / StepSample /
 //   Event to its listeners (plots, status bar, a recorder), reads the newest snapshot.
 //
-// Telemetry interface for consumers (plots, the issue-6 recorder):
+// Telemetry interface for consumers (plots, the session recorder):
 //   - add_tick_listener(fn): every haptic tick that poll() drains, per present device
 //     finger, in the world frame (t in s since start(), position m, force on the finger N).
 //     Delivered on the thread that calls poll() (the GUI thread), in time order; nothing
@@ -98,7 +98,7 @@ struct StepSample {
   float step_ms = 0;
   int cg_iterations = 0;
   int contacts = 0;
-  // What the step was given and gave (the recorder's steps, issue 6: a review re-simulates
+  // What the step was given and gave (the recorder's steps: a review re-simulates
   // the session from these exactly).
   double h = 0;                                          // s, this step's dt
   std::uint64_t commands_applied = 0;                    // queued commands applied before it

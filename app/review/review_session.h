@@ -1,4 +1,4 @@
-// Review of a recorded session for students (issue 6, docs/recording.md): the recording,
+// Review of a recorded session for students (docs/recording.md): the recording,
 // its re-simulation on a worker thread and the playback clock. The widgets (ui/review_window)
 // only display what this holds. Qt-free.
 //

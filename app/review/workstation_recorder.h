@@ -1,4 +1,4 @@
-// The workstation's session recorder (issue 6, docs/recording.md): every GUI session
+// The workstation's session recorder (docs/recording.md): every GUI session
 // records the patient and all settings (header), the device input and the forces sent at
 // 1 kHz (ticks), the simulation thread's steps (dt, fingertip inputs, forces out: the
 // review re-simulates from these exactly), instructor events, parameter changes as data

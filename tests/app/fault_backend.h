@@ -1,4 +1,4 @@
-// Fault injection for tests (issue 7): a backend that wraps a real one and, from a given
+// Fault injection for tests: a backend that wraps a real one and, from a given
 // step on, fails the way a GPU backend can: throws (a CUDA error), returns NaN, or
 // reports a blown-up state (node velocities scaled up).
 #pragma once

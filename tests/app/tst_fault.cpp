@@ -1,11 +1,11 @@
-// Fault injection (issue 7): device disconnect and reconnect, packet loss and delay, a
+// Fault injection: device disconnect and reconnect, packet loss and delay, a
 // stalled simulation, a CUDA error mid-session. Each checks what design.md section 7
 // demands: the device never receives NaN/Inf or a force above its limit, forces ramp to
 // zero while the chain is broken and come back ramped (never a jump larger than the
 // safety filter's rate limit). Deterministic (fake clocks, lockstep), except the last,
 // which runs the real threads and asserts only properties that hold on a loaded machine.
 // Disk full while recording and a locked/corrupt database belong to the recording and
-// patient-library tests (issue 6).
+// patient-library tests.
 #include <QtTest>
 
 #include <cmath>

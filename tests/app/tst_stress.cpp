@@ -1,4 +1,4 @@
-// Numerical stability (issue 7): a subset of the `palpation stress` matrix (app/cli/stress.h)
+// Numerical stability: a subset of the `palpation stress` matrix (app/cli/stress.h)
 // asserting its properties, and the divergence guard of design.md section 7 (NaN or an
 // energy blow-up is detected, the body reset to rest, the event logged).
 #include <QtTest>

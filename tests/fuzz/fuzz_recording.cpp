@@ -1,4 +1,4 @@
-// libFuzzer target: the session recording reader (app/store/recording.cpp, issue 6). Any file
+// libFuzzer target: the session recording reader (app/store/recording.cpp). Any file
 // either reads into a recording or throws RecordingError with a one-line message naming
 // the file; recover_recording on it either recovers or throws RecordingError. Nothing
 // else (another exception, a crash, a sanitizer report) is acceptable.

@@ -1,4 +1,4 @@
-// libFuzzer target: the scan importer's reading and checking (app/scan/scan_import.h, issue 6):
+// libFuzzer target: the scan importer's reading and checking (app/scan/scan_import.h):
 // assimp's STL/OBJ/PLY readers behind read_surface (app/scan/scan_read_assimp.cpp), then
 // repair_surface and find_base_plane, i.e. everything import_scan does before Gmsh
 // tetrahedralises in a child process (not run here: it needs Gmsh and a fork per input).

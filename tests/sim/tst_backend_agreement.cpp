@@ -1,4 +1,4 @@
-// GPU against CPU (issue 3). Where no GPU is usable (CI) the GPU comparisons skip with a
+// GPU against CPU. Where no GPU is usable (CI) the GPU comparisons skip with a
 // visible QSKIP naming the reason, and what can be checked without one is checked: asking
 // for cuda is a clear error and auto falls back to the CPU saying why. The full check
 // (paper sweep and Hertz, 1,000 steps) is `palpation check-backends`, run on the GPU
