@@ -6,7 +6,8 @@
 //   F(x) = F0 + K (x - x0),   K = dF/dx (clamped to the device's renderable stiffness),
 //
 // and keeps it unilateral: the tissue pushes, never pulls (F . n >= 0, else zero).
-// All in the device frame (app/ converts from the simulation's world frame).
+// All in the device frame and device units (app/ converts from the simulation's world
+// frame and scales the simulated force into the device's range, app/live/force_mapping.h).
 //
 // Rendering it directly at the device position ("direct") hands the device the
 // simulation's penalty stiffness (tens of kN/m per contact point), sampled every few ms:

@@ -82,7 +82,7 @@ std::optional<double> resolution_edge(const std::string& phantom, const std::str
 Scenario parse_scenario(const std::string& text, const std::string& source) {
   Reader rd(source);
   json j = rd.parse(text);
-  rd.only_keys(j, "", {"patient", "tissue", "inclusions", "solver", "contact", "fingers", "duration", "gravity"});
+  rd.only_keys(j, "", {"patient", "tissue", "inclusions", "solver", "contact", "fingers", "duration", "gravity", "marks"});
   Scenario s;
   s.source = source;
 
@@ -247,6 +247,24 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (s.duration > 3600) rd.fail("duration", "must be <= 3600 s");
   }
   if (s.duration / s.params.solver.dt > 1e7) rd.fail("duration", "more than 10 million steps at this dt");
+  if (j.contains("marks")) {
+    const json& arr = j["marks"];
+    if (!arr.is_array()) rd.fail("marks", "must be an array of [t, x, y, z, confidence]");
+    for (std::size_t i = 0; i < arr.size(); ++i) {
+      const std::string f = "marks[" + std::to_string(i) + "]";
+      if (!arr[i].is_array() || (arr[i].size() != 5 && arr[i].size() != 4)) rd.fail(f, "must be [t, x, y, z, confidence]");
+      ScenarioMark m;
+      m.t = rd.number(arr[i][0], f + "[0]");
+      if (m.t < 0 || m.t > s.duration) rd.fail(f + "[0]", "time must be within the session (0 to " + Reader::fmt(s.duration) + " s)");
+      for (int c = 0; c < 3; ++c) m.position[c] = rd.number(arr[i][std::size_t(c + 1)], f + "[" + std::to_string(c + 1) + "]");
+      if (arr[i].size() == 5) {
+        m.confidence = rd.number(arr[i][4], f + "[4]");
+        if (m.confidence < 0 || m.confidence > 1) rd.fail(f + "[4]", "confidence must be within 0..1, got " + Reader::fmt(m.confidence));
+      }
+      if (!s.marks.empty() && m.t < s.marks.back().t) rd.fail(f + "[0]", "mark times must not decrease");
+      s.marks.push_back(m);
+    }
+  }
   return s;
 }
 
@@ -314,6 +332,10 @@ std::string scenario_to_json(const Scenario& s) {
     j["fingers"].push_back({{"radius", f.radius}, {"path", path}});
   }
   j["duration"] = s.duration;
+  if (!s.marks.empty()) {
+    j["marks"] = json::array();
+    for (const auto& m : s.marks) j["marks"].push_back({m.t, m.position.x(), m.position.y(), m.position.z(), m.confidence});
+  }
   return j.dump(2);
 }
 

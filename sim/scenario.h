@@ -49,6 +49,14 @@ struct FingerPath {
   void sample(double t, Eigen::Vector3d& pos, Eigen::Vector3d& vel) const;
 };
 
+/// A trainee's mark in a scripted session ("marks": [[t, x, y, z, confidence], ...]): where
+/// a scripted trainee said "I feel a lump here", scored like a live one.
+struct ScenarioMark {
+  double t = 0;                                        // s
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // world, m
+  double confidence = 1.0;                             // 0..1
+};
+
 struct Scenario {
   std::string source;                 // file it came from (for messages)
   PatientSpec patient;
@@ -60,6 +68,7 @@ struct Scenario {
   SimParams params;
   std::vector<FingerPath> fingers;    // 1..5
   double duration = 1.0;              // s
+  std::vector<ScenarioMark> marks;    // a scripted trainee's marks, in time order
 };
 
 /// Largest tumour/tissue Young's modulus ratio (either way) a scenario may ask for: the

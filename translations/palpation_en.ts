@@ -32,27 +32,27 @@
 <context>
     <name>ForcePlots</name>
     <message>
-        <location filename="../ui/force_plots.cpp" line="25"/>
+        <location filename="../ui/force_plots.cpp" line="26"/>
         <source>thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="25"/>
+        <location filename="../ui/force_plots.cpp" line="26"/>
         <source>index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="26"/>
+        <location filename="../ui/force_plots.cpp" line="27"/>
         <source>middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="26"/>
+        <location filename="../ui/force_plots.cpp" line="27"/>
         <source>ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="27"/>
+        <location filename="../ui/force_plots.cpp" line="28"/>
         <source>little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -250,92 +250,117 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="63"/>
+        <location filename="../ui/event_text.cpp" line="60"/>
+        <source>guided practice (trainee)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="61"/>
+        <source>exam (trainee)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="65"/>
         <source>trainee mark %1 at (%2, %3, %4) cm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="66"/>
+        <location filename="../ui/event_text.cpp" line="68"/>
         <source>trainee mark %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="67"/>
-        <source>: %1</source>
+        <location filename="../ui/event_text.cpp" line="69"/>
+        <source>, %1 % confident</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/event_text.cpp" line="70"/>
-        <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/event_text.cpp" line="71"/>
-        <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
+        <source>: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/event_text.cpp" line="73"/>
+        <source>guided practice ended</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="73"/>
+        <source>exam ended</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="74"/>
+        <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="75"/>
+        <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="77"/>
         <source>simulation stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="82"/>
+        <location filename="../ui/event_text.cpp" line="86"/>
         <source>small</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="83"/>
+        <location filename="../ui/event_text.cpp" line="87"/>
         <source>medium</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="84"/>
+        <location filename="../ui/event_text.cpp" line="88"/>
         <source>large</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="85"/>
+        <location filename="../ui/event_text.cpp" line="89"/>
         <source>wide and flat</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="86"/>
+        <location filename="../ui/event_text.cpp" line="90"/>
         <source>narrow and projecting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="89"/>
+        <location filename="../ui/event_text.cpp" line="93"/>
         <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="90"/>
+        <location filename="../ui/event_text.cpp" line="94"/>
         <source>Healthy breast, %1 (%2 mL), no tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="92"/>
+        <location filename="../ui/event_text.cpp" line="96"/>
         <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="94"/>
+        <location filename="../ui/event_text.cpp" line="98"/>
         <source>soft</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="94"/>
+        <location filename="../ui/event_text.cpp" line="98"/>
         <source>hard</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="94"/>
+        <location filename="../ui/event_text.cpp" line="98"/>
         <source>firm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="95"/>
+        <location filename="../ui/event_text.cpp" line="99"/>
         <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
         <translation type="unfinished"></translation>
     </message>
@@ -343,89 +368,109 @@
 <context>
     <name>palpation::ui::ForcePlots</name>
     <message>
-        <location filename="../ui/force_plots.cpp" line="103"/>
+        <location filename="../ui/force_plots.cpp" line="107"/>
         <source>Export plot as PNG</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="103"/>
+        <location filename="../ui/force_plots.cpp" line="107"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="107"/>
+        <location filename="../ui/force_plots.cpp" line="111"/>
         <source>Export forces as CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="107"/>
+        <location filename="../ui/force_plots.cpp" line="111"/>
         <source>CSV files (*.csv)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="114"/>
+        <location filename="../ui/force_plots.cpp" line="118"/>
         <source>|F| vs time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="115"/>
+        <location filename="../ui/force_plots.cpp" line="119"/>
         <source>Fz vs time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="116"/>
+        <location filename="../ui/force_plots.cpp" line="120"/>
         <source>Fz vs x (Fig. 6)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="117"/>
+        <location filename="../ui/force_plots.cpp" line="121"/>
         <source>solid: sent to the device (limit %1 N, dotted); dashed: simulated contact force</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="118"/>
+        <location filename="../ui/force_plots.cpp" line="122"/>
         <source>Force magnitude per finger (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="119"/>
+        <location filename="../ui/force_plots.cpp" line="123"/>
         <source>Fz per finger (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="120"/>
+        <location filename="../ui/force_plots.cpp" line="124"/>
         <source>Fz (N) against finger x (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="126"/>
+        <location filename="../ui/force_plots.cpp" line="130"/>
         <source>%1 (simulated)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="131"/>
-        <location filename="../ui/force_plots.cpp" line="132"/>
+        <location filename="../ui/force_plots.cpp" line="135"/>
+        <location filename="../ui/force_plots.cpp" line="136"/>
         <source>device limit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="133"/>
+        <location filename="../ui/force_plots.cpp" line="137"/>
         <source>Resume</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="133"/>
+        <location filename="../ui/force_plots.cpp" line="137"/>
         <source>Pause</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="134"/>
+        <location filename="../ui/force_plots.cpp" line="138"/>
         <source>Export PNG...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="135"/>
+        <location filename="../ui/force_plots.cpp" line="139"/>
         <source>Export CSV...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="141"/>
+        <source>The device renders the simulated force times the force scale, chosen when the patient loads: a deep press (%1 % of the tissue thickness) over the stiffest part of the patient maps to %2 % of the device&apos;s limit, so that the tumour&apos;s extra force stays within the device&apos;s range. Device limit %3 N = %4 N simulated. Solid lines: sent (device units); dashed: simulated.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="157"/>
+        <source>Force scale %1 (device configuration): %2 N simulated -&gt; %3 N at the device</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="162"/>
+        <source>Force scale %1: deep press %2 N simulated -&gt; %3 N at the device (limit %4 N)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="167"/>
+        <source>Force scale 1: simulated forces sent unscaled</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -620,364 +665,469 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="134"/>
+        <location filename="../ui/main_window.cpp" line="139"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="144"/>
+        <location filename="../ui/main_window.cpp" line="149"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="212"/>
+        <location filename="../ui/main_window.cpp" line="226"/>
         <source>This session is not recorded: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="214"/>
+        <location filename="../ui/main_window.cpp" line="228"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="216"/>
+        <location filename="../ui/main_window.cpp" line="230"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="270"/>
         <source>no patient library is open: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="285"/>
+        <location filename="../ui/main_window.cpp" line="305"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="285"/>
+        <location filename="../ui/main_window.cpp" line="305"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="291"/>
-        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, recorded.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="323"/>
+        <location filename="../ui/main_window.cpp" line="345"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="336"/>
+        <location filename="../ui/main_window.cpp" line="358"/>
         <source>Open a session recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="337"/>
+        <location filename="../ui/main_window.cpp" line="359"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="340"/>
+        <location filename="../ui/main_window.cpp" line="362"/>
         <source>Cannot open the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="344"/>
+        <location filename="../ui/main_window.cpp" line="366"/>
         <source>Save screenshot</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="344"/>
+        <location filename="../ui/main_window.cpp" line="366"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="374"/>
-        <location filename="../ui/main_window.cpp" line="479"/>
+        <location filename="../ui/main_window.cpp" line="396"/>
+        <location filename="../ui/main_window.cpp" line="531"/>
         <source>Stereo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="384"/>
+        <location filename="../ui/main_window.cpp" line="406"/>
         <source>Eye separation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="384"/>
+        <location filename="../ui/main_window.cpp" line="406"/>
         <source>Eye angle (degrees):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="465"/>
+        <location filename="../ui/main_window.cpp" line="469"/>
+        <source>End the exam now? No more marks can be made after it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="517"/>
         <source>Palpation Trainer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="466"/>
+        <location filename="../ui/main_window.cpp" line="518"/>
         <source>&amp;File</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="467"/>
+        <location filename="../ui/main_window.cpp" line="519"/>
         <source>&amp;Open recording...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="468"/>
+        <location filename="../ui/main_window.cpp" line="520"/>
         <source>Mark lump here (M)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="469"/>
+        <location filename="../ui/main_window.cpp" line="521"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="470"/>
+        <location filename="../ui/main_window.cpp" line="522"/>
         <source>Save &amp;screenshot...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="471"/>
+        <location filename="../ui/main_window.cpp" line="523"/>
         <source>&amp;Quit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="472"/>
+        <location filename="../ui/main_window.cpp" line="524"/>
         <source>&amp;Edit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="473"/>
+        <location filename="../ui/main_window.cpp" line="525"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="474"/>
+        <location filename="../ui/main_window.cpp" line="526"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="475"/>
+        <location filename="../ui/main_window.cpp" line="527"/>
         <source>&amp;View</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="476"/>
+        <location filename="../ui/main_window.cpp" line="528"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Oblique</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Top</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Front</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Mono</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Anaglyph (red/cyan)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Side by side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Interlaced</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="482"/>
+        <location filename="../ui/main_window.cpp" line="534"/>
         <source>Eye separation...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="483"/>
+        <location filename="../ui/main_window.cpp" line="535"/>
         <source>Mirrored (half-mirror display)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="484"/>
+        <location filename="../ui/main_window.cpp" line="536"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="485"/>
+        <location filename="../ui/main_window.cpp" line="537"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="487"/>
+        <location filename="../ui/main_window.cpp" line="539"/>
         <source>Displacement colour map</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="488"/>
+        <location filename="../ui/main_window.cpp" line="540"/>
         <source>Stress colour map (von Mises)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="489"/>
+        <location filename="../ui/main_window.cpp" line="541"/>
         <source>Show tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="490"/>
+        <location filename="../ui/main_window.cpp" line="542"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="491"/>
+        <location filename="../ui/main_window.cpp" line="543"/>
         <source>&amp;Mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="492"/>
-        <source>Trainee mode</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="493"/>
+        <location filename="../ui/main_window.cpp" line="544"/>
         <source>Instructor mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="494"/>
+        <location filename="../ui/main_window.cpp" line="556"/>
         <source>Tools</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="495"/>
+        <location filename="../ui/main_window.cpp" line="557"/>
         <source>Camera / scripted hand</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="496"/>
+        <location filename="../ui/main_window.cpp" line="558"/>
         <source>Palpate with the mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="605"/>
+        <location filename="../ui/main_window.cpp" line="753"/>
         <source>Not recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="606"/>
+        <location filename="../ui/main_window.cpp" line="754"/>
         <source>Recording stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="607"/>
+        <location filename="../ui/main_window.cpp" line="755"/>
         <source>Recording (%1 marks)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="119"/>
-        <location filename="../ui/main_window.cpp" line="497"/>
+        <location filename="../ui/main_window.cpp" line="124"/>
+        <location filename="../ui/main_window.cpp" line="559"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="498"/>
-        <source>Tumours</source>
+        <location filename="../ui/main_window.cpp" line="299"/>
+        <source>The exam has ended: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="499"/>
-        <source>Forces</source>
+        <location filename="../ui/main_window.cpp" line="312"/>
+        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="500"/>
-        <source>Simulation</source>
+        <location filename="../ui/main_window.cpp" line="545"/>
+        <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="501"/>
-        <source>Device</source>
+        <location filename="../ui/main_window.cpp" line="547"/>
+        <source>Guided practice</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="548"/>
+        <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="549"/>
+        <source>Exam</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="550"/>
+        <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="551"/>
+        <source>End exam</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="552"/>
+        <source>Stops the exam: no more marks.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Possible (25 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Likely (50 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Probable (75 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Certain (100 %)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="555"/>
-        <source>%1 nodes, %2 tetrahedra</source>
+        <source>How sure you are of the next mark</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="595"/>
-        <source>Backend: %1</source>
+        <location filename="../ui/main_window.cpp" line="560"/>
+        <source>Tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="595"/>
-        <source>Backend: %1 (fallback)</source>
+        <location filename="../ui/main_window.cpp" line="561"/>
+        <source>Forces</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="597"/>
-        <source>Simulation: %1 Hz</source>
+        <location filename="../ui/main_window.cpp" line="562"/>
+        <source>Simulation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="598"/>
-        <source>Haptic: %1 Hz</source>
+        <location filename="../ui/main_window.cpp" line="563"/>
+        <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="600"/>
-        <source>mouse</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="601"/>
-        <source>simulated HandHIRO</source>
+        <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="602"/>
-        <source>Device: %1, %2</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
-        <source>connected</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
-        <source>not connected</source>
+        <source>Leave the exam? This ends it: no more marks can be made in it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="603"/>
+        <source>Change of mode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="685"/>
+        <source>Instructor: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="687"/>
+        <source>Guided practice: case %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="687"/>
+        <source>Guided practice ended: case %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="688"/>
+        <source>Exam: case %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="688"/>
+        <source>Exam ended: case %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="702"/>
+        <source>%1 nodes, %2 tetrahedra</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="743"/>
+        <source>Backend: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="743"/>
+        <source>Backend: %1 (fallback)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="745"/>
+        <source>Simulation: %1 Hz</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="746"/>
+        <source>Haptic: %1 Hz</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="748"/>
+        <source>mouse</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="749"/>
+        <source>simulated HandHIRO</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="750"/>
+        <source>Device: %1, %2</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="750"/>
+        <source>connected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="750"/>
+        <source>not connected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="751"/>
         <source>View: %1 fps</source>
         <translation type="unfinished"></translation>
     </message>

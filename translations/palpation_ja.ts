@@ -32,27 +32,27 @@
 <context>
     <name>ForcePlots</name>
     <message>
-        <location filename="../ui/force_plots.cpp" line="25"/>
+        <location filename="../ui/force_plots.cpp" line="26"/>
         <source>thumb</source>
         <translation>親指</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="25"/>
+        <location filename="../ui/force_plots.cpp" line="26"/>
         <source>index</source>
         <translation>人差し指</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="26"/>
+        <location filename="../ui/force_plots.cpp" line="27"/>
         <source>middle</source>
         <translation>中指</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="26"/>
+        <location filename="../ui/force_plots.cpp" line="27"/>
         <source>ring</source>
         <translation>薬指</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="27"/>
+        <location filename="../ui/force_plots.cpp" line="28"/>
         <source>little</source>
         <translation>小指</translation>
     </message>
@@ -247,92 +247,117 @@
         <translation>指導者モード</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="63"/>
+        <location filename="../ui/event_text.cpp" line="60"/>
+        <source>guided practice (trainee)</source>
+        <translation>ガイド付き練習（研修生）</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="61"/>
+        <source>exam (trainee)</source>
+        <translation>試験（研修生）</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="65"/>
         <source>trainee mark %1 at (%2, %3, %4) cm</source>
         <translation>研修生のマーク %1（%2, %3, %4 cm）</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="66"/>
+        <location filename="../ui/event_text.cpp" line="68"/>
         <source>trainee mark %1</source>
         <translation>研修生のマーク %1</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="67"/>
+        <location filename="../ui/event_text.cpp" line="69"/>
+        <source>, %1 % confident</source>
+        <translation>、確信度 %1 %</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="70"/>
         <source>: %1</source>
         <translation>: %1</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="70"/>
+        <location filename="../ui/event_text.cpp" line="73"/>
+        <source>guided practice ended</source>
+        <translation>ガイド付き練習を終了</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="73"/>
+        <source>exam ended</source>
+        <translation>試験を終了</translation>
+    </message>
+    <message>
+        <location filename="../ui/event_text.cpp" line="74"/>
         <source>backend error: %1; continuing on the CPU from rest (forces held, then blended)</source>
         <translation>バックエンドのエラー: %1。静止状態から CPU で続行します（力を保持してから滑らかに切り替え）</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="71"/>
+        <location filename="../ui/event_text.cpp" line="75"/>
         <source>simulation diverged (%1): body reset to rest (forces held, then blended)</source>
         <translation>シミュレーションが発散しました（%1）: 物体を静止状態に戻しました（力を保持してから滑らかに切り替え）</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="73"/>
+        <location filename="../ui/event_text.cpp" line="77"/>
         <source>simulation stopped: %1</source>
         <translation>シミュレーションが停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="82"/>
+        <location filename="../ui/event_text.cpp" line="86"/>
         <source>small</source>
         <translation>小さめ</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="83"/>
+        <location filename="../ui/event_text.cpp" line="87"/>
         <source>medium</source>
         <translation>中くらい</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="84"/>
+        <location filename="../ui/event_text.cpp" line="88"/>
         <source>large</source>
         <translation>大きめ</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="85"/>
+        <location filename="../ui/event_text.cpp" line="89"/>
         <source>wide and flat</source>
         <translation>広く平ら</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="86"/>
+        <location filename="../ui/event_text.cpp" line="90"/>
         <source>narrow and projecting</source>
         <translation>細く突出</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="89"/>
+        <location filename="../ui/event_text.cpp" line="93"/>
         <source>Healthy breast, %1 (%2 mL), the paper&apos;s size, no tumour</source>
         <translation>健康な乳房、%1（%2 mL、論文の大きさ）、腫瘍なし</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="90"/>
+        <location filename="../ui/event_text.cpp" line="94"/>
         <source>Healthy breast, %1 (%2 mL), no tumour</source>
         <translation>健康な乳房、%1（%2 mL）、腫瘍なし</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="92"/>
+        <location filename="../ui/event_text.cpp" line="96"/>
         <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
         <translation>論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、皮膚の下 1.5 cm</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="94"/>
+        <location filename="../ui/event_text.cpp" line="98"/>
         <source>soft</source>
         <translation>柔らかい</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="94"/>
+        <location filename="../ui/event_text.cpp" line="98"/>
         <source>hard</source>
         <translation>硬い</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="94"/>
+        <location filename="../ui/event_text.cpp" line="98"/>
         <source>firm</source>
         <translation>硬めの</translation>
     </message>
     <message>
-        <location filename="../ui/event_text.cpp" line="95"/>
+        <location filename="../ui/event_text.cpp" line="99"/>
         <source>Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin</source>
         <translation>中くらいの乳房、%1腫瘍 直径 %2 cm（%3 kPa）、中心は皮膚の下 %4 cm</translation>
     </message>
@@ -340,90 +365,110 @@
 <context>
     <name>palpation::ui::ForcePlots</name>
     <message>
-        <location filename="../ui/force_plots.cpp" line="103"/>
+        <location filename="../ui/force_plots.cpp" line="107"/>
         <source>Export plot as PNG</source>
         <translation>グラフを PNG で出力</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="103"/>
+        <location filename="../ui/force_plots.cpp" line="107"/>
         <source>PNG images (*.png)</source>
         <translation>PNG 画像 (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="107"/>
+        <location filename="../ui/force_plots.cpp" line="111"/>
         <source>Export forces as CSV</source>
         <translation>力を CSV で出力</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="107"/>
+        <location filename="../ui/force_plots.cpp" line="111"/>
         <source>CSV files (*.csv)</source>
         <translation>CSV ファイル (*.csv)</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="114"/>
+        <location filename="../ui/force_plots.cpp" line="118"/>
         <source>|F| vs time</source>
         <translation>|F| と時間</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="115"/>
+        <location filename="../ui/force_plots.cpp" line="119"/>
         <source>Fz vs time</source>
         <translation>Fz と時間</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="116"/>
+        <location filename="../ui/force_plots.cpp" line="120"/>
         <source>Fz vs x (Fig. 6)</source>
         <translation>Fz と x（図 6）</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="117"/>
+        <location filename="../ui/force_plots.cpp" line="121"/>
         <source>solid: sent to the device (limit %1 N, dotted); dashed: simulated contact force</source>
         <translation>実線: デバイスへ送った力（上限 %1 N、点線）、破線: シミュレーションの接触力</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="118"/>
+        <location filename="../ui/force_plots.cpp" line="122"/>
         <source>Force magnitude per finger (N)</source>
         <translation>指ごとの力の大きさ (N)</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="119"/>
+        <location filename="../ui/force_plots.cpp" line="123"/>
         <source>Fz per finger (N)</source>
         <translation>指ごとの Fz (N)</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="120"/>
+        <location filename="../ui/force_plots.cpp" line="124"/>
         <source>Fz (N) against finger x (m)</source>
         <translation>指の x 位置 (m) に対する Fz (N)</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="126"/>
+        <location filename="../ui/force_plots.cpp" line="130"/>
         <source>%1 (simulated)</source>
         <translation>%1（シミュレーション）</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="131"/>
-        <location filename="../ui/force_plots.cpp" line="132"/>
+        <location filename="../ui/force_plots.cpp" line="135"/>
+        <location filename="../ui/force_plots.cpp" line="136"/>
         <source>device limit</source>
         <translation>デバイス上限</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="133"/>
+        <location filename="../ui/force_plots.cpp" line="137"/>
         <source>Resume</source>
         <translation>再開</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="133"/>
+        <location filename="../ui/force_plots.cpp" line="137"/>
         <source>Pause</source>
         <translation>一時停止</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="134"/>
+        <location filename="../ui/force_plots.cpp" line="138"/>
         <source>Export PNG...</source>
         <translation>PNG 出力...</translation>
     </message>
     <message>
-        <location filename="../ui/force_plots.cpp" line="135"/>
+        <location filename="../ui/force_plots.cpp" line="139"/>
         <source>Export CSV...</source>
         <translation>CSV 出力...</translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="141"/>
+        <source>The device renders the simulated force times the force scale, chosen when the patient loads: a deep press (%1 % of the tissue thickness) over the stiffest part of the patient maps to %2 % of the device&apos;s limit, so that the tumour&apos;s extra force stays within the device&apos;s range. Device limit %3 N = %4 N simulated. Solid lines: sent (device units); dashed: simulated.</source>
+        <translation>デバイスはシミュレーションの力に力のスケールを掛けて出力します。スケールは患者の読み込み時に決まります: 患者の最も硬い部分の上での深い押し込み（組織の厚さの %1 %）がデバイス上限の %2 % になるように選ぶので、腫瘍による余分な力もデバイスの範囲に収まります。デバイス上限 %3 N = シミュレーション %4 N。実線: 送った力（デバイスの単位）、破線: シミュレーション。</translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="157"/>
+        <source>Force scale %1 (device configuration): %2 N simulated -&gt; %3 N at the device</source>
+        <translation>力のスケール %1（デバイス設定）: シミュレーション %2 N → デバイス %3 N</translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="162"/>
+        <source>Force scale %1: deep press %2 N simulated -&gt; %3 N at the device (limit %4 N)</source>
+        <translation>力のスケール %1: 深い押し込み シミュレーション %2 N → デバイス %3 N（上限 %4 N）</translation>
+    </message>
+    <message>
+        <location filename="../ui/force_plots.cpp" line="167"/>
+        <source>Force scale 1: simulated forces sent unscaled</source>
+        <translation>力のスケール 1: シミュレーションの力をそのまま送ります</translation>
     </message>
 </context>
 <context>
@@ -617,364 +662,469 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="134"/>
+        <location filename="../ui/main_window.cpp" line="139"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation>マウス触診: 乳房の上で動かします。ホイールまたは下向きのドラッグで指先を押し込みます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="144"/>
+        <location filename="../ui/main_window.cpp" line="149"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation>その形状の中に要素がありません。追加されませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="212"/>
+        <location filename="../ui/main_window.cpp" line="226"/>
         <source>This session is not recorded: %1</source>
         <translation>このセッションは記録されていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="214"/>
+        <location filename="../ui/main_window.cpp" line="228"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation>中断された記録を復元しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="216"/>
+        <location filename="../ui/main_window.cpp" line="230"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation>患者ライブラリを使えません（内蔵ファントムのみ）: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="256"/>
+        <location filename="../ui/main_window.cpp" line="270"/>
         <source>no patient library is open: %1</source>
         <translation>患者ライブラリが開かれていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="285"/>
+        <location filename="../ui/main_window.cpp" line="305"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation>乳房に触れている指先がありません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="285"/>
+        <location filename="../ui/main_window.cpp" line="305"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation>このセッションは記録されていません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="291"/>
-        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, recorded.</source>
-        <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm を記録しました。</translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="323"/>
+        <location filename="../ui/main_window.cpp" line="345"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation>患者「%1」を保存しました。選んで「患者を読み込む」を押すと触診できます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="336"/>
+        <location filename="../ui/main_window.cpp" line="358"/>
         <source>Open a session recording</source>
         <translation>セッションの記録を開く</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="337"/>
+        <location filename="../ui/main_window.cpp" line="359"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation>セッションの記録 (*.palrec *.prec);;すべてのファイル (*)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="340"/>
+        <location filename="../ui/main_window.cpp" line="362"/>
         <source>Cannot open the recording</source>
         <translation>記録を開けません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="344"/>
+        <location filename="../ui/main_window.cpp" line="366"/>
         <source>Save screenshot</source>
         <translation>スクリーンショットを保存</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="344"/>
+        <location filename="../ui/main_window.cpp" line="366"/>
         <source>PNG images (*.png)</source>
         <translation>PNG 画像 (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="374"/>
-        <location filename="../ui/main_window.cpp" line="479"/>
+        <location filename="../ui/main_window.cpp" line="396"/>
+        <location filename="../ui/main_window.cpp" line="531"/>
         <source>Stereo</source>
         <translation>立体視</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="384"/>
+        <location filename="../ui/main_window.cpp" line="406"/>
         <source>Eye separation</source>
         <translation>眼間距離</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="384"/>
+        <location filename="../ui/main_window.cpp" line="406"/>
         <source>Eye angle (degrees):</source>
         <translation>視差角（度）:</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="465"/>
+        <location filename="../ui/main_window.cpp" line="469"/>
+        <source>End the exam now? No more marks can be made after it.</source>
+        <translation>試験を今終了しますか？終了後はマークできません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="517"/>
         <source>Palpation Trainer</source>
         <translation>触診トレーナー</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="466"/>
+        <location filename="../ui/main_window.cpp" line="518"/>
         <source>&amp;File</source>
         <translation>ファイル(&amp;F)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="467"/>
+        <location filename="../ui/main_window.cpp" line="519"/>
         <source>&amp;Open recording...</source>
         <translation>記録を開く(&amp;O)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="468"/>
+        <location filename="../ui/main_window.cpp" line="520"/>
         <source>Mark lump here (M)</source>
         <translation>しこりをマーク (M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="469"/>
+        <location filename="../ui/main_window.cpp" line="521"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation>研修生:「ここにしこりがある」― 人差し指の指先の位置を記録にマークします</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="470"/>
+        <location filename="../ui/main_window.cpp" line="522"/>
         <source>Save &amp;screenshot...</source>
         <translation>スクリーンショットを保存(&amp;S)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="471"/>
+        <location filename="../ui/main_window.cpp" line="523"/>
         <source>&amp;Quit</source>
         <translation>終了(&amp;Q)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="472"/>
+        <location filename="../ui/main_window.cpp" line="524"/>
         <source>&amp;Edit</source>
         <translation>編集(&amp;E)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="473"/>
+        <location filename="../ui/main_window.cpp" line="525"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="474"/>
+        <location filename="../ui/main_window.cpp" line="526"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="475"/>
+        <location filename="../ui/main_window.cpp" line="527"/>
         <source>&amp;View</source>
         <translation>表示(&amp;V)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="476"/>
+        <location filename="../ui/main_window.cpp" line="528"/>
         <source>Camera</source>
         <translation>カメラ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Oblique</source>
         <translation>斜め</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Top</source>
         <translation>上</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Side</source>
         <translation>側面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="477"/>
+        <location filename="../ui/main_window.cpp" line="529"/>
         <source>Front</source>
         <translation>正面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Mono</source>
         <translation>モノ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Anaglyph (red/cyan)</source>
         <translation>アナグリフ（赤/シアン）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Side by side</source>
         <translation>サイドバイサイド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Interlaced</source>
         <translation>インターレース</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="480"/>
+        <location filename="../ui/main_window.cpp" line="532"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation>クアッドバッファ（シャッターメガネ）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="482"/>
+        <location filename="../ui/main_window.cpp" line="534"/>
         <source>Eye separation...</source>
         <translation>眼間距離...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="483"/>
+        <location filename="../ui/main_window.cpp" line="535"/>
         <source>Mirrored (half-mirror display)</source>
         <translation>鏡像（ハーフミラー表示）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="484"/>
+        <location filename="../ui/main_window.cpp" line="536"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation>高速描画（ソフトウェア OpenGL）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="485"/>
+        <location filename="../ui/main_window.cpp" line="537"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation>軽い 3D 表示：単色の背景、皮膚のハイライトなし、陰影なしの胸壁。コンピューターが OpenGL をソフトウェアで描画するときは自動でオンになります。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="487"/>
+        <location filename="../ui/main_window.cpp" line="539"/>
         <source>Displacement colour map</source>
         <translation>変位カラーマップ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="488"/>
+        <location filename="../ui/main_window.cpp" line="540"/>
         <source>Stress colour map (von Mises)</source>
         <translation>応力カラーマップ（ミーゼス）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="489"/>
+        <location filename="../ui/main_window.cpp" line="541"/>
         <source>Show tumours</source>
         <translation>腫瘍を表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="490"/>
+        <location filename="../ui/main_window.cpp" line="542"/>
         <source>Panels</source>
         <translation>パネル</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="491"/>
+        <location filename="../ui/main_window.cpp" line="543"/>
         <source>&amp;Mode</source>
         <translation>モード(&amp;M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="492"/>
-        <source>Trainee mode</source>
-        <translation>研修生モード</translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="493"/>
+        <location filename="../ui/main_window.cpp" line="544"/>
         <source>Instructor mode</source>
         <translation>指導者モード</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="494"/>
+        <location filename="../ui/main_window.cpp" line="556"/>
         <source>Tools</source>
         <translation>ツール</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="495"/>
+        <location filename="../ui/main_window.cpp" line="557"/>
         <source>Camera / scripted hand</source>
         <translation>カメラ / 自動触診ハンド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="496"/>
+        <location filename="../ui/main_window.cpp" line="558"/>
         <source>Palpate with the mouse</source>
         <translation>マウスで触診</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="605"/>
+        <location filename="../ui/main_window.cpp" line="753"/>
         <source>Not recording</source>
         <translation>記録していません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="606"/>
+        <location filename="../ui/main_window.cpp" line="754"/>
         <source>Recording stopped: %1</source>
         <translation>記録が停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="607"/>
+        <location filename="../ui/main_window.cpp" line="755"/>
         <source>Recording (%1 marks)</source>
         <translation>記録中（マーク %1 件）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="119"/>
-        <location filename="../ui/main_window.cpp" line="497"/>
+        <location filename="../ui/main_window.cpp" line="124"/>
+        <location filename="../ui/main_window.cpp" line="559"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="498"/>
+        <location filename="../ui/main_window.cpp" line="299"/>
+        <source>The exam has ended: nothing marked.</source>
+        <translation>試験は終了しています。マークしませんでした。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="312"/>
+        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
+        <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm、確信度 %5 % を記録しました。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="545"/>
+        <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
+        <translation>指導者の表示: 答えを含むすべてのパネル。研修生のモードから戻るときは確認を求めます。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="547"/>
+        <source>Guided practice</source>
+        <translation>ガイド付き練習</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="548"/>
+        <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
+        <translation>研修生: 触診してマークします。指導者のパネルは表示されません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="549"/>
+        <source>Exam</source>
+        <translation>試験</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="550"/>
+        <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
+        <translation>研修生の試験: 触診してマークします。試験が終わるまで答えは表示されません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="551"/>
+        <source>End exam</source>
+        <translation>試験を終了</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="552"/>
+        <source>Stops the exam: no more marks.</source>
+        <translation>試験を終了します。以後はマークできません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Possible (25 %)</source>
+        <translation>可能性あり (25 %)</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Likely (50 %)</source>
+        <translation>たぶん (50 %)</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Probable (75 %)</source>
+        <translation>おそらく (75 %)</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <source>Certain (100 %)</source>
+        <translation>確実 (100 %)</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="555"/>
+        <source>How sure you are of the next mark</source>
+        <translation>次のマークの確信度</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="560"/>
         <source>Tumours</source>
         <translation>腫瘍</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="499"/>
+        <location filename="../ui/main_window.cpp" line="561"/>
         <source>Forces</source>
         <translation>力</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="500"/>
+        <location filename="../ui/main_window.cpp" line="562"/>
         <source>Simulation</source>
         <translation>シミュレーション</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="501"/>
+        <location filename="../ui/main_window.cpp" line="563"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="555"/>
+        <location filename="../ui/main_window.cpp" line="600"/>
+        <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
+        <translation>指導者モードに戻りますか？研修生のセッションを終了し、答え、患者の詳細、すべてのパネルを表示します。指導者専用の操作です。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="602"/>
+        <source>Leave the exam? This ends it: no more marks can be made in it.</source>
+        <translation>試験を抜けますか？試験は終了し、この試験ではもうマークできません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="603"/>
+        <source>Change of mode</source>
+        <translation>モードの切り替え</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="685"/>
+        <source>Instructor: %1</source>
+        <translation>指導者: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="687"/>
+        <source>Guided practice: case %1</source>
+        <translation>ガイド付き練習: 症例 %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="687"/>
+        <source>Guided practice ended: case %1</source>
+        <translation>ガイド付き練習終了: 症例 %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="688"/>
+        <source>Exam: case %1</source>
+        <translation>試験: 症例 %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="688"/>
+        <source>Exam ended: case %1</source>
+        <translation>試験終了: 症例 %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="702"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation>節点 %1、四面体 %2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="595"/>
+        <location filename="../ui/main_window.cpp" line="743"/>
         <source>Backend: %1</source>
         <translation>バックエンド: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="595"/>
+        <location filename="../ui/main_window.cpp" line="743"/>
         <source>Backend: %1 (fallback)</source>
         <translation>バックエンド: %1（フォールバック）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="597"/>
+        <location filename="../ui/main_window.cpp" line="745"/>
         <source>Simulation: %1 Hz</source>
         <translation>シミュレーション: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="598"/>
+        <location filename="../ui/main_window.cpp" line="746"/>
         <source>Haptic: %1 Hz</source>
         <translation>力覚: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="600"/>
+        <location filename="../ui/main_window.cpp" line="748"/>
         <source>mouse</source>
         <translation>マウス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="601"/>
+        <location filename="../ui/main_window.cpp" line="749"/>
         <source>simulated HandHIRO</source>
         <translation>シミュレーションの HandHIRO</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
+        <location filename="../ui/main_window.cpp" line="750"/>
         <source>Device: %1, %2</source>
         <translation>デバイス: %1、%2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
+        <location filename="../ui/main_window.cpp" line="750"/>
         <source>connected</source>
         <translation>接続中</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
+        <location filename="../ui/main_window.cpp" line="750"/>
         <source>not connected</source>
         <translation>未接続</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="603"/>
+        <location filename="../ui/main_window.cpp" line="751"/>
         <source>View: %1 fps</source>
         <translation>表示: %1 fps</translation>
     </message>

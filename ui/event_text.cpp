@@ -57,6 +57,8 @@ QString EventText::event(const Event& e) {
         case ModeChange::ScriptedHand: return tr("device: scripted hand");
         case ModeChange::Trainee: return tr("trainee mode");
         case ModeChange::Instructor: return tr("instructor mode");
+        case ModeChange::GuidedPractice: return tr("guided practice (trainee)");
+        case ModeChange::Exam: return tr("exam (trainee)");
       }
       return {};
     case EventKind::Mark: {
@@ -64,9 +66,11 @@ QString EventText::event(const Event& e) {
                                    .arg(QString::number(e.mark), fixed(e.position->x() * 100, 1), fixed(e.position->y() * 100, 1),
                                         fixed(e.position->z() * 100, 1))
                              : tr("trainee mark %1").arg(e.mark);
+      if (e.confidence < 1.0) s += tr(", %1 % confident").arg(fixed(e.confidence * 100, 0));
       if (!e.detail.empty()) s += tr(": %1").arg(text(e.detail));
       return s;
     }
+    case EventKind::ExamEnded: return e.mode == ModeChange::GuidedPractice ? tr("guided practice ended") : tr("exam ended");
     case EventKind::Fallback: return tr("backend error: %1; continuing on the CPU from rest (forces held, then blended)").arg(text(e.detail));
     case EventKind::Reset: return tr("simulation diverged (%1): body reset to rest (forces held, then blended)").arg(text(e.detail));
     case EventKind::Error: return text(e.detail);

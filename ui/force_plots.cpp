@@ -10,6 +10,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QHBoxLayout>
+#include <QLabel>
 #include <QLegendMarker>
 #include <QLineSeries>
 #include <QPen>
@@ -89,8 +90,11 @@ ForcePlots::ForcePlots(QWidget* parent) : QWidget(parent) {
   pause_->setCheckable(true);
   png_ = new QPushButton;
   csv_ = new QPushButton;
+  scale_ = new QLabel;
+  scale_->setObjectName(QStringLiteral("forceScale"));
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(pause_);
+  buttons->addWidget(scale_, 1);
   buttons->addStretch();
   buttons->addWidget(png_);
   buttons->addWidget(csv_);
@@ -133,6 +137,43 @@ void ForcePlots::retranslate() {
   pause_->setText(paused_ ? tr("Resume") : tr("Pause"));
   png_->setText(tr("Export PNG..."));
   csv_->setText(tr("Export CSV..."));
+  scale_->setText(force_scale_text());
+  scale_->setToolTip(have_mapping_ ? tr("The device renders the simulated force times the force scale, chosen when the patient "
+                                        "loads: a deep press (%1 % of the tissue thickness) over the stiffest part of the "
+                                        "patient maps to %2 % of the device's limit, so that the tumour's extra force stays "
+                                        "within the device's range. Device limit %3 N = %4 N simulated. Solid lines: sent "
+                                        "(device units); dashed: simulated.")
+                                         .arg(100.0 * mapping_.deep_press_depth, 0, 'f', 0)
+                                         .arg(100.0 * mapping_.deep_press_share, 0, 'f', 0)
+                                         .arg(mapping_.device_limit_n, 0, 'f', 1)
+                                         .arg(mapping_.simulated_at_limit_n, 0, 'f', 1)
+                                   : QString());
+}
+
+QString ForcePlots::force_scale_text() const {
+  if (!have_mapping_) return QString();
+  const app::live::ForceMapping& m = mapping_;
+  if (m.rule == app::live::ForceScaleRule::Configured)
+    return tr("Force scale %1 (device configuration): %2 N simulated -> %3 N at the device")
+        .arg(m.scale, 0, 'f', 2)
+        .arg(m.simulated_at_limit_n, 0, 'f', 1)
+        .arg(m.device_limit_n, 0, 'f', 1);
+  if (m.rule == app::live::ForceScaleRule::Patient)
+    return tr("Force scale %1: deep press %2 N simulated -> %3 N at the device (limit %4 N)")
+        .arg(m.scale, 0, 'f', 2)
+        .arg(m.deep_press_n, 0, 'f', 1)
+        .arg(m.deep_press_device_n, 0, 'f', 1)
+        .arg(m.device_limit_n, 0, 'f', 1);
+  return tr("Force scale 1: simulated forces sent unscaled");
+}
+
+void ForcePlots::set_force_mapping(const app::live::ForceMapping& m) {
+  if (have_mapping_ && m.scale == mapping_.scale && m.rule == mapping_.rule && m.deep_press_n == mapping_.deep_press_n &&
+      m.device_limit_n == mapping_.device_limit_n)
+    return;
+  mapping_ = m;
+  have_mapping_ = true;
+  retranslate();
 }
 
 void ForcePlots::changeEvent(QEvent* e) {
@@ -152,6 +193,7 @@ void ForcePlots::add_sample(const app::live::TickSample& s) {
 
 void ForcePlots::add_step_sample(const app::live::StepSample& s) {
   for (int f = 0; f < 5; ++f) sim_force_[f] = s.in[f].active ? s.force[f] : Eigen::Vector3d::Zero();
+  set_force_mapping(s.mapping);
 }
 
 void ForcePlots::set_device_limit(double newtons) {

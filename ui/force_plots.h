@@ -16,6 +16,7 @@
 
 class QChart;
 class QChartView;
+class QLabel;
 class QLineSeries;
 class QValueAxis;
 class QPushButton;
@@ -35,6 +36,12 @@ class ForcePlots : public QWidget {
   void add_step_sample(const app::live::StepSample& s);
   /// The device's force limit (N), drawn as a line; default 4 N.
   void set_device_limit(double newtons);
+  /// The force scale between simulation and device (app::live::ForceMapping, chosen by
+  /// the workstation per patient), shown under the plots; add_step_sample passes each
+  /// step's.
+  void set_force_mapping(const app::live::ForceMapping& m);
+  /// The line shown for it (tests).
+  QString force_scale_text() const;
   /// Largest force held for finger f (N): sent to the device, and simulated.
   double max_sent(int finger) const;
   double max_simulated(int finger) const;
@@ -74,6 +81,9 @@ class ForcePlots : public QWidget {
   QChartView *mag_view_ = nullptr, *fz_view_ = nullptr, *fx_view_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QPushButton *pause_ = nullptr, *png_ = nullptr, *csv_ = nullptr;
+  QLabel* scale_ = nullptr;
+  app::live::ForceMapping mapping_;
+  bool have_mapping_ = false;
   bool paused_ = false;
   double window_ = 10.0;  // s
   double newest_ = 0;

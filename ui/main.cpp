@@ -2,6 +2,8 @@
 //   palpation-trainer                       opens the window (simulated HandHIRO palpating)
 //   palpation-trainer --screenshot F.png    default scene, a few seconds of scripted
 //                                           palpation, saves the main window, exits
+//   palpation-trainer --mode exam           starts in a training mode (instructor,
+//                                           guided-practice, exam: docs/gui.md)
 #include <cstdio>
 #include <cstdlib>
 
@@ -38,7 +40,13 @@ int main(int argc, char** argv) {
   QCommandLineOption secs(QStringLiteral("seconds"), QStringLiteral("Seconds of palpation before the screenshot (default 6)."),
                           QStringLiteral("S"), QStringLiteral("6"));
   QCommandLineOption lang(QStringLiteral("language"), QStringLiteral("User interface language: en or ja."), QStringLiteral("CODE"));
-  QCommandLineOption trainee(QStringLiteral("trainee"), QStringLiteral("Start in trainee mode."));
+  QCommandLineOption trainee(QStringLiteral("trainee"), QStringLiteral("Start in guided practice (same as --mode guided-practice)."));
+  QCommandLineOption trainee_name(QStringLiteral("trainee-name"),
+                                  QStringLiteral("Whose session it is: exam results are stored under this trainee in the patient "
+                                                 "library (added when new)."),
+                                  QStringLiteral("NAME"));
+  QCommandLineOption mode(QStringLiteral("mode"), QStringLiteral("Training mode to start in: instructor (default), guided-practice or exam."),
+                          QStringLiteral("MODE"));
   QCommandLineOption stereo(QStringLiteral("stereo"), QStringLiteral("mono, anaglyph, side-by-side or interlaced."), QStringLiteral("MODE"));
   QCommandLineOption resolution(QStringLiteral("resolution"), QStringLiteral("Breast resolution: coarse (default), paper, fine."),
                                 QStringLiteral("NAME"), QStringLiteral("coarse"));
@@ -55,7 +63,7 @@ int main(int argc, char** argv) {
   QCommandLineOption record(QStringLiteral("record"), QStringLiteral("Record the session into FILE (default: a new file in the "
                                                                      "recordings folder)."),
                             QStringLiteral("FILE"));
-  cli.addOptions({shot, secs, lang, trainee, stereo, resolution, device, robot, review, review_at, record});
+  cli.addOptions({shot, secs, lang, trainee, trainee_name, mode, stereo, resolution, device, robot, review, review_at, record});
   cli.process(app);
 
   if (cli.isSet(review)) {
@@ -129,6 +137,15 @@ int main(int argc, char** argv) {
     opt.robot_address = r.left(colon).toStdString();
     opt.robot_port = port;
   }
+  auto training = cli.isSet(trainee) ? palpation::app::live::TrainingMode::GuidedPractice : palpation::app::live::TrainingMode::Instructor;
+  if (cli.isSet(mode)) {
+    const auto m = palpation::app::live::training_mode_from_name(cli.value(mode).toStdString());
+    if (!m) {
+      std::fprintf(stderr, "palpation-trainer: --mode: unknown mode \"%s\" (instructor, guided-practice, exam)\n", qPrintable(cli.value(mode)));
+      return 2;
+    }
+    training = *m;
+  }
   std::unique_ptr<palpation::app::live::Workstation> ws;
   try {
     ws = std::make_unique<palpation::app::live::Workstation>(opt);
@@ -136,7 +153,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "palpation-trainer: %s\n", e.what());
     return 2;
   }
-  palpation::ui::MainWindow w(std::move(ws), nullptr, cli.isSet(record) ? cli.value(record) : QString());
+  palpation::ui::MainWindow w(std::move(ws), nullptr, cli.isSet(record) ? cli.value(record) : QString(), training);
+  if (cli.isSet(trainee_name)) w.set_trainee_name(cli.value(trainee_name));
   if (!cli.isSet(resolution) && !cli.isSet(shot)) {
     // The last patient chosen (QSettings), when the library still has it.
     const QString last = QSettings().value(QStringLiteral("patient/name")).toString();
@@ -149,7 +167,6 @@ int main(int argc, char** argv) {
   if (cli.isSet(lang)) w.set_language(cli.value(lang));
   else if (cli.isSet(shot)) w.set_language(QStringLiteral("en"));
   if (cli.isSet(shot) && !cli.isSet(stereo)) w.view()->set_stereo(palpation::ui::VtkView::Stereo::Mono);
-  if (cli.isSet(trainee)) w.set_trainee(true);
   if (cli.isSet(stereo)) {
     const QString s = cli.value(stereo);
     using S = palpation::ui::VtkView::Stereo;

@@ -1,5 +1,7 @@
 #include "main_window.h"
 
+#include <algorithm>
+
 #include <QActionGroup>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -30,6 +32,9 @@
 #include "live/patient_choice.h"
 #include "import_dialog.h"
 #include "panels.h"
+#include "progress_window.h"
+#include "score_dialog.h"
+#include "train/curriculum.h"
 #include "store/patient_library.h"
 #include "review_window.h"
 #include "scan/scan_import_job.h"
@@ -39,8 +44,9 @@
 
 namespace palpation::ui {
 
-MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent, const QString& record_path)
-    : QMainWindow(parent), ws_(std::move(ws)) {
+MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent, const QString& record_path,
+                       app::live::TrainingMode mode)
+    : QMainWindow(parent), ws_(std::move(ws)), training_(std::make_unique<app::live::TrainingSession>(*ws_, mode)) {
   setObjectName(QStringLiteral("MainWindow"));
   setWindowIcon(QIcon(QStringLiteral(":/icons/palpation.png")));
   scenario_ = ws_->options().scenario;
@@ -102,7 +108,12 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   st_device_ = new QLabel;
   st_fps_ = new QLabel;
   st_rec_ = new QLabel;
-  for (auto* l : {st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
+  st_mode_ = new QLabel;
+  st_mode_->setObjectName(QStringLiteral("TrainingModeLabel"));
+  st_coverage_ = new QLabel;
+  st_coverage_->setObjectName(QStringLiteral("CoverageLabel"));
+  st_coverage_->setTextFormat(Qt::RichText);
+  for (auto* l : {st_mode_, st_coverage_, st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
 
   build_actions();
 
@@ -148,13 +159,13 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
     view_->set_tool(t == 1 ? VtkView::Tool::Paint : t == 2 ? VtkView::Tool::Erase : VtkView::Tool::Camera);
   });
   connect(view_, &VtkView::brushStrokeStarted, this, [this] {
-    if (trainee_) return;
+    if (trainee()) return;
     editor_->set_brush(tumour_panel_->brush_radius->value() * 0.01, tumour_panel_->brush_depth->value() * 0.01,
                        tumour_panel_->preset_young());
     editor_->begin_stroke(view_->tool() == VtkView::Tool::Erase);
   });
   connect(view_, &VtkView::brushDab, this, [this](const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
-    if (!trainee_) editor_->dab(p, n);
+    if (!trainee()) editor_->dab(p, n);
   });
   connect(view_, &VtkView::brushStrokeEnded, this, [this] { editor_->end_stroke(); });
   connect(view_, &VtkView::palpateTarget, this, [this](const Eigen::Vector3d& c, bool present) {
@@ -168,7 +179,13 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   ws_->add_step_listener([this](const app::live::StepSample& s) { plots_->add_step_sample(s); });
   plots_->set_device_limit(std::min(ws_->device_config().loop.safety.max_force, ws_->device_config().hand.capabilities.max_force));
   ws_->add_event_listener([this](const app::live::Event& e) {
-    statusBar()->showMessage(EventText::event(e), 4000);
+    // A trainee does not read the instructor's events (a patient's name, a tumour's modulus).
+    if (!trainee() || app::live::shown_to_trainee(e)) statusBar()->showMessage(EventText::event(e), 4000);
+  });
+  training_->add_exam_end_listener([this](const app::live::Event&) {
+    apply_mode();
+    exam_scored();
+    emit examEnded();
   });
 
   QSettings settings;
@@ -177,6 +194,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   const int stereo = settings.value(QStringLiteral("view/stereo"), 0).toInt();
   if (stereo > 0 && stereo < 4) a_stereo_[stereo]->trigger();
   a_mirror_->setChecked(settings.value(QStringLiteral("view/mirrored"), false).toBool());
+  a_coverage_->setChecked(settings.value(QStringLiteral("view/coverage_overlay"), false).toBool());
   // PALPATION_FAST_RENDER=0/1 (the view bench, docs/gui.md) overrides the stored choice.
   const QByteArray fast_env = qgetenv("PALPATION_FAST_RENDER");
   if (!fast_env.isEmpty())
@@ -186,6 +204,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
                                                                                           : VtkView::RenderStyle::Full);
   set_language(settings.value(QStringLiteral("language"), QStringLiteral("en")).toString());
   retranslate();
+  apply_mode();  // after restoreState: a trainee mode hides what it brought back
 
   timer_ = new QTimer(this);
   timer_->setTimerType(Qt::PreciseTimer);
@@ -203,11 +222,14 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
     path = QDir(folder).filePath(QStringLiteral("session-%1.palrec").arg(QDateTime::currentDateTime().toString(QStringLiteral("yyyyMMdd-HHmmss-zzz"))));
   try {
     nlohmann::json recorded_settings{{"language", language_.toStdString()},
-                            {"trainee", trainee_},
+                            {"trainee", trainee()},
+                            {"mode", app::live::training_mode_name(training_->mode())},
                             {"stereo", int(view_->stereo())},
                             {"patient", patient_panel_->chosen().toStdString()},
                             {"library", library_ ? library_->location() : std::string()}};
     recorder_ = std::make_unique<app::review::WorkstationRecorder>(*ws_, path.toStdString(), recorded_settings);
+    // A session started in a trainee mode: its exam starts with the recording.
+    if (trainee()) ws_->log_event(app::live::Event::mode_change(app::live::mode_change_of(training_->mode())));
   } catch (const std::exception& e) {
     statusBar()->showMessage(tr("This session is not recorded: %1").arg(QString::fromStdString(e.what())));
   }
@@ -278,21 +300,31 @@ bool MainWindow::choose_patient(const QString& name, QString* error) {
   return true;
 }
 
-int MainWindow::mark_lump() {
+int MainWindow::mark_lump() { return mark_lump(training_->mark_confidence()); }
+
+int MainWindow::mark_lump(double confidence) {
+  if (!training_->accepts_marks()) {
+    statusBar()->showMessage(tr("The exam has ended: nothing marked."), 5000);
+    return 0;
+  }
   const auto& snap = ws_->snapshot();
   const int k = device::kIndex;
   if (!snap.finger_active[k] || !recorder_) {
     statusBar()->showMessage(recorder_ ? tr("No fingertip on the breast: nothing marked.") : tr("This session is not recorded: nothing marked."), 5000);
     return 0;
   }
+  confidence = std::clamp(confidence, 0.0, 1.0);
   const Eigen::Vector3d p = snap.finger_position[k];
-  const int n = recorder_->add_mark(p);
-  ws_->log_event(app::live::Event::trainee_mark(n));
-  statusBar()->showMessage(tr("Mark %1: \"I feel a lump here\" at (%2, %3, %4) cm, recorded.")
+  const int n = recorder_->add_mark(p, {}, confidence);
+  // The same mark into the live exam: scored with it when the exam ends.
+  training_->note_mark(p, confidence);
+  ws_->log_event(app::live::Event::trainee_mark(n, std::nullopt, {}, confidence));
+  statusBar()->showMessage(tr("Mark %1: \"I feel a lump here\" at (%2, %3, %4) cm, %5 % confident, recorded.")
                                .arg(n)
                                .arg(p.x() * 100, 0, 'f', 1)
                                .arg(p.y() * 100, 0, 'f', 1)
-                               .arg(p.z() * 100, 0, 'f', 1),
+                               .arg(p.z() * 100, 0, 'f', 1)
+                               .arg(confidence * 100, 0, 'f', 0),
                            6000);
   return n;
 }
@@ -422,16 +454,55 @@ void MainWindow::build_actions() {
   a_tumours_->setCheckable(true);
   a_tumours_->setChecked(true);
   connect(a_tumours_, &QAction::toggled, view_, &VtkView::set_tumours_visible);
+  // The coverage overlay (Instructor and Guided practice; never in Exam: update_coverage).
+  view_menu_->addSeparator();
+  a_coverage_ = view_menu_->addAction(QString());
+  a_coverage_->setObjectName(QStringLiteral("coverage_overlay"));
+  a_coverage_->setCheckable(true);
+  a_coverage_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+C")));
+  connect(a_coverage_, &QAction::toggled, this, [this](bool on) {
+    QSettings().setValue(QStringLiteral("view/coverage_overlay"), on);
+    update_coverage();
+  });
+  a_clear_coverage_ = view_menu_->addAction(QString(), this, [this] {
+    training_->clear_coverage();
+    update_coverage();
+  });
+  a_clear_coverage_->setObjectName(QStringLiteral("clear_coverage"));
+  view_menu_->addSeparator();
   panels_menu_ = view_menu_->addMenu(QString());
   for (auto* d : {patient_dock_, tumour_dock_, forces_dock_, sim_dock_, device_dock_}) panels_menu_->addAction(d->toggleViewAction());
 
+  // The training modes, one checked: the menu and the toolbar show the mode. Leaving a
+  // trainee mode for Instructor asks for a confirmation (request_mode).
   mode_menu_ = menuBar()->addMenu(QString());
-  a_trainee_ = mode_menu_->addAction(QString(), this, [this] { set_trainee(true); });
-  a_instructor_ = mode_menu_->addAction(QString(), this, [this] { set_trainee(false); });
+  using app::live::TrainingMode;
+  auto* mg = new QActionGroup(this);
+  const std::pair<QAction**, TrainingMode> modes[] = {
+      {&a_instructor_, TrainingMode::Instructor}, {&a_practice_, TrainingMode::GuidedPractice}, {&a_exam_, TrainingMode::Exam}};
+  for (const auto& [a, m] : modes) {
+    *a = mode_menu_->addAction(QString());
+    (*a)->setCheckable(true);
+    (*a)->setObjectName(QStringLiteral("mode_%1").arg(QString::fromLatin1(app::live::training_mode_name(m))));
+    mg->addAction(*a);
+    connect(*a, &QAction::triggered, this, [this, m = m] { request_mode(m); });
+  }
   a_instructor_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+I")));
   a_instructor_->setShortcutContext(Qt::ApplicationShortcut);
-  a_trainee_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+T")));
-  a_instructor_->setVisible(false);  // shown in trainee mode only
+  a_practice_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+T")));
+  a_exam_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+E")));
+  a_end_exam_ = mode_menu_->addAction(QString(), this, [this] {
+    QMessageBox box(QMessageBox::Question, a_end_exam_->text(), tr("End the exam now? No more marks can be made after it."),
+                    QMessageBox::Yes | QMessageBox::No, this);
+    box.setObjectName(QStringLiteral("ConfirmEndExam"));
+    box.setDefaultButton(QMessageBox::No);
+    if (box.exec() == QMessageBox::Yes) end_exam();
+  });
+  a_end_exam_->setObjectName(QStringLiteral("end_exam"));
+  mode_menu_->addSeparator();
+  a_progress_ = mode_menu_->addAction(QString(), this, [this] { open_progress_window(); });
+  a_progress_->setObjectName(QStringLiteral("trainee_progress"));
+  mode_menu_->addSeparator();
 
   lang_menu_ = menuBar()->addMenu(QStringLiteral("Language / 言語"));
   a_en_ = lang_menu_->addAction(QStringLiteral("English"), this, [this] { set_language(QStringLiteral("en")); });
@@ -456,9 +527,19 @@ void MainWindow::build_actions() {
   a_mark_ = toolbar_->addAction(QString(), this, [this] { mark_lump(); });
   a_mark_->setShortcut(QKeySequence(Qt::Key_M));
   mode_menu_->addAction(a_mark_);
+  // How sure the trainee is of the next mark: recorded with it.
+  confidence_ = new QComboBox;
+  confidence_->setObjectName(QStringLiteral("MarkConfidence"));
+  for (double c : app::live::kMarkConfidence) confidence_->addItem(QString(), c);
+  confidence_->setCurrentIndex(confidence_->count() - 1);  // certain, as marks were before they had a confidence
+  connect(confidence_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this](int i) { training_->set_mark_confidence(confidence_->itemData(i).toDouble()); });
+  a_confidence_ = toolbar_->addWidget(confidence_);
   toolbar_->addSeparator();
-  toolbar_->addAction(a_trainee_);
   toolbar_->addAction(a_instructor_);
+  toolbar_->addAction(a_practice_);
+  toolbar_->addAction(a_exam_);
+  toolbar_->addAction(a_end_exam_);
 }
 
 void MainWindow::retranslate() {
@@ -489,8 +570,24 @@ void MainWindow::retranslate() {
   a_tumours_->setText(tr("Show tumours"));
   panels_menu_->setTitle(tr("Panels"));
   mode_menu_->setTitle(tr("&Mode"));
-  a_trainee_->setText(tr("Trainee mode"));
   a_instructor_->setText(tr("Instructor mode"));
+  a_instructor_->setToolTip(tr("The instructor's view: every panel, the answer included. "
+                               "From a trainee mode it asks for a confirmation."));
+  a_practice_->setText(tr("Guided practice"));
+  a_practice_->setToolTip(tr("Trainee: palpate and mark; the instructor's panels are hidden."));
+  a_exam_->setText(tr("Exam"));
+  a_exam_->setToolTip(tr("Trainee examined: palpate and mark; the answer stays hidden until the exam ends."));
+  a_end_exam_->setText(tr("End exam"));
+  a_end_exam_->setToolTip(tr("Stops the exam: no more marks."));
+  a_coverage_->setText(tr("Coverage overlay"));
+  a_coverage_->setToolTip(tr("Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. "
+                             "Not shown in an exam."));
+  a_clear_coverage_->setText(tr("Clear coverage"));
+  a_progress_->setText(tr("Trainee progress..."));
+  a_progress_->setToolTip(tr("Each trainee's exams over time and the class's results"));
+  const QString conf[4] = {tr("Possible (25 %)"), tr("Likely (50 %)"), tr("Probable (75 %)"), tr("Certain (100 %)")};
+  for (int i = 0; i < 4; ++i) confidence_->setItemText(i, conf[i]);
+  confidence_->setToolTip(tr("How sure you are of the next mark"));
   toolbar_->setWindowTitle(tr("Tools"));
   a_camera_tool_->setText(tr("Camera / scripted hand"));
   a_palpate_tool_->setText(tr("Palpate with the mouse"));
@@ -520,27 +617,231 @@ bool MainWindow::set_language(const QString& code) {
   return ok;
 }
 
-void MainWindow::set_trainee(bool on) {
-  trainee_ = on;
-  a_tumours_->setChecked(!on);
-  a_tumours_->setEnabled(!on);
-  view_->set_tumours_visible(!on);
-  for (auto* d : instructor_docks()) {
-    d->widget()->setEnabled(!on);
+void MainWindow::set_trainee(bool on) { set_mode(on ? app::live::TrainingMode::GuidedPractice : app::live::TrainingMode::Instructor); }
+
+void MainWindow::set_mode(app::live::TrainingMode m) {
+  if (m == training_->mode()) return;
+  training_->set_mode(m);  // logs the change (and the end of a running exam: its result stored)
+  // Back with the instructor: the next trainee says who they are.
+  if (m == app::live::TrainingMode::Instructor) trainee_name_.clear();
+  apply_mode();
+}
+
+bool MainWindow::request_mode(app::live::TrainingMode m) {
+  if (m == training_->mode()) {
+    apply_mode();  // the menu's check back on the current mode
+    return false;
+  }
+  if (training_->needs_confirmation(m)) {
+    const QString text = m == app::live::TrainingMode::Instructor
+                             ? tr("Return to instructor mode? This ends the trainee's session and shows the answer, "
+                                  "the patient's details and every panel. For the instructor only.")
+                             : tr("Leave the exam? This ends it: no more marks can be made in it.");
+    QMessageBox box(QMessageBox::Warning, tr("Change of mode"), text, QMessageBox::Yes | QMessageBox::No, this);
+    box.setObjectName(QStringLiteral("ConfirmModeChange"));
+    box.setDefaultButton(QMessageBox::No);
+    if (box.exec() != QMessageBox::Yes) {
+      apply_mode();
+      return false;
+    }
+  }
+  // Whose session it is, when nobody said yet (results are stored under the name).
+  if (app::live::is_trainee(m) && !trainee() && trainee_name_.isEmpty() && !ask_trainee()) {
+    apply_mode();
+    return false;
+  }
+  set_mode(m);
+  return true;
+}
+
+bool MainWindow::ask_trainee() {
+  QStringList names;
+  if (library_) {
+    try {
+      for (const auto& t : library_->trainees()) names << QString::fromStdString(t.name);
+    } catch (const std::exception&) {
+    }
+  }
+  QInputDialog d(this);
+  d.setObjectName(QStringLiteral("AskTrainee"));
+  d.setWindowTitle(tr("Trainee"));
+  d.setLabelText(tr("Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored)."));
+  d.setInputMode(QInputDialog::TextInput);
+  if (!names.isEmpty()) {
+    d.setComboBoxItems(names);
+    d.setComboBoxEditable(true);
+  }
+  d.setTextValue(QString());
+  if (d.exec() != QDialog::Accepted) return false;
+  set_trainee_name(d.textValue().trimmed());
+  return true;
+}
+
+void MainWindow::set_trainee_name(const QString& name) {
+  trainee_name_ = name.trimmed();
+  if (!trainee_name_.isEmpty() && library_) {
+    try {
+      if (!library_->find_trainee(trainee_name_.toStdString())) library_->add_trainee(trainee_name_.toStdString());
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(tr("Trainee not added to the library: %1").arg(QString::fromStdString(e.what())), 8000);
+    }
+  }
+  update_status();
+}
+
+ScoreDialog* MainWindow::score_dialog() const { return score_.data(); }
+ProgressWindow* MainWindow::progress_window() const { return progress_.data(); }
+
+ProgressWindow* MainWindow::open_progress_window() {
+  if (trainee() || !library_) {
+    if (!library_) statusBar()->showMessage(tr("Patient library not available: %1").arg(library_error_), 8000);
+    return nullptr;
+  }
+  if (!progress_) {
+    progress_ = new ProgressWindow(library_.get(), this);
+    progress_->setWindowFlag(Qt::Window);
+    progress_->setAttribute(Qt::WA_DeleteOnClose);
+  } else {
+    progress_->refresh();
+  }
+  progress_->show();
+  progress_->raise();
+  return progress_;
+}
+
+void MainWindow::exam_scored() {
+  const auto& last = training_->last_score();
+  if (!last) return;
+  const std::string code = app::live::anonymous_case_code(patient_panel_->chosen().toStdString());
+  const std::string recording = recorder_ ? recorder_->path() : std::string();
+  const QDateTime now = QDateTime::currentDateTimeUtc();
+  if (!trainee_name_.isEmpty() && library_) {
+    // The library's record: the library name of the case (the instructor reads it), the
+    // exam's start, no curriculum (a free exam).
+    const QString started =
+        now.addMSecs(-qint64(last->score.duration * 1000.0)).toString(QStringLiteral("yyyy-MM-dd'T'HH:mm:ss'Z'"));
+    try {
+      if (!library_->find_trainee(trainee_name_.toStdString())) library_->add_trainee(trainee_name_.toStdString());
+      library_->record_result(app::train::exam_result(last->score, std::nullopt, trainee_name_.toStdString(),
+                                                      patient_panel_->chosen().toStdString(), std::string(), started.toStdString(),
+                                                      recording));
+      if (progress_) progress_->refresh();
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(tr("The exam's result is not stored: %1").arg(QString::fromStdString(e.what())), 10000);
+    }
+  }
+  app::cli::ReportInfo info{recording, trainee_name_.toStdString(), code, now.toString(Qt::ISODate).toStdString()};
+  delete score_.data();
+  score_ = new ScoreDialog(*last, info, this);
+  score_->setAttribute(Qt::WA_DeleteOnClose);
+  score_->setModal(false);
+  score_->show();
+}
+
+void MainWindow::update_coverage() {
+  if (!a_coverage_ || !st_coverage_) return;
+  const bool allowed = training_->overlay_allowed();
+  const bool on = allowed && a_coverage_->isChecked();
+  if (on) view_->set_coverage(training_->exam().surface_levels());
+  view_->set_coverage_visible(on);
+  st_coverage_->setVisible(allowed);
+  if (!allowed) return;
+  // The figures with the overlay's legend: a square of each level's colour.
+  auto square = [](int l) {
+    const auto* c = VtkView::kCoverageColour[l];
+    return QStringLiteral("<span style=\"color:rgb(%1,%2,%3)\">&#9632;</span>").arg(c[0]).arg(c[1]).arg(c[2]);
+  };
+  const auto c = training_->exam().coverage();
+  st_coverage_->setText(tr("Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7")
+                            .arg(square(0), square(1), ScoreDialog::percent(c[0]), square(2), ScoreDialog::percent(c[1]), square(3),
+                                 ScoreDialog::percent(c[2])));
+}
+
+bool MainWindow::end_exam() { return training_->end_exam(); }
+
+QMenu* MainWindow::createPopupMenu() { return trainee() ? nullptr : QMainWindow::createPopupMenu(); }
+
+void MainWindow::apply_mode() {
+  using app::live::TrainingMode;
+  const TrainingMode m = training_->mode();
+  const bool on = app::live::is_trainee(m);
+  // Hidden, not greyed: the instructor docks and their entries in View > Panels; back in
+  // Instructor mode the docks that were open come back.
+  const auto docks = instructor_docks();
+  if (on && docks_shown_.isEmpty())
+    for (auto* d : docks) docks_shown_ << !d->isHidden();
+  for (int i = 0; i < docks.size(); ++i) {
+    QDockWidget* d = docks[i];
+    d->toggleViewAction()->setVisible(!on);
     d->setFeatures(on ? QDockWidget::NoDockWidgetFeatures
                       : QDockWidget::DockWidgetClosable | QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+    if (on) d->hide();
+    else if (docks_shown_.isEmpty() || docks_shown_[i]) d->show();
   }
-  a_undo_->setEnabled(!on && editor_->undo_stack()->canUndo());
-  a_redo_->setEnabled(!on && editor_->undo_stack()->canRedo());
-  a_trainee_->setVisible(!on);
-  a_instructor_->setVisible(on);
+  if (!on) docks_shown_.clear();
+  // A new exam or practice: the last one's score (the answer) goes, as does the progress
+  // window (instructor only).
+  if (on && training_->exam_running() && score_) score_->close();
+  if (on && progress_) progress_->close();
+  a_progress_->setVisible(!on);
+  a_clear_coverage_->setVisible(!on);
+  a_coverage_->setVisible(training_->overlay_allowed());
+  update_coverage();
+  // The 3-D view: no tumour outlines, no colour map (the stress map shows the tumour).
   if (on) {
+    a_tumours_->setChecked(false);
+    a_colour_->setChecked(false);
+    a_stress_->setChecked(false);
+    view_->set_tumours_visible(false);
+    view_->set_colour_mode(VtkView::ColourMap::None);
+    ws_->set_stress_enabled(false);
+  } else if (!a_tumours_->isVisible()) {
+    a_tumours_->setChecked(true);
+    view_->set_tumours_visible(true);
+  }
+  for (QAction* a : {a_tumours_, a_colour_, a_stress_}) a->setVisible(!on);
+  // Undo/redo name the edits they undo ("Add tumour: Sphere ... 107 kPa"); recordings open
+  // in a review window that shows the tumours.
+  // The force plots' scale line names the force over the patient's stiffest part (the
+  // tumour's): an instructor's figure.
+  if (auto* scale = plots_->findChild<QLabel*>(QStringLiteral("forceScale"))) scale->setVisible(!on);
+  edit_menu_->menuAction()->setVisible(!on);
+  for (QAction* a : {a_undo_, a_redo_}) a->setVisible(!on);
+  a_open_rec_->setVisible(!on);
+  a_open_rec_->setEnabled(!on);
+  if (on) {
+    if (review_) review_->close();
+    if (import_) import_->close();
     tumour_panel_->paint->setChecked(false);
     tumour_panel_->erase->setChecked(false);
     device_panel_->mode->setCurrentIndex(1);  // mouse palpation
+    view_->set_tool(VtkView::Tool::Palpate);
     a_palpate_tool_->setChecked(true);
+    statusBar()->clearMessage();  // an instructor's message (a tumour added, a patient's name) must not linger
   }
-  ws_->log_event(app::live::Event::mode_change(on ? app::live::ModeChange::Trainee : app::live::ModeChange::Instructor));
+  a_instructor_->setChecked(m == TrainingMode::Instructor);
+  a_practice_->setChecked(m == TrainingMode::GuidedPractice);
+  a_exam_->setChecked(m == TrainingMode::Exam);
+  a_end_exam_->setVisible(on);
+  a_end_exam_->setEnabled(on && training_->exam_running());
+  a_mark_->setEnabled(training_->accepts_marks());
+  confidence_->setEnabled(training_->accepts_marks());
+  update_status();
+}
+
+QString MainWindow::mode_text() const {
+  using app::live::TrainingMode;
+  // A trainee reads an anonymous case code, never the patient's name (it may name the tumour).
+  const QString code = QString::fromStdString(app::live::anonymous_case_code(patient_panel_->chosen().toStdString()));
+  const bool running = training_->exam_running();
+  const QString who = trainee_name_.isEmpty() ? QString() : tr(", trainee %1").arg(trainee_name_);
+  switch (training_->mode()) {
+    case TrainingMode::Instructor: return tr("Instructor: %1").arg(patient_panel_->phantom->currentText());
+    case TrainingMode::GuidedPractice:
+      return (running ? tr("Guided practice: case %1").arg(code) : tr("Guided practice ended: case %1").arg(code)) + who;
+    case TrainingMode::Exam: return (running ? tr("Exam: case %1").arg(code) : tr("Exam ended: case %1").arg(code)) + who;
+  }
+  return {};
 }
 
 void MainWindow::tick() {
@@ -567,6 +868,7 @@ void MainWindow::tick() {
   if (now - last_status_ >= 250) {
     last_status_ = now;
     update_status();
+    update_coverage();
     const auto& s = ws_->stats();
     if (ws_->device().mode() == app::live::HandMode::Mouse)
       // Numbers and units only: VTK's built-in font has no Japanese glyphs.
@@ -586,6 +888,7 @@ void MainWindow::tick() {
 
 void MainWindow::update_status() {
   if (!st_backend_) return;
+  if (st_mode_ && a_exam_) st_mode_->setText(mode_text());
   const auto& s = ws_->stats();
   const auto g = ws_->geometry();
   // The backend stepping now (after a CUDA error: the CPU it fell back to).

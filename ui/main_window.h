@@ -1,6 +1,13 @@
 // The workstation's main window: the 3-D view in the centre, instructor panels in docks,
-// menus, toolbar, status bar (backend, step rate, haptic rate, device state). The GUI
-// thread polls the workstation at 60 Hz and never waits on physics.
+// menus, toolbar, status bar (backend, step rate, haptic rate, device state, training mode).
+// The GUI thread polls the workstation at 60 Hz and never waits on physics.
+//
+// Training modes (app/live/training_session.h): in Instructor mode everything shows; in
+// Guided practice and Exam whatever reveals where or how stiff the tumours are is hidden,
+// not greyed: the instructor docks (patient, tumours, simulation, device), the tumour
+// outlines and colour maps of the 3-D view, undo/redo (its text names the edits), opening
+// recordings, the instructor's events in the status bar, and the patient's name (the
+// trainee reads an anonymous case code).
 #pragma once
 
 #include <memory>
@@ -10,6 +17,7 @@
 
 #include <QPointer>
 
+#include "live/training_session.h"
 #include "live/workstation.h"
 
 namespace palpation::app::store {
@@ -21,6 +29,7 @@ class WorkstationRecorder;
 
 class QAction;
 class QActionGroup;
+class QComboBox;
 class QDockWidget;
 class QLabel;
 class QMenu;
@@ -31,7 +40,9 @@ namespace palpation::ui {
 
 class DevicePanel;
 class ImportDialog;
+class ProgressWindow;
 class ReviewWindow;
+class ScoreDialog;
 class ForcePlots;
 class PatientPanel;
 class SimulationPanel;
@@ -46,7 +57,9 @@ class MainWindow : public QMainWindow {
   /// Starts `ws` (the window owns it) and records the session into
   /// `record_path`, or, when empty, a new file in the recordings folder
   /// (recordings_folder()); interrupted recordings there are recovered first.
-  explicit MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent = nullptr, const QString& record_path = {});
+  /// The session starts in training mode `mode` (recorded in the recording's settings).
+  explicit MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent = nullptr, const QString& record_path = {},
+                      app::live::TrainingMode mode = app::live::TrainingMode::Instructor);
   ~MainWindow() override;
 
   app::live::Workstation& workstation() { return *ws_; }
@@ -55,10 +68,11 @@ class MainWindow : public QMainWindow {
   ForcePlots* plots() const { return plots_; }
   QList<QDockWidget*> instructor_docks() const;
   QDockWidget* forces_dock() const { return forces_dock_; }
+  QDockWidget* tumour_dock() const { return tumour_dock_; }
   TumourPanel* tumour_panel() const { return tumour_panel_; }
   PatientPanel* patient_panel() const { return patient_panel_; }
 
-  // Issue 6 -------------------------------------------------------------------------
+  // Sessions, recordings, marks ------------------------------------------------------
   /// Where GUI sessions record: $PALPATION_RECORDINGS, else <app data>/recordings.
   static QString recordings_folder();
   /// The patient library (null when it could not be opened; the reason is in library_error()).
@@ -69,8 +83,11 @@ class MainWindow : public QMainWindow {
   /// False (and `error` set) when it is unknown or cannot be built.
   bool choose_patient(const QString& name, QString* error = nullptr);
   /// The trainee's "I feel a lump here": marks the index fingertip's position in the
-  /// recording. Returns the mark's number, 0 when no fingertip is on the body.
+  /// recording with the confidence chosen in the toolbar (training().mark_confidence()).
+  /// Returns the mark's number, 0 when no fingertip is on the body or the exam has ended.
   int mark_lump();
+  /// The same with a confidence of its own (0..1).
+  int mark_lump(double confidence);
   /// Opens a recording for review (a separate window). Null, with `error` set (file,
   /// chunk, offset, reason), for a bad file; nothing is written.
   ReviewWindow* open_recording(const QString& path, QString* error = nullptr);
@@ -78,9 +95,42 @@ class MainWindow : public QMainWindow {
   ImportDialog* open_import_dialog();
   void refresh_patients();
 
-  /// Trainee mode: tumours hidden, instructor panels locked, mouse palpation.
+  /// The training mode, set at once (no confirmation: the command line, tests). Trainee
+  /// modes hide the instructor's panels and switch to mouse palpation.
+  void set_mode(app::live::TrainingMode m);
+  app::live::TrainingMode mode() const { return training_->mode(); }
+  /// What the Mode menu does: asks the instructor to confirm where the change needs it
+  /// (back to Instructor, out of a running exam); true when the mode changed.
+  bool request_mode(app::live::TrainingMode m);
+  app::live::TrainingSession& training() { return *training_; }
+  /// Ends the running exam (the End exam action, after its confirmation): logged, the
+  /// training session's exam-end listeners and examEnded() told. False when none runs.
+  bool end_exam();
+  /// Guided practice (on) or Instructor (off), at once.
   void set_trainee(bool on);
-  bool trainee() const { return trainee_; }
+  bool trainee() const { return app::live::is_trainee(training_->mode()); }
+  /// The toolbar's confidence choice for the next mark.
+  QComboBox* confidence_box() const { return confidence_; }
+  /// No dock/toolbar toggle menu in trainee modes (it would bring the docks back).
+  QMenu* createPopupMenu() override;
+  // Training feedback -------------------------------------------------------------------
+  /// View > Coverage overlay: the skin coloured by the pressure level reached, shown in
+  /// Instructor mode and Guided practice while checked, never in Exam.
+  QAction* coverage_action() const { return a_coverage_; }
+  /// The status bar's coverage figures and legend (hidden in Exam).
+  QLabel* coverage_label() const { return st_coverage_; }
+  /// The score of the exam that ended last, shown when it ended (null once closed, or
+  /// when a new exam started).
+  ScoreDialog* score_dialog() const;
+  /// Whose session this is (the library's trainee the results are stored under); empty:
+  /// anonymous. Entering a trainee mode from the Mode menu asks when none is set.
+  void set_trainee_name(const QString& name);
+  QString trainee_name() const { return trainee_name_; }
+  /// The instructor's progress window (Mode > Trainee progress..., Instructor mode only):
+  /// null in a trainee mode or without a library.
+  ProgressWindow* open_progress_window();
+  ProgressWindow* progress_window() const;
+
   /// "en" or "ja". False when the translation is missing.
   bool set_language(const QString& code);
   QString language() const { return language_; }
@@ -92,6 +142,10 @@ class MainWindow : public QMainWindow {
  public slots:
   void tick();
 
+ signals:
+  /// A trainee's exam (or guided practice) ended (end_exam, or leaving its mode).
+  void examEnded();
+
  protected:
   void closeEvent(QCloseEvent* e) override;
   void changeEvent(QEvent* e) override;
@@ -100,6 +154,15 @@ class MainWindow : public QMainWindow {
   void build_actions();
   void retranslate();
   void update_status();
+  /// Shows and hides what the mode allows (no event logged).
+  void apply_mode();
+  QString mode_text() const;
+  /// The coverage overlay and figures as the mode and the toggle allow (no event logged).
+  void update_coverage();
+  /// The end of an exam: stores the result for the trainee and shows the score.
+  void exam_scored();
+  /// Asks who the trainee is (the library's trainees, or a new name); false when cancelled.
+  bool ask_trainee();
 
   std::unique_ptr<app::live::Workstation> ws_;
   VtkView* view_ = nullptr;
@@ -116,7 +179,7 @@ class MainWindow : public QMainWindow {
         *mode_menu_ = nullptr, *lang_menu_ = nullptr, *panels_menu_ = nullptr;
   QToolBar* toolbar_ = nullptr;
   QAction *a_screenshot_ = nullptr, *a_quit_ = nullptr, *a_undo_ = nullptr, *a_redo_ = nullptr, *a_colour_ = nullptr, *a_stress_ = nullptr,
-          *a_tumours_ = nullptr, *a_mirror_ = nullptr, *a_fast_ = nullptr, *a_eye_ = nullptr, *a_trainee_ = nullptr, *a_instructor_ = nullptr,
+          *a_tumours_ = nullptr, *a_mirror_ = nullptr, *a_fast_ = nullptr, *a_eye_ = nullptr, *a_instructor_ = nullptr,
           *a_camera_tool_ = nullptr, *a_palpate_tool_ = nullptr, *a_en_ = nullptr, *a_ja_ = nullptr;
   QAction* a_stereo_[5] = {};
   QAction* a_cam_[4] = {};
@@ -124,7 +187,12 @@ class MainWindow : public QMainWindow {
   QTranslator translator_;
   QString language_ = QStringLiteral("en");
   std::uint64_t generation_ = 0;
-  bool trainee_ = false;
+  std::unique_ptr<app::live::TrainingSession> training_;
+  QAction *a_practice_ = nullptr, *a_exam_ = nullptr, *a_end_exam_ = nullptr;
+  QComboBox* confidence_ = nullptr;
+  QAction* a_confidence_ = nullptr;  // the toolbar's confidence_
+  QLabel* st_mode_ = nullptr;
+  QList<bool> docks_shown_;  // the instructor docks' visibility when a trainee mode hid them
   int frame_count_ = 0;
   qint64 fps_t0_ = 0, last_status_ = 0, last_plot_ = 0;
   double fps_ = 0;
@@ -135,6 +203,11 @@ class MainWindow : public QMainWindow {
   std::unique_ptr<app::review::WorkstationRecorder> recorder_;
   QPointer<ReviewWindow> review_;
   QPointer<ImportDialog> import_;
+  QPointer<ScoreDialog> score_;
+  QPointer<ProgressWindow> progress_;
+  QAction *a_coverage_ = nullptr, *a_clear_coverage_ = nullptr, *a_progress_ = nullptr;
+  QLabel* st_coverage_ = nullptr;
+  QString trainee_name_;
   QAction *a_open_rec_ = nullptr, *a_mark_ = nullptr;
   QLabel* st_rec_ = nullptr;
   qint64 last_flush_ = 0;

@@ -46,6 +46,8 @@
 #include <vtkSphereSource.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
+#include <vtkCellData.h>
+#include <vtkUnsignedCharArray.h>
 
 namespace palpation::ui {
 
@@ -219,6 +221,25 @@ VtkView::VtkView(QWidget* parent) : QWidget(parent), surface_actor_(vtkSmartPoin
   tumour_actor_->GetProperty()->SetColor(0.85, 0.1, 0.15);
   tumour_actor_->PickableOff();
   renderer_->AddActor(tumour_actor_);
+
+  // The coverage overlay: the surface's triangles on the same deformed points and normals,
+  // one colour per face (cell scalars, direct RGB), pulled towards the camera so that it
+  // wins the depth test over the skin under it (the translucent skin does not tint it).
+  coverage_poly_->SetPoints(points_);
+  coverage_poly_->GetPointData()->SetNormals(normals_);
+  vtkNew<vtkPolyDataMapper> covm;
+  covm->SetInputData(coverage_poly_);
+  covm->SetScalarModeToUseCellData();
+  covm->SetColorModeToDirectScalars();
+  covm->ScalarVisibilityOn();
+  covm->SetResolveCoincidentTopologyToPolygonOffset();
+  covm->SetRelativeCoincidentTopologyPolygonOffsetParameters(-2.0, -8.0);
+  coverage_actor_->SetMapper(covm);
+  coverage_actor_->GetProperty()->BackfaceCullingOn();
+  coverage_actor_->GetProperty()->SetSpecular(0.0);
+  coverage_actor_->PickableOff();
+  coverage_actor_->VisibilityOff();
+  renderer_->AddActor(coverage_actor_);
 
   // The chest (static): a slab under the breast's base.
   vtkNew<vtkCubeSource> chest;
@@ -605,6 +626,9 @@ void VtkView::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
     tris->InsertNextCell(3, ids);
   }
   surface_->SetPolys(tris);
+  coverage_poly_->SetPolys(tris);
+  shown_levels_.assign(geometry_->surface.size(), 255);  // every face's colour is set below
+  set_coverage(std::vector<unsigned char>(geometry_->surface.size(), 0));
   normals_->SetNumberOfTuples(vtkIdType(rest.size()));
   scalars_->SetNumberOfTuples(vtkIdType(rest.size()));
   scalars_->Fill(0.0);
@@ -730,6 +754,42 @@ void VtkView::set_tumours_visible(bool on) {
   tumour_actor_->SetVisibility(on);
   // Instructors see the tumours through a translucent skin; trainees see opaque skin.
   surface_actor_->GetProperty()->SetOpacity(on ? 0.6 : 1.0);
+  request_render();
+}
+
+void VtkView::set_coverage(const std::vector<unsigned char>& levels) {
+  if (!geometry_) return;
+  const std::size_t n = geometry_->surface.size();
+  auto* colours = vtkUnsignedCharArray::SafeDownCast(coverage_poly_->GetCellData()->GetScalars());
+  if (!colours || colours->GetNumberOfTuples() != vtkIdType(n)) {
+    auto c = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    c->SetName("coverage");
+    c->SetNumberOfComponents(3);
+    c->SetNumberOfTuples(vtkIdType(n));
+    coverage_poly_->GetCellData()->SetScalars(c);
+    colours = c;
+    shown_levels_.assign(n, 255);
+  }
+  bool changed = false;
+  coverage_counts_ = {};
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned char l = i < levels.size() ? std::min<unsigned char>(levels[i], 3) : 0;
+    ++coverage_counts_[l];
+    if (shown_levels_[i] == l) continue;
+    shown_levels_[i] = l;
+    colours->SetTypedTuple(vtkIdType(i), kCoverageColour[l]);
+    changed = true;
+  }
+  if (!changed) return;
+  colours->Modified();
+  coverage_poly_->Modified();
+  if (coverage_visible_) request_render();
+}
+
+void VtkView::set_coverage_visible(bool on) {
+  if (on == coverage_visible_) return;
+  coverage_visible_ = on;
+  coverage_actor_->SetVisibility(on);
   request_render();
 }
 

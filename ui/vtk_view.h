@@ -78,6 +78,18 @@ class VtkView : public QWidget {
   void show_tumours(const app::live::TumourDocument& doc);
   void set_tumours_visible(bool on);
   bool tumours_visible() const { return tumours_visible_; }
+  /// The coverage overlay (docs/training.md): the skin's faces coloured by the highest
+  /// pressure level reached, `levels` one per PatientGeometry::surface face (0 none,
+  /// 1 light, 2 medium, 3 deep: LiveExam::surface_levels), in the colours of the exam
+  /// report's coverage map (kCoverageColour). Drawn over the skin while visible; the
+  /// caller decides whether the mode allows it.
+  void set_coverage(const std::vector<unsigned char>& levels);
+  void set_coverage_visible(bool on);
+  bool coverage_visible() const { return coverage_visible_; }
+  /// Faces the overlay shows at each level (none, light, medium, deep), for tests.
+  std::array<int, 4> coverage_counts() const { return coverage_counts_; }
+  /// Grey none, yellow light, orange medium, red deep (RGB 0-255), as in coverage.png.
+  static constexpr unsigned char kCoverageColour[4][3] = {{215, 215, 215}, {250, 220, 90}, {245, 150, 50}, {200, 40, 40}};
   int tumour_cell_count() const;
   enum class ColourMap { None, Displacement, Stress };
   /// Displacement (mm, 0-15) or von Mises stress (kPa, from the snapshot's von_mises;
@@ -209,6 +221,11 @@ class VtkView : public QWidget {
   vtkNew<vtkPolyData> tumour_poly_;      // boundary faces of the stiff elements
   vtkNew<vtkActor> tumour_actor_;
   vtkNew<vtkActor> chest_actor_;
+  vtkNew<vtkPolyData> coverage_poly_;    // the surface triangles again, coloured per face
+  vtkNew<vtkActor> coverage_actor_;
+  bool coverage_visible_ = false;
+  std::vector<unsigned char> shown_levels_;
+  std::array<int, 4> coverage_counts_{};
   std::vector<vtkSmartPointer<vtkActor>> finger_actors_;
   vtkNew<vtkCellPicker> picker_;
   vtkNew<vtkTextActor> overlay_;

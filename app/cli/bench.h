@@ -33,5 +33,7 @@ struct BenchSetting {
 
 /// Runs the sweep; prints the table on stdout. Returns the JSON report.
 nlohmann::json run_bench(const BenchOptions& opt);
+/// The time to score a 5-minute exam recording (palpation bench --score; bench_score.cpp).
+nlohmann::json run_score_bench(const BenchOptions& opt);
 
 }  // namespace palpation::app::cli

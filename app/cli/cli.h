@@ -31,8 +31,12 @@ CommandAction add_session_command(CLI::App& app);
 CommandAction add_check_backends_command(CLI::App& app);
 CommandAction add_stress_command(CLI::App& app);
 CommandAction add_replay_command(CLI::App& app);
+CommandAction add_score_command(CLI::App& app);
+CommandAction add_case_command(CLI::App& app);
+CommandAction add_curriculum_command(CLI::App& app);
 #ifdef PALPATION_HAVE_SQL
 CommandAction add_patient_command(CLI::App& app);
+CommandAction add_trainee_command(CLI::App& app);
 #endif
 
 }  // namespace palpation::app::cli

@@ -23,8 +23,12 @@ int main(int argc, char** argv) {
   reg(add_check_backends_command);
   reg(add_stress_command);
   reg(add_replay_command);
+  reg(add_score_command);
+  reg(add_case_command);
+  reg(add_curriculum_command);
 #ifdef PALPATION_HAVE_SQL
   reg(add_patient_command);
+  reg(add_trainee_command);
 #endif
   try {
     app.parse(argc, argv);

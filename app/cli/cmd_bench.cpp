@@ -16,7 +16,13 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_option("--precisions", o->precisions, "double, float")->delimiter(',');
   sub->add_option("--steps", o->steps, "Steps per point")->check(CLI::Range(20, 1000000));
   sub->add_option("--scenario", o->scenario, "Built-in scenario to step (paper-sweep, idle, hertz)");
-  return [o]() {
+  auto score = std::make_shared<bool>(false);
+  sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
+  return [o, score]() {
+    if (*score) {
+      run_score_bench(*o);
+      return kExitOk;
+    }
     run_bench(*o);
     return kExitOk;
   };

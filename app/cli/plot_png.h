@@ -22,6 +22,9 @@ struct PlotSpec {
   int width = 1200, height = 600;
 };
 
+/// Qt builds: makes the offscreen QGuiApplication that drawing text needs, when the
+/// program has none (the command line). Nothing without Qt.
+void ensure_gui_application();
 /// True when this build can write PNG plots.
 bool can_plot();
 /// Writes the plot. Returns false (and sets why) when it cannot.

@@ -61,7 +61,7 @@ struct Axis {
 };
 }  // namespace
 
-bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* why) {
+void ensure_gui_application() {
   // Text needs Qt's font database, which needs a QGuiApplication: the command line makes
   // an offscreen one on first use (no display needed).
   // Deliberately never destroyed: Qt's own statics may be gone by then at exit.
@@ -73,6 +73,10 @@ bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* 
     static char* argv[] = {arg0, nullptr};
     app = new QGuiApplication(argc, argv);
   }
+}
+
+bool write_plot_png(const std::string& path, const PlotSpec& spec, std::string* why) {
+  ensure_gui_application();
   QImage img(spec.width, spec.height, QImage::Format_RGB32);
   img.fill(Qt::white);
   QPainter p(&img);

@@ -25,15 +25,18 @@ inline device::Mat3 to_dev(const Eigen::Matrix3d& m) {
   return r;
 }
 
-/// The local contact model of one finger, from a simulation step (world frame) to the
-/// device frame. `x0_world` is the finger position the step used.
+/// The local contact model of one finger, from a simulation step (world frame, simulated
+/// force) to the device (device frame, device force). `x0_world` is the finger position
+/// the step used; `force_scale` the device force per simulated force
+/// (app/live/force_mapping.h): force and stiffness both scale, so the model renders
+/// s * F_sim at every position.
 inline device::FingerContactModel contact_model(const sim::FingerOutput& o, const Eigen::Vector3d& x0_world,
-                                                const device::RigidFrame& reg) {
+                                                const device::RigidFrame& reg, double force_scale = 1.0) {
   device::FingerContactModel m;
   m.valid = true;
   m.contacts = o.contacts;
-  m.force = reg.vector_to_device(to_dev(o.force));
-  m.stiffness = reg.tensor_to_device(to_dev(o.stiffness));
+  m.force = reg.vector_to_device(to_dev(o.force)) * force_scale;
+  m.stiffness = reg.tensor_to_device(to_dev(o.stiffness)) * force_scale;
   m.position = reg.to_device(to_dev(x0_world));
   m.contact_point = reg.to_device(to_dev(o.contact_point));
   m.normal = reg.vector_to_device(to_dev(o.normal));

@@ -117,6 +117,10 @@ json device_config_to_json(const DeviceConfig& c) {
                       {"passivity_reserve", s.passivity_reserve},
                       {"passivity_threshold", s.passivity_threshold},
                       {"passivity_leak", s.passivity_leak}};
+  const auto& fm = c.force_mapping;
+  j["force_mapping"] = {{"scale", fm.scale > 0 ? json(fm.scale) : json("auto")},
+                        {"deep_press_share", fm.deep_press_share},
+                        {"deep_press_depth", fm.deep_press_depth}};
   return j;
 }
 
@@ -127,7 +131,7 @@ DeviceConfig parse_device_config(const std::string& text, const std::string& sou
   c.source = source;
   auto& h = c.hand;
   r.only_keys(j, "", {"capabilities", "arm", "fingers", "magnet", "controller", "operator", "registration", "finger_map",
-                      "link", "haptic_loop"});
+                      "link", "haptic_loop", "force_mapping"});
   r.opt(j, "capabilities", "", [&](const json& o, const std::string& f) {
     auto& caps = h.capabilities;
     r.only_keys(o, f, {"max_force", "max_stiffness", "max_damping", "release_force", "workspace_min", "workspace_max", "rate_hz"});
@@ -267,6 +271,27 @@ DeviceConfig parse_device_config(const std::string& text, const std::string& sou
     r.opt(o, "passivity_reserve", f, [&](const json& v, const std::string& g) { s.passivity_reserve = r.non_negative(v, g); });
     r.opt(o, "passivity_threshold", f, [&](const json& v, const std::string& g) { s.passivity_threshold = r.non_negative(v, g); });
     r.opt(o, "passivity_leak", f, [&](const json& v, const std::string& g) { s.passivity_leak = r.positive(v, g); });
+  });
+  r.opt(j, "force_mapping", "", [&](const json& o, const std::string& f) {
+    auto& fm = c.force_mapping;
+    r.only_keys(o, f, {"scale", "deep_press_share", "deep_press_depth"});
+    r.opt(o, "scale", f, [&](const json& v, const std::string& g) {
+      if (v.is_string() && v.get<std::string>() == "auto") {
+        fm.scale = 0;
+        return;
+      }
+      if (!v.is_number()) r.fail(g, "must be \"auto\" or a number in (0, 1]");
+      fm.scale = r.positive(v, g);
+      if (fm.scale > 1) r.fail(g, "must be at most 1 (a scale only attenuates)");
+    });
+    r.opt(o, "deep_press_share", f, [&](const json& v, const std::string& g) {
+      fm.deep_press_share = r.positive(v, g);
+      if (fm.deep_press_share > 1) r.fail(g, "must be at most 1 (a share of the device's limit)");
+    });
+    r.opt(o, "deep_press_depth", f, [&](const json& v, const std::string& g) {
+      fm.deep_press_depth = r.positive(v, g);
+      if (fm.deep_press_depth >= 1) r.fail(g, "must be below 1 (a fraction of the tissue thickness)");
+    });
   });
   // Limits of the loop follow the device.
   const auto& caps = h.capabilities;

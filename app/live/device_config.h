@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "haptic_loop.h"
+#include "live/force_mapping.h"
 #include "handhiro_link.h"
 #include "handhiro_model.h"
 
@@ -19,6 +20,9 @@ struct DeviceConfig {
   device::HandHiroParams hand = device::default_handhiro_params();
   device::LinkConfig link;
   device::HapticLoopParams loop;
+  /// The force scale between simulation and device (live/force_mapping.h): per patient
+  /// by default, or fixed.
+  ForceMappingConfig force_mapping;
   /// Scenario finger k drives device finger finger_map[k] (default: index, middle, ring,
   /// little, thumb: the paper palpates with the index finger).
   std::array<int, device::kMaxFingers> finger_map{device::kIndex, device::kMiddle, device::kRing, device::kLittle,

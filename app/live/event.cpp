@@ -17,21 +17,24 @@ std::string format(const char* fmt, double a, double b = 0, double c = 0, double
 }
 
 // Names of the enumerations in recordings.
-constexpr std::array<std::pair<EventKind, const char*>, 11> kKindNames{{{EventKind::PatientLoading, "patient-loading"},
+constexpr std::array<std::pair<EventKind, const char*>, 12> kKindNames{{{EventKind::PatientLoading, "patient-loading"},
                                                                        {EventKind::PatientLoaded, "patient-loaded"},
                                                                        {EventKind::PatientNotLoaded, "patient-not-loaded"},
                                                                        {EventKind::Params, "params"},
                                                                        {EventKind::Material, "material"},
                                                                        {EventKind::Mode, "mode"},
                                                                        {EventKind::Mark, "mark"},
+                                                                       {EventKind::ExamEnded, "exam-ended"},
                                                                        {EventKind::Fallback, "fallback"},
                                                                        {EventKind::Reset, "reset"},
                                                                        {EventKind::Error, "error"},
                                                                        {EventKind::Stopped, "stopped"}}};
-constexpr std::array<std::pair<ModeChange, const char*>, 4> kModeNames{{{ModeChange::MousePalpation, "mouse-palpation"},
+constexpr std::array<std::pair<ModeChange, const char*>, 6> kModeNames{{{ModeChange::MousePalpation, "mouse-palpation"},
                                                                        {ModeChange::ScriptedHand, "scripted-hand"},
                                                                        {ModeChange::Trainee, "trainee"},
-                                                                       {ModeChange::Instructor, "instructor"}}};
+                                                                       {ModeChange::Instructor, "instructor"},
+                                                                       {ModeChange::GuidedPractice, "guided-practice"},
+                                                                       {ModeChange::Exam, "exam"}}};
 constexpr std::array<std::pair<MaterialEdit::Kind, const char*>, 4> kEditNames{{{MaterialEdit::Kind::AddTumour, "add-tumour"},
                                                                                {MaterialEdit::Kind::RemoveTumour, "remove-tumour"},
                                                                                {MaterialEdit::Kind::Dab, "dab"},
@@ -102,10 +105,18 @@ Event Event::mode_change(ModeChange m) {
   return e;
 }
 
-Event Event::trainee_mark(int number, std::optional<Eigen::Vector3d> position, const std::string& note) {
+Event Event::trainee_mark(int number, std::optional<Eigen::Vector3d> position, const std::string& note, double confidence) {
   Event e = with_detail(EventKind::Mark, note);
   e.mark = number;
   e.position = position;
+  e.confidence = confidence;
+  return e;
+}
+
+Event Event::exam_ended(ModeChange mode) {
+  Event e;
+  e.kind = EventKind::ExamEnded;
+  e.mode = mode;
   return e;
 }
 
@@ -154,14 +165,19 @@ std::string event_text(const Event& e) {
         case ModeChange::ScriptedHand: return "device: scripted hand";
         case ModeChange::Trainee: return "trainee mode";
         case ModeChange::Instructor: return "instructor mode";
+        case ModeChange::GuidedPractice: return "guided practice (trainee)";
+        case ModeChange::Exam: return "exam (trainee)";
       }
       return {};
     case EventKind::Mark: {
       std::string s = "trainee mark " + std::to_string(e.mark);
       if (e.position) s += format(" at (%.1f, %.1f, %.1f) cm", e.position->x() * 100, e.position->y() * 100, e.position->z() * 100);
+      // A certain mark (and every mark of older recordings) reads as before.
+      if (e.confidence < 1.0) s += format(", %.0f %% confident", e.confidence * 100);
       if (!e.detail.empty()) s += ": " + e.detail;
       return s;
     }
+    case EventKind::ExamEnded: return e.mode == ModeChange::GuidedPractice ? "guided practice ended" : "exam ended";
     case EventKind::Fallback: return "backend error: " + e.detail + "; continuing on the CPU from rest (forces held, then blended)";
     case EventKind::Reset: return "simulation diverged (" + e.detail + "): body reset to rest (forces held, then blended)";
     case EventKind::Error: return e.detail;
@@ -204,8 +220,10 @@ json event_args_json(const Event& e) {
     case EventKind::Mark:
       a["mark"] = e.mark;
       if (e.position) a["position"] = vec_json(*e.position);
+      a["confidence"] = e.confidence;
       if (!e.detail.empty()) a["detail"] = e.detail;
       break;
+    case EventKind::ExamEnded: a["mode"] = name_of(kModeNames, e.mode); break;
     default: a["detail"] = e.detail; break;
   }
   return a;
@@ -264,7 +282,8 @@ std::optional<Event> event_from_json(const std::string& kind_name, const json& a
       }
       break;
     }
-    case EventKind::Mode: {
+    case EventKind::Mode:
+    case EventKind::ExamEnded: {
       const auto m = a.contains("mode") ? value_of(kModeNames, a["mode"]) : std::nullopt;
       if (!m) return std::nullopt;
       e.mode = *m;
@@ -275,6 +294,11 @@ std::optional<Event> event_from_json(const std::string& kind_name, const json& a
       if (a.contains("position")) {
         e.position = vec_from(a["position"]);
         if (!e.position) return std::nullopt;
+      }
+      // Recordings made before marks carried a confidence: certain.
+      if (a.contains("confidence")) {
+        if (!a["confidence"].is_number()) return std::nullopt;
+        e.confidence = a["confidence"].get<double>();
       }
       break;
     default:

@@ -39,8 +39,10 @@ struct MaterialEdit {
   TumourLabel tumour;   // AddTumour, RemoveTumour
 };
 
-/// The mode changes the workstation logs.
-enum class ModeChange { MousePalpation, ScriptedHand, Trainee, Instructor };
+/// The mode changes the workstation logs: the device's (mouse or scripted hand) and the
+/// training mode's (live/training_session.h). `Trainee` is the one trainee mode of
+/// recordings made before guided practice and exams were told apart.
+enum class ModeChange { MousePalpation, ScriptedHand, Trainee, Instructor, GuidedPractice, Exam };
 
 enum class EventKind {
   PatientLoading,    // detail: the patient's source (library name, phantom, file)
@@ -49,7 +51,8 @@ enum class EventKind {
   Params,            // solver or contact parameters changed
   Material,          // edit
   Mode,              // mode
-  Mark,              // mark, position (where known); detail: the trainee's note
+  Mark,              // mark, position (where known), confidence; detail: the trainee's note
+  ExamEnded,         // mode: the trainee mode whose exam ended (GuidedPractice or Exam)
   Fallback,          // detail: the backend's error (continuing on the CPU from rest)
   Reset,             // detail: why the simulation diverged (body reset to rest)
   Error,             // detail: what failed, as the system said it
@@ -62,9 +65,10 @@ struct Event {
   std::string detail;                      // see EventKind
   int nodes = 0, tetrahedra = 0;           // PatientLoaded
   MaterialEdit edit;                       // Material
-  ModeChange mode = ModeChange::ScriptedHand;  // Mode
+  ModeChange mode = ModeChange::ScriptedHand;  // Mode, ExamEnded
   int mark = 0;                            // Mark: its number (1, 2, ...)
   std::optional<Eigen::Vector3d> position;  // Mark: world, m
+  double confidence = 1.0;                 // Mark: how sure the trainee is, 0..1 (1 in older recordings)
 
   /// The English one-line text (event_text).
   std::string text() const;
@@ -75,7 +79,10 @@ struct Event {
   static Event params();
   static Event material(const MaterialEdit& edit);
   static Event mode_change(ModeChange m);
-  static Event trainee_mark(int number, std::optional<Eigen::Vector3d> position = {}, const std::string& note = {});
+  static Event trainee_mark(int number, std::optional<Eigen::Vector3d> position = {}, const std::string& note = {},
+                            double confidence = 1.0);
+  /// The end of a trainee's exam (or guided practice: `mode`).
+  static Event exam_ended(ModeChange mode);
 };
 
 /// The English one-line text of an event (the one composition of it).

@@ -204,6 +204,13 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   dv::TripleBuffer<dv::ContactFrame> contacts;
   dv::SpscRing<dv::TickRecord> telemetry(1 << 15);  // 32 s of ticks: the recorder drains every 10 ms
   auto loop = std::make_unique<dv::HapticLoop>(*dev, poses, contacts, &telemetry, cfg.loop);
+  // The force scale of this patient on this device (live/force_mapping.h): the scenario's
+  // first fingertip pressed deep over the stiffest part, before anything runs.
+  const ForceMapping mapping = measure_force_mapping(s, simulation.model(), simulation.materials(), s.fingers[0].radius,
+                                                     loop->params().safety.max_force, cfg.force_mapping);
+  if (opt.log)
+    opt.log("session: force scale " + std::to_string(mapping.scale) + " (" + force_scale_rule_name(mapping.rule) + ", deep press " +
+            std::to_string(mapping.deep_press_n) + " N simulated)");
   SimulationLoopOptions lo;
   for (int k = 0; k < nf; ++k) {
     lo.finger_map.push_back(cfg.finger_map[std::size_t(k)]);
@@ -214,6 +221,7 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   lo.realtime = opt.sim_realtime;
   lo.max_dt = opt.sim_max_dt;
   lo.coupling_stiffness = loop->params().virtual_coupling ? loop->params().coupling_stiffness : 0.0;
+  lo.force_scale = mapping.scale;
   SimulationThread sim_thread(simulation, poses, contacts, std::move(lo));
   PeriodicThread emulator_thread;
   HapticThread haptic(*loop);
@@ -239,6 +247,7 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                          {"sim_max_dt", opt.sim_max_dt},
                          {"coupling", cfg.loop.virtual_coupling ? "virtual" : "direct"},
                          {"rigid_hand", opt.rigid_hand},
+                         {"force_scale", mapping.scale},
                          {"backend", simulation.backend().name()},
                          {"program", std::string("palpation ") + PALPATION_VERSION + " (" + PALPATION_GIT_COMMIT + ")"}};
     if (!opt.record_settings.is_null()) header["settings"] = opt.record_settings;
@@ -362,6 +371,18 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"backend_fallbacks", sim_thread.fallbacks},
                        {"finite", sim_thread.finite}};
   }
+  j["force_mapping"] = {{"scale", mapping.scale},
+                        {"rule", force_scale_rule_name(mapping.rule)},
+                        {"device_limit_n", mapping.device_limit_n},
+                        {"deep_press_n", mapping.deep_press_n},
+                        {"deep_press_device_n", mapping.deep_press_device_n},
+                        {"simulated_at_limit_n", mapping.simulated_at_limit_n},
+                        {"press_skin_m", {mapping.press_skin.x(), mapping.press_skin.y(), mapping.press_skin.z()}},
+                        {"press_depth_m", mapping.press_depth_m},
+                        {"thickness_m", mapping.thickness_m},
+                        {"presses", mapping.presses},
+                        {"probe_ms", mapping.probe_ms},
+                        {"note", "fingers.csv and forces: device units (scale x simulated force)"}};
   j["forces"] = {{"limit_n", caps.max_force},
                  {"largest_sent_n", max_sent},
                  {"largest_desired_n", sc.max_desired},

@@ -153,7 +153,7 @@ void SimulationLoop::publish(const sim::Simulation::Outcome& r, std::int64_t now
     const std::size_t d = std::size_t(opt_.finger_map[k]);
     if (ok && in_[k].active)
       cf.fingers[d] = contact_model(opt_.spike_guard ? guard_force_spike(out_[k], prev_force_[k]) : out_[k], in_[k].position,
-                                    opt_.registration);
+                                    opt_.registration, opt_.force_scale);
     const Eigen::Vector3d now_f =
         ok && in_[k].active && out_[k].contacts > 0 ? Eigen::Vector3d(out_[k].force) : Eigen::Vector3d::Zero();
     // Steady: changing by less than 100 % of itself + 0.5 N per second (at the 10 ms

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -48,6 +49,9 @@ struct SimulationLoopOptions {
   double coupling_stiffness = 0;
   /// The two-step minimum on the force sent (app/live/sim_fingers.h, guard_force_spike).
   bool spike_guard = false;
+  /// Device force per simulated force (app/live/force_mapping.h): the contact models are
+  /// published scaled by it; LoopStep::out stays in simulated units.
+  double force_scale = 1.0;
   /// After a fallback or reset: hold the last good models at least recover_hold_s and
   /// until the new forces have changed by less than 100 % + 0.5 N per second for 0.1 s of
   /// simulated time (at most recover_hold_max_s), then blend over recover_blend_s. All
@@ -90,6 +94,9 @@ class SimulationLoop {
   /// fingertip radii (m). The dt restarts, the published models and the recovery are
   /// forgotten.
   void restart(sim::Simulation& simulation, const std::vector<double>& radius = {});
+  /// From a hook (or before run): the force scale of the models published from the next
+  /// step on (a new patient's). Not finite or not positive: 1.
+  void set_force_scale(double s) { opt_.force_scale = std::isfinite(s) && s > 0 ? s : 1.0; }
   /// Publishes empty contact models (forces fade to zero in the haptic loop).
   void publish_empty();
 

@@ -15,6 +15,7 @@
 #include "live/sim_fingers.h"
 #include "simulation.h"
 #include "live/simulation_loop.h"
+#include "train/exam.h"
 
 namespace palpation::app::live {
 
@@ -85,6 +86,7 @@ std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulati
   }
   g->tissue_young = simulation.scenario().young_modulus;
   g->tissue_poisson = simulation.scenario().poisson_ratio;
+  g->skin = std::make_shared<const train::SkinMap>(train::build_skin_map(m));
   auto& be = simulation.backend();
   g->backend = be.name();
   g->device_name = be.device_name();
@@ -126,6 +128,9 @@ Workstation::Workstation(WorkstationOptions opt) : opt_(std::move(opt)) {
   lo.max_dt = opt_.sim_max_dt;
   lo.coupling_stiffness = loop_->params().virtual_coupling ? loop_->params().coupling_stiffness : 0.0;
   lo.spike_guard = opt_.spike_guard;
+  // Until the first patient's deep press is measured: the configured scale, else 1.
+  force_mapping_ = force_mapping_for(0.0, loop_->params().safety.max_force, opt_.config.force_mapping);
+  lo.force_scale = force_mapping_.scale;
   lo.recover_hold_s = opt_.recover_hold_s;
   lo.recover_hold_max_s = opt_.recover_hold_max_s;
   lo.recover_blend_s = opt_.recover_blend_s;
@@ -210,6 +215,11 @@ std::shared_ptr<const PatientGeometry> Workstation::geometry() const {
   return geometry_;
 }
 
+ForceMapping Workstation::force_mapping() const {
+  std::lock_guard<std::mutex> lk(mu_);
+  return force_mapping_;
+}
+
 std::vector<double> Workstation::applied_young(std::uint64_t* applied) const {
   std::lock_guard<std::mutex> lk(mu_);
   if (applied) *applied = applied_.load();
@@ -273,6 +283,18 @@ void Workstation::build(const sim::Scenario& s) {
   simulation->reset();
   configure_realtime_threads(*simulation);
   const sim::Model& m = simulation->model();
+  // The force scale of this patient on this device: its deep press into the device's
+  // range (live/force_mapping.h), before the first step (0.16-0.27 s on the coarse breast,
+  // 1.9 s on the paper mesh, while the forces are faded out). A probe that fails leaves
+  // the configured scale, else 1: the safety filter's clamp still bounds the forces.
+  ForceMapping fm = force_mapping_for(0.0, loop_->params().safety.max_force, opt_.config.force_mapping);
+  try {
+    fm = measure_force_mapping(simulation->scenario(), m, simulation->materials(), finger_radius(s),
+                               loop_->params().safety.max_force, opt_.config.force_mapping,
+                               simulation->backend().params().solver.threads);
+  } catch (const std::exception&) {
+  }
+  sim_loop_->set_force_scale(fm.scale);
   const std::uint64_t generation = generation_.load() + 1;
   generation_.store(generation);
   auto g = make_patient_geometry(*simulation, generation);
@@ -281,6 +303,7 @@ void Workstation::build(const sim::Scenario& s) {
     geometry_ = g;
     applied_young_ = simulation->materials().young;
     backend_name_ = g->backend;
+    force_mapping_ = fm;
   }
   sim_ = std::move(simulation);
   log_event(Event::patient_loaded(m.num_nodes(), m.num_tets(), g->backend));
@@ -304,6 +327,7 @@ void Workstation::sim_main() {
   sim::StressScratch stress_scratch;
   std::vector<Command> cmds;
   SimulationLoop& loop = *sim_loop_;
+  ForceMapping step_mapping = force_mapping();  // the one the steps' models were sent with
   SimulationLoop::Hooks hooks;
   hooks.between_steps = [&] {
     // Queued commands, between steps.
@@ -343,6 +367,7 @@ void Workstation::sim_main() {
         sim_state_.store(SimState::Running);
       }
       loop.restart(*sim_, std::vector<double>(nf, finger_radius(s)));
+      step_mapping = force_mapping();
     }
     {
       std::lock_guard<std::mutex> lk(mu_);
@@ -374,7 +399,7 @@ void Workstation::sim_main() {
   hooks.after_step = [&](const LoopStep& ls) {
     const sim::StepStats& st = ls.outcome->stats;
     StepSample ss{double(ls.start_ns - t0_ns_) * 1e-9, ls.sim_time, float(ls.step_ms), st.cg_iterations, st.contacts, ls.h,
-                  applied_.load(), {}, {}};
+                  applied_.load(), {}, {}, step_mapping};
     for (int d = 0; d < nf; ++d) {
       ss.in[d] = ls.in[std::size_t(d)];
       ss.force[d] = ls.out[std::size_t(d)].force;
@@ -470,6 +495,7 @@ bool Workstation::poll() {
     std::lock_guard<std::mutex> lk(mu_);
     stats_.backend = backend_name_;
     stats_.safety_note = safety_note_;
+    stats_.force_mapping = force_mapping_;
   }
   if (any_tick) stats_.connected = running() && any_attached;
   if (!running()) stats_.connected = false;

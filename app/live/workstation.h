@@ -40,6 +40,7 @@
 
 #include "live/device_config.h"
 #include "live/event.h"
+#include "live/force_mapping.h"
 #include "live/tumour_document.h"
 #include "hand_script.h"
 #include "haptic_device.h"
@@ -57,6 +58,10 @@ class HandHiroEmulator;
 namespace palpation::sim {
 class Simulation;
 struct Model;
+}
+
+namespace palpation::app::train {
+struct SkinMap;
 }
 
 namespace palpation::app::live {
@@ -103,7 +108,10 @@ struct StepSample {
   double h = 0;                                          // s, this step's dt
   std::uint64_t commands_applied = 0;                    // queued commands applied before it
   std::array<sim::FingerInput, dv::kMaxFingers> in{};    // device fingers, world
-  std::array<Eigen::Vector3d, dv::kMaxFingers> force{};  // on the finger, N (zero after a reset)
+  std::array<Eigen::Vector3d, dv::kMaxFingers> force{};  // on the finger, simulated N (zero after a reset)
+  /// The force scale the step's contact models went to the device with (the device got
+  /// mapping.scale x force; live/force_mapping.h).
+  ForceMapping mapping;
 };
 
 /// What a posted command changes: element moduli, solver/contact parameters, the patient.
@@ -138,6 +146,8 @@ struct PatientGeometry {
   std::vector<double> young;                    // (ntet) Pa at load time
   double tissue_young = 19000;                  // Pa, bulk tissue
   double tissue_poisson = 0.45;
+  /// The skin (boundary off the chest wall) with its thickness: coverage and scoring.
+  std::shared_ptr<const train::SkinMap> skin;
   std::string backend, device_name;
 };
 
@@ -166,6 +176,7 @@ struct LiveStats {
   int divergences = 0;            // divergence resets (body put back to rest)
   std::string safety_note;        // the newest of those, one line ("" when none)
   bool recovering = false;        // forces held/blended after a fallback or reset
+  ForceMapping force_mapping;     // the current patient's force scale (simulated -> device)
 };
 
 struct WorkstationOptions {
@@ -224,6 +235,10 @@ class Workstation {
   std::shared_ptr<const PatientGeometry> geometry() const;
   const WorkstationOptions& options() const { return opt_; }
   const DeviceConfig& device_config() const { return opt_.config; }
+  /// The force scale between simulation and device of the current patient, chosen when
+  /// it was loaded (live/force_mapping.h; the configured scale, else 1, before the first
+  /// one). Any thread.
+  ForceMapping force_mapping() const;
 
   // Commands: applied on the simulation thread between steps. ---------------------
   using Command = std::function<void(sim::Simulation&)>;
@@ -305,6 +320,7 @@ class Workstation {
   bool swap_pending_ = false;        // simulation thread only
   std::atomic<SimState> sim_state_{SimState::Stopped};
   std::string backend_name_, safety_note_;            // guarded by mu_
+  ForceMapping force_mapping_;                         // guarded by mu_
   std::atomic<int> fallbacks_{0}, divergences_{0};
   std::atomic<bool> stress_enabled_{false};
   std::unique_ptr<SimulationLoop> sim_loop_;  // the simulation thread's body

@@ -39,13 +39,16 @@ ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt) {
   ro.log = opt.log;
   ReplayResult r;
   r.run = run_headless(s, ro);
-  // Tick i of the recording against tick i of the replay (both 1 kHz from the start).
+  // Tick i of the recording against tick i of the replay (both 1 kHz from the start). A
+  // session recorded the device's forces: the simulated ones times its force scale
+  // (live/force_mapping.h; 1 in recordings made before the scale).
+  const double scale = rec.header.contains("session") ? rec.header["session"].value("force_scale", 1.0) : 1.0;
   const std::size_t nf = std::size_t(rec.fingers);
   const std::size_t n = std::min(rec.ticks(), r.run.samples.size() / nf);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < nf; ++k) {
       const Eigen::Vector3d& fr = rec.f[i * nf + k];
-      const Eigen::Vector3d& fp = r.run.samples[i * nf + k].f;
+      const Eigen::Vector3d fp = r.run.samples[i * nf + k].f * scale;
       if (!fr.allFinite()) continue;
       r.max_recorded_force = std::max(r.max_recorded_force, fr.norm());
       const double d = (fp - fr).norm();

@@ -40,7 +40,9 @@ std::optional<live::Event> recorded_event(const json& e, double t) {
       at = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
     const int n = e.contains("mark") && e["mark"].is_number_integer() ? e["mark"].get<int>() : 0;
     const std::string note = e.contains("note") && e["note"].is_string() ? e["note"].get<std::string>() : std::string();
-    live::Event ev = live::Event::trainee_mark(n, at, note);
+    // Marks recorded before they carried a confidence: certain.
+    const double confidence = e.contains("confidence") && e["confidence"].is_number() ? e["confidence"].get<double>() : 1.0;
+    live::Event ev = live::Event::trainee_mark(n, at, note, confidence);
     ev.t = t;
     return ev;
   }
@@ -72,7 +74,13 @@ ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path
     if (kind == "parameter" && e.contains("text") && e["text"].is_string())
       data_twins.emplace_back(e["t"].get<double>(), e["text"].get<std::string>());
     else if (kind == "mark" && e.contains("mark") && e["mark"].is_number_integer())
-      data_twins.emplace_back(e["t"].get<double>(), "trainee mark " + std::to_string(e["mark"].get<long long>()));
+      // The log's line of the mark: its number and confidence, without the position.
+      data_twins.emplace_back(e["t"].get<double>(),
+                              live::Event::trainee_mark(e["mark"].get<int>(), std::nullopt, {},
+                                                        e.contains("confidence") && e["confidence"].is_number()
+                                                            ? e["confidence"].get<double>()
+                                                            : 1.0)
+                                  .text());
   }
   auto is_log_twin = [&](double t, const json& e) {
     if (!e.contains("text") || !e["text"].is_string()) return false;

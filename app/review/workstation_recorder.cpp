@@ -142,10 +142,10 @@ void WorkstationRecorder::emit_tick() {
   writer_->add_tick(tick_t_, x_.data(), f_.data());
 }
 
-int WorkstationRecorder::add_mark(const Eigen::Vector3d& p, const std::string& note) {
+int WorkstationRecorder::add_mark(const Eigen::Vector3d& p, const std::string& note, double confidence) {
   emit_tick();
   ++marks_;
-  json d{{"mark", marks_}, {"position", {p.x(), p.y(), p.z()}}};
+  json d{{"mark", marks_}, {"position", {p.x(), p.y(), p.z()}}, {"confidence", confidence}};
   if (!note.empty()) d["note"] = note;
   writer_->add_event(ws_.now_s(), "mark", std::move(d));
   return marks_;

@@ -37,9 +37,10 @@ class WorkstationRecorder {
   WorkstationRecorder(Workstation& ws, const std::string& path, nlohmann::json settings = nlohmann::json::object());
   ~WorkstationRecorder();
 
-  /// A trainee's mark: "I feel a lump here" at `position` (world, m). Returns the mark's
-  /// number (1, 2, ...).
-  int add_mark(const Eigen::Vector3d& position, const std::string& note = {});
+  /// A trainee's mark: "I feel a lump here" at `position` (world, m), as sure as
+  /// `confidence` (0..1; recorded as "confidence", which recordings made before it lack:
+  /// read those as 1). Returns the mark's number (1, 2, ...).
+  int add_mark(const Eigen::Vector3d& position, const std::string& note = {}, double confidence = 1.0);
   /// Any other event worth keeping (mode changes, view settings): kind "instructor".
   void add_event(const std::string& kind, nlohmann::json data);
   /// Syncs to disk when the last sync is over a second old (call every ~second).

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <ctime>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <map>
+#include <sstream>
 
 #include <QCoreApplication>
 #include <QDir>
@@ -53,6 +56,17 @@ std::vector<std::vector<std::string>> schema_steps(bool pg) {
       {"ALTER TABLE patients ADD COLUMN source TEXT NOT NULL DEFAULT ''",
        "CREATE TABLE meshes (patient_id INTEGER PRIMARY KEY, format VARCHAR(16) NOT NULL, data " + blob + " NOT NULL)",
        "UPDATE meta SET value = '3' WHERE key = 'schema_version'"},
+      // 3 -> 4: trainees and their exam results (the figures as columns for the instructor's
+      // queries, the whole score as JSON). Timestamps are UTC ISO 8601 text, which sorts.
+      {"CREATE TABLE trainees (id " + pk + ", name VARCHAR(200) UNIQUE NOT NULL, created VARCHAR(32) NOT NULL)",
+       "CREATE TABLE exam_results (id " + pk + ", trainee_id INTEGER NOT NULL REFERENCES trainees (id), "
+       "case_name VARCHAR(200) NOT NULL, curriculum VARCHAR(200) NOT NULL DEFAULT '', started VARCHAR(32) NOT NULL, "
+       "duration DOUBLE PRECISION NOT NULL, sensitivity DOUBLE PRECISION, false_positives INTEGER NOT NULL, "
+       "coverage_light DOUBLE PRECISION NOT NULL, coverage_medium DOUBLE PRECISION NOT NULL, "
+       "coverage_deep DOUBLE PRECISION NOT NULL, deep_reached DOUBLE PRECISION, exam_time DOUBLE PRECISION NOT NULL, "
+       "passed INTEGER NOT NULL, score TEXT NOT NULL, recording TEXT NOT NULL DEFAULT '')",
+       "CREATE INDEX exam_results_by_trainee ON exam_results (trainee_id, started)",
+       "UPDATE meta SET value = '4' WHERE key = 'schema_version'"},
   };
 }
 
@@ -450,6 +464,226 @@ bool PatientLibrary::remove(const std::string& name) {
   return any;
 }
 
+// ---------------------------------------------------------------- trainees and results
+
+namespace {
+
+// A trainee's name: shown in tables and typed on command lines.
+std::string trainee_name_problem(const std::string& n) {
+  if (n.empty() || n.size() > 100) return "must be 1 to 100 characters";
+  for (char c : n)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "must not hold control characters";
+  if (n.front() == ' ' || n.back() == ' ') return "must not start or end with a space";
+  return {};
+}
+
+// "YYYY-MM-DDTHH:MM:SSZ": fixed width, so that text order is time order.
+bool is_utc_timestamp(const std::string& t) {
+  static const char* const pattern = "dddd-dd-ddTdd:dd:ddZ";
+  if (t.size() != std::strlen(pattern)) return false;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (pattern[i] == 'd' ? !(t[i] >= '0' && t[i] <= '9') : t[i] != pattern[i]) return false;
+  return true;
+}
+
+QVariant nullable(const std::optional<double>& v) {
+  return v ? QVariant(*v) : QVariant(QMetaType::fromType<double>());
+}
+std::optional<double> optional_double(const QVariant& v) {
+  if (v.isNull()) return std::nullopt;
+  return v.toDouble();
+}
+
+// The columns every result query reads, in read_result's order.
+const char* const kResultColumns =
+    "r.id, t.name, r.case_name, r.curriculum, r.started, r.duration, r.sensitivity, r.false_positives, "
+    "r.coverage_light, r.coverage_medium, r.coverage_deep, r.deep_reached, r.exam_time, r.passed, r.score, r.recording";
+
+ExamResult read_result(const QSqlQuery& q) {
+  ExamResult r;
+  r.id = q.value(0).toLongLong();
+  r.trainee = q.value(1).toString().toStdString();
+  r.case_name = q.value(2).toString().toStdString();
+  r.curriculum = q.value(3).toString().toStdString();
+  r.started = q.value(4).toString().toStdString();
+  r.duration = q.value(5).toDouble();
+  r.sensitivity = optional_double(q.value(6));
+  r.false_positives = q.value(7).toInt();
+  r.coverage_light = q.value(8).toDouble();
+  r.coverage_medium = q.value(9).toDouble();
+  r.coverage_deep = q.value(10).toDouble();
+  r.deep_reached = optional_double(q.value(11));
+  r.exam_time = q.value(12).toDouble();
+  r.passed = q.value(13).toInt() != 0;
+  // A damaged score text leaves the figures readable (they are columns of their own).
+  r.score = json::parse(q.value(14).toString().toStdString(), nullptr, false);
+  if (r.score.is_discarded()) r.score = nullptr;
+  r.recording = q.value(15).toString().toStdString();
+  return r;
+}
+
+}  // namespace
+
+std::int64_t PatientLibrary::trainee_id(const std::string& name, const char* doing) const {
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  query.prepare("SELECT id FROM trainees WHERE name = ?");
+  query.addBindValue(q(name));
+  if (!query.exec()) throw LibraryError(where_ + ": " + doing + " \"" + name + "\": " + reason(query.lastError()));
+  if (!query.next())
+    throw LibraryError(where_ + ": no trainee named \"" + name + "\" (see `palpation trainee list`; add one with `palpation trainee add`)");
+  return query.value(0).toLongLong();
+}
+
+void PatientLibrary::add_trainee(const std::string& name) {
+  if (const std::string why = trainee_name_problem(name); !why.empty())
+    throw LibraryError(where_ + ": trainee name \"" + name + "\": " + why);
+  if (find_trainee(name)) throw LibraryError(where_ + ": trainee \"" + name + "\" already exists");
+  QSqlQuery ins(QSqlDatabase::database(q(conn_), false));
+  ins.prepare("INSERT INTO trainees (name, created) VALUES (?, ?)");
+  ins.addBindValue(q(name));
+  ins.addBindValue(q(utc_now()));
+  if (!ins.exec()) throw LibraryError(where_ + ": adding trainee \"" + name + "\": " + reason(ins.lastError()) + " (nothing was added)");
+}
+
+std::vector<TraineeRecord> PatientLibrary::trainees() const {
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  if (!query.exec("SELECT name, created FROM trainees ORDER BY name"))
+    throw LibraryError(where_ + ": listing trainees: " + reason(query.lastError()));
+  std::vector<TraineeRecord> v;
+  while (query.next()) v.push_back({query.value(0).toString().toStdString(), query.value(1).toString().toStdString()});
+  return v;
+}
+
+std::optional<TraineeRecord> PatientLibrary::find_trainee(const std::string& name) const {
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  query.prepare("SELECT name, created FROM trainees WHERE name = ?");
+  query.addBindValue(q(name));
+  if (!query.exec()) throw LibraryError(where_ + ": reading trainee \"" + name + "\": " + reason(query.lastError()));
+  if (!query.next()) return std::nullopt;
+  return TraineeRecord{query.value(0).toString().toStdString(), query.value(1).toString().toStdString()};
+}
+
+bool PatientLibrary::remove_trainee(const std::string& name) {
+  if (!find_trainee(name)) return false;
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  if (!db.transaction()) throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(db.lastError()));
+  QSqlQuery a(db), b(db);
+  a.prepare("DELETE FROM exam_results WHERE trainee_id IN (SELECT id FROM trainees WHERE name = ?)");
+  a.addBindValue(q(name));
+  b.prepare("DELETE FROM trainees WHERE name = ?");
+  b.addBindValue(q(name));
+  if (!a.exec() || !b.exec() || !db.commit()) {
+    const QSqlError e = a.lastError().isValid() ? a.lastError() : b.lastError().isValid() ? b.lastError() : db.lastError();
+    db.rollback();
+    throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(e) + " (nothing was removed)");
+  }
+  return true;
+}
+
+std::int64_t PatientLibrary::record_result(const ExamResult& r) {
+  const std::string what = where_ + ": exam result of \"" + r.trainee + "\"";
+  auto bad = [&](const std::string& field, const std::string& why) { throw LibraryError(what + ": " + field + ": " + why); };
+  auto number = [&](const char* field, double v, double lo, double hi) {
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      std::ostringstream o;
+      o << "must be within " << lo << ".." << hi << ", got " << v;
+      bad(field, o.str());
+    }
+  };
+  if (r.case_name.empty() || r.case_name.size() > 200) bad("case_name", "must be 1 to 200 characters");
+  if (r.curriculum.size() > 200) bad("curriculum", "must be at most 200 characters");
+  if (!r.started.empty() && !is_utc_timestamp(r.started)) bad("started", "must be UTC \"YYYY-MM-DDTHH:MM:SSZ\", got \"" + r.started + "\"");
+  number("duration", r.duration, 0, 1e6);
+  if (r.sensitivity) number("sensitivity", *r.sensitivity, 0, 1);
+  if (r.false_positives < 0) bad("false_positives", "must be >= 0, got " + std::to_string(r.false_positives));
+  number("coverage_light", r.coverage_light, 0, 1);
+  number("coverage_medium", r.coverage_medium, 0, 1);
+  number("coverage_deep", r.coverage_deep, 0, 1);
+  if (r.deep_reached) number("deep_reached", *r.deep_reached, 0, 1);
+  number("exam_time", r.exam_time, 0, 1e6);
+  if (!r.score.is_object()) bad("score", "must be a JSON object (the exam's score)");
+  const std::int64_t trainee = trainee_id(r.trainee, "recording a result of");
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  if (!db.transaction()) throw LibraryError(what + ": " + reason(db.lastError()));
+  auto fail = [&](const QSqlError& e) {
+    const std::string why = reason(e);
+    db.rollback();
+    throw LibraryError(what + ": " + why + " (nothing was recorded)");
+  };
+  QSqlQuery ins(db);
+  ins.prepare("INSERT INTO exam_results (trainee_id, case_name, curriculum, started, duration, sensitivity, false_positives, "
+              "coverage_light, coverage_medium, coverage_deep, deep_reached, exam_time, passed, score, recording) "
+              "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  ins.addBindValue(QVariant::fromValue<qlonglong>(trainee));
+  ins.addBindValue(q(r.case_name));
+  ins.addBindValue(q(r.curriculum));
+  ins.addBindValue(q(r.started.empty() ? utc_now() : r.started));
+  ins.addBindValue(r.duration);
+  ins.addBindValue(nullable(r.sensitivity));
+  ins.addBindValue(r.false_positives);
+  ins.addBindValue(r.coverage_light);
+  ins.addBindValue(r.coverage_medium);
+  ins.addBindValue(r.coverage_deep);
+  ins.addBindValue(nullable(r.deep_reached));
+  ins.addBindValue(r.exam_time);
+  ins.addBindValue(r.passed ? 1 : 0);
+  ins.addBindValue(q(r.score.dump()));
+  ins.addBindValue(q(r.recording));
+  if (!ins.exec()) fail(ins.lastError());
+  // The new row's id, portably: the largest id of this trainee inside the transaction.
+  QSqlQuery id(db);
+  id.prepare("SELECT MAX(id) FROM exam_results WHERE trainee_id = ?");
+  id.addBindValue(QVariant::fromValue<qlonglong>(trainee));
+  if (!id.exec() || !id.next()) fail(id.lastError());
+  const std::int64_t rid = id.value(0).toLongLong();
+  if (!db.commit()) fail(db.lastError());
+  return rid;
+}
+
+std::vector<ExamResult> PatientLibrary::results(const std::string& trainee) const {
+  const std::int64_t tid = trainee_id(trainee, "reading the results of");
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  query.prepare(QString("SELECT ") + kResultColumns +
+                " FROM exam_results r JOIN trainees t ON t.id = r.trainee_id WHERE r.trainee_id = ? ORDER BY r.started, r.id");
+  query.addBindValue(QVariant::fromValue<qlonglong>(tid));
+  if (!query.exec()) throw LibraryError(where_ + ": reading the results of \"" + trainee + "\": " + reason(query.lastError()));
+  std::vector<ExamResult> v;
+  while (query.next()) v.push_back(read_result(query));
+  return v;
+}
+
+bool PatientLibrary::better_result(const ExamResult& a, const ExamResult& b) {
+  if (a.passed != b.passed) return a.passed;
+  const double sa = a.sensitivity.value_or(1.0), sb = b.sensitivity.value_or(1.0);
+  if (sa != sb) return sa > sb;
+  if (a.false_positives != b.false_positives) return a.false_positives < b.false_positives;
+  if (a.coverage_deep != b.coverage_deep) return a.coverage_deep > b.coverage_deep;
+  if (a.started != b.started) return a.started > b.started;
+  return a.id > b.id;
+}
+
+std::vector<TraineeSummary> PatientLibrary::class_summary() const {
+  std::vector<TraineeSummary> v;
+  for (auto& t : trainees()) v.push_back({std::move(t), 0, 0, std::nullopt, std::nullopt});
+  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+  if (!query.exec(QString("SELECT ") + kResultColumns +
+                  " FROM exam_results r JOIN trainees t ON t.id = r.trainee_id ORDER BY t.name, r.started, r.id"))
+    throw LibraryError(where_ + ": reading the class's results: " + reason(query.lastError()));
+  std::map<std::string, std::size_t> index;
+  for (std::size_t k = 0; k < v.size(); ++k) index[v[k].trainee.name] = k;
+  while (query.next()) {
+    ExamResult r = read_result(query);
+    const auto it = index.find(r.trainee);
+    if (it == index.end()) continue;  // a trainee added since the list was read
+    TraineeSummary& s = v[it->second];
+    ++s.exams;
+    if (r.passed) ++s.passed;
+    if (!s.best || better_result(r, *s.best)) s.best = r;
+    s.latest = std::move(r);
+  }
+  return v;
+}
+
 void PatientLibrary::create_old_schema_for_test(const std::string& path, int version) {
   const QString conn = q("palpation-old-schema-" + std::to_string(++g_connections));
   {
@@ -471,6 +705,16 @@ void PatientLibrary::create_old_schema_for_test(const std::string& path, int ver
                   "'2026-01-01T00:00:00Z', 'box', 'made by schema version " + QString::number(version) + "')");
     ins.addBindValue(q(body));
     if (!ins.exec()) throw LibraryError(path + ": " + reason(ins.lastError()));
+    if (version >= 4) {
+      QSqlQuery t(db), r(db);
+      if (!t.exec("INSERT INTO trainees (name, created) VALUES ('old-trainee', '2026-01-01T00:00:00Z')"))
+        throw LibraryError(path + ": " + reason(t.lastError()));
+      if (!r.exec("INSERT INTO exam_results (trainee_id, case_name, curriculum, started, duration, sensitivity, "
+                  "false_positives, coverage_light, coverage_medium, coverage_deep, deep_reached, exam_time, passed, score) "
+                  "SELECT id, 'paper-case', '', '2026-01-01T00:10:00Z', 200, 1, 0, 0.9, 0.8, 0.5, 1, 180, 1, '{}' "
+                  "FROM trainees WHERE name = 'old-trainee'"))
+        throw LibraryError(path + ": " + reason(r.lastError()));
+    }
     db.close();
   }
   QSqlDatabase::removeDatabase(conn);

@@ -5,6 +5,7 @@
 // are migrated step by step, a newer one is refused.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -52,9 +53,43 @@ std::string english_description(const BuiltinDescription& d);
 /// A built-in patient's description as data, by its name; nothing for other names.
 std::optional<BuiltinDescription> builtin_description(const std::string& name);
 
+/// A trainee (docs/training.md, "Trainees and progress").
+struct TraineeRecord {
+  std::string name;          // unique, 1 to 100 characters, no control characters
+  std::string created;       // UTC, set by the library
+};
+
+/// One exam a trainee took: the figures an instructor compares, and the whole score.
+struct ExamResult {
+  std::int64_t id = 0;       // set by the library
+  std::string trainee;
+  std::string case_name;     // a library patient's name or "Generated case SEED"
+  std::string curriculum;    // the curriculum's name, or empty for a free exam
+  std::string started;       // UTC "YYYY-MM-DDTHH:MM:SSZ"; empty: now
+  double duration = 0;       // s, the whole session
+  std::optional<double> sensitivity;   // hits / tumours; none for a case without tumours
+  int false_positives = 0;
+  double coverage_light = 0, coverage_medium = 0, coverage_deep = 0;  // skin fractions 0..1
+  std::optional<double> deep_reached;  // fraction of tumours pressed deep over; none without tumours
+  double exam_time = 0;      // s, first contact to the end
+  bool passed = false;       // against the curriculum's criteria (false for a free exam)
+  nlohmann::json score;      // the full score (train::to_json(ExamScore)), an object
+  std::string recording;     // the session recording's path, or empty
+};
+
+/// The instructor's view of one trainee.
+struct TraineeSummary {
+  TraineeRecord trainee;
+  int exams = 0, passed = 0;
+  std::optional<ExamResult> latest;  // by start time
+  /// The best: passed before failed, then the higher sensitivity (a case without tumours
+  /// counts as 1), fewer false positives, more deep coverage, the later.
+  std::optional<ExamResult> best;
+};
+
 class PatientLibrary {
  public:
-  static constexpr int kSchemaVersion = 3;
+  static constexpr int kSchemaVersion = 4;
 
   struct Options {
     /// SQLite file path, or "postgresql://user:password@host:port/dbname" (QPSQL).
@@ -88,17 +123,38 @@ class PatientLibrary {
   void add(const PatientRecord& p);
   bool remove(const std::string& name);
 
+  // Trainees and their exam results.
+  /// Adds a trainee; throws LibraryError for a bad or taken name.
+  void add_trainee(const std::string& name);
+  std::vector<TraineeRecord> trainees() const;  // by name
+  std::optional<TraineeRecord> find_trainee(const std::string& name) const;
+  /// Removes a trainee and their results (one transaction); false when there was none.
+  bool remove_trainee(const std::string& name);
+  /// Stores a result and returns its id. Throws LibraryError naming the trainee when there
+  /// is no such trainee, naming the field for a bad value; nothing is written then.
+  std::int64_t record_result(const ExamResult& r);
+  /// A trainee's results, oldest first (by start time, then as recorded). Throws
+  /// LibraryError for an unknown trainee.
+  std::vector<ExamResult> results(const std::string& trainee) const;
+  /// Every trainee's exams, passes, latest and best result, by name.
+  std::vector<TraineeSummary> class_summary() const;
+  /// The better of two results by TraineeSummary::best's order.
+  static bool better_result(const ExamResult& a, const ExamResult& b);
+
   /// The built-in patients (several breast sizes and shapes; graded tumour cases; the
   /// paper's case).
   static std::vector<PatientRecord> builtin_patients();
 
   /// Tests: creates the tables of an earlier schema version (1 .. kSchemaVersion) in an
-  /// empty SQLite file, as that version of the program did, with one patient in it.
+  /// empty SQLite file, as that version of the program did, with one patient in it (and,
+  /// from version 4, one trainee "old-trainee" with one result).
   static void create_old_schema_for_test(const std::string& sqlite_path, int version);
 
  private:
   void exec(const std::string& sql, const char* what) const;
   void migrate();
+  /// The trainee's row id; LibraryError naming the trainee when there is none.
+  std::int64_t trainee_id(const std::string& name, const char* doing) const;
   std::string conn_, where_, opened_as_;
   bool pg_ = false;
 };

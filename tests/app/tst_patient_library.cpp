@@ -1,6 +1,7 @@
 // The patient library: created with the built-in patients, migrations from every earlier
 // schema, a newer schema refused, a locked and a corrupt database give clear errors and
-// lose nothing, PostgreSQL when a server is given (PALPATION_TEST_PG).
+// lose nothing, trainees and their exam results, PostgreSQL when a server is given
+// (PALPATION_TEST_PG).
 #include <QtTest>
 
 #include <QSqlDatabase>
@@ -126,6 +127,194 @@ class TestPatientLibrary : public QObject {
     r.mesh = "mesh";
     lib.add(r);
     QCOMPARE(lib.find("after-migration")->mesh, std::string("mesh"));
+    // Trainees and results work in a migrated library.
+    QVERIFY(lib.trainees().empty());
+    lib.add_trainee("after-migration");
+    QCOMPARE(lib.results("after-migration").size(), std::size_t(0));
+  }
+
+  // A library of the last schema without trainees, holding an imported patient's mesh:
+  // opened by this program, it gains the trainee tables and keeps every patient and mesh
+  // byte for byte.
+  void migrationToTraineesKeepsPatientsAndMeshes() {
+    const std::string p = tmpdb("v3-with-mesh.sqlite");
+    PatientLibrary::create_old_schema_for_test(p, 3);
+    const std::string mesh("\0\1\2mesh\xff", 8);
+    {
+      QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", "v3");
+      db.setDatabaseName(QString::fromStdString(p));
+      QVERIFY(db.open());
+      QSqlQuery q(db);
+      QVERIFY(q.exec("INSERT INTO patients (name, scenario, created, category, description, builtin, source) VALUES "
+                     "('scan-v3', '{\"patient\": {\"mesh\": \"scan.pmesh\"}}', '2026-02-01T00:00:00Z', 'imported', 'a scan', 0, 'scan.stl')"));
+      QSqlQuery m(db);
+      m.prepare("INSERT INTO meshes (patient_id, format, data) SELECT id, 'pmesh', ? FROM patients WHERE name = 'scan-v3'");
+      m.addBindValue(QByteArray(mesh.data(), qsizetype(mesh.size())));
+      QVERIFY(m.exec());
+      db.close();
+    }
+    QSqlDatabase::removeDatabase("v3");
+    PatientLibrary lib({p});
+    QCOMPARE(QString::fromStdString(lib.opened_as()), QString("migrated from 3"));
+    QCOMPARE(lib.schema_version(), PatientLibrary::kSchemaVersion);
+    const auto scan = lib.find("scan-v3");
+    QVERIFY(scan);
+    QCOMPARE(scan->mesh, mesh);
+    QCOMPARE(QString::fromStdString(scan->source), QString("scan.stl"));
+    QCOMPARE(QString::fromStdString(scan->created), QString("2026-02-01T00:00:00Z"));
+    QVERIFY(lib.find("old-patient"));
+    lib.add_trainee("first");
+    QCOMPARE(lib.trainees().size(), std::size_t(1));
+    // Opening it again changes nothing.
+    PatientLibrary again({p});
+    QCOMPARE(QString::fromStdString(again.opened_as()), QString("opened"));
+    QCOMPARE(again.find("scan-v3")->mesh, mesh);
+    QCOMPARE(again.trainees().size(), std::size_t(1));
+  }
+
+  void traineesAndResults() {
+    const std::string p = tmpdb("trainees.sqlite");
+    PatientLibrary lib({p, 3000, false});
+    lib.add_trainee("Bea");
+    lib.add_trainee("Al");
+    QCOMPARE(lib.trainees().size(), std::size_t(2));
+    QCOMPARE(QString::fromStdString(lib.trainees()[0].name), QString("Al"));  // by name
+    QVERIFY(!lib.trainees()[0].created.empty());
+    // Taken and bad names.
+    auto add_error = [&](const std::string& n) {
+      try {
+        lib.add_trainee(n);
+      } catch (const LibraryError& e) {
+        return QString::fromStdString(e.what());
+      }
+      return QString();
+    };
+    QVERIFY(add_error("Al").contains("trainee \"Al\" already exists"));
+    QVERIFY(add_error("").contains("must be 1 to 100 characters"));
+    QVERIFY(add_error("tab\there").contains("control characters"));
+    QVERIFY(add_error(" Al").contains("must not start or end with a space"));
+    QCOMPARE(lib.trainees().size(), std::size_t(2));
+
+    ExamResult r;
+    r.trainee = "Al";
+    r.case_name = "tumour-1.0cm-deep-firm";
+    r.curriculum = "cbe-basics";
+    r.duration = 310;
+    r.sensitivity = 0.5;
+    r.false_positives = 2;
+    r.coverage_light = 0.9;
+    r.coverage_medium = 0.7;
+    r.coverage_deep = 0.4;
+    r.deep_reached = 0.5;
+    r.exam_time = 290;
+    r.passed = false;
+    r.score = {{"sensitivity", 0.5}, {"coverage", {{"light", 0.9}}}};
+    r.recording = "/recordings/al-1";
+    // Recorded out of time order: read back by start time.
+    r.started = "2026-11-22T10:00:00Z";
+    const auto later = lib.record_result(r);
+    r.started = "2026-11-21T10:00:00Z";
+    r.case_name = "paper-case";
+    r.sensitivity = 1.0;
+    r.false_positives = 0;
+    r.passed = true;
+    const auto earlier = lib.record_result(r);
+    QVERIFY(later != earlier);
+    // A case without tumours: no sensitivity, no deep-reached fraction (NULL, not 0).
+    ExamResult none = r;
+    none.case_name = "breast-medium";
+    none.started = "2026-11-23T10:00:00Z";
+    none.sensitivity.reset();
+    none.deep_reached.reset();
+    none.false_positives = 1;
+    none.passed = false;
+    lib.record_result(none);
+    const auto v = lib.results("Al");
+    QCOMPARE(v.size(), std::size_t(3));
+    QCOMPARE(QString::fromStdString(v[0].case_name), QString("paper-case"));
+    QCOMPARE(v[0].id, earlier);
+    QCOMPARE(QString::fromStdString(v[1].case_name), QString("tumour-1.0cm-deep-firm"));
+    QCOMPARE(v[1].sensitivity.value_or(-1), 0.5);
+    QCOMPARE(v[1].false_positives, 2);
+    QCOMPARE(v[1].coverage_medium, 0.7);
+    QCOMPARE(v[1].deep_reached.value_or(-1), 0.5);
+    QCOMPARE(v[1].exam_time, 290.0);
+    QCOMPARE(v[1].duration, 310.0);
+    QCOMPARE(v[1].passed, false);
+    QCOMPARE(v[1].score, r.score);
+    QCOMPARE(QString::fromStdString(v[1].recording), QString("/recordings/al-1"));
+    QCOMPARE(QString::fromStdString(v[1].curriculum), QString("cbe-basics"));
+    QVERIFY(!v[2].sensitivity && !v[2].deep_reached);
+    QVERIFY(lib.results("Bea").empty());
+    // An empty start time is now.
+    ExamResult now = r;
+    now.trainee = "Bea";
+    now.started.clear();
+    lib.record_result(now);
+    QCOMPARE(lib.results("Bea").front().started.size(), std::size_t(20));
+
+    // Unknown trainee: a LibraryError naming them, nothing written.
+    auto result_error = [&](const ExamResult& x) {
+      try {
+        lib.record_result(x);
+      } catch (const LibraryError& e) {
+        return QString::fromStdString(e.what());
+      }
+      return QString();
+    };
+    ExamResult ghost = r;
+    ghost.trainee = "Ghost";
+    QString e = result_error(ghost);
+    QVERIFY2(e.contains(QString::fromStdString(p)) && e.contains("no trainee named \"Ghost\""), qPrintable(e));
+    e.clear();
+    try {
+      lib.results("Ghost");
+    } catch (const LibraryError& ex) {
+      e = QString::fromStdString(ex.what());
+    }
+    QVERIFY2(e.contains("no trainee named \"Ghost\""), qPrintable(e));
+    // Bad values: the field and the reason; nothing written.
+    ExamResult bad = r;
+    bad.coverage_deep = 1.5;
+    QVERIFY(result_error(bad).contains("exam result of \"Al\": coverage_deep: must be within 0..1, got 1.5"));
+    bad = r;
+    bad.started = "yesterday";
+    QVERIFY(result_error(bad).contains("started: must be UTC"));
+    bad = r;
+    bad.exam_time = std::nan("");
+    QVERIFY(result_error(bad).contains("exam_time: must be within"));
+    bad = r;
+    bad.score = nlohmann::json::array();
+    QVERIFY(result_error(bad).contains("score: must be a JSON object"));
+    QCOMPARE(lib.results("Al").size(), std::size_t(3));
+
+    // The class: each trainee's latest and best.
+    const auto cls = lib.class_summary();
+    QCOMPARE(cls.size(), std::size_t(2));
+    const TraineeSummary& al = cls[0];
+    QCOMPARE(QString::fromStdString(al.trainee.name), QString("Al"));
+    QCOMPARE(al.exams, 3);
+    QCOMPARE(al.passed, 1);
+    QCOMPARE(QString::fromStdString(al.latest->case_name), QString("breast-medium"));
+    QCOMPARE(QString::fromStdString(al.best->case_name), QString("paper-case"));  // the one passed
+    QCOMPARE(cls[1].exams, 1);
+    // Best: passed first, then sensitivity, then fewer false positives.
+    ExamResult a = r, b = r;
+    a.passed = b.passed = false;
+    a.sensitivity = 1.0;
+    b.sensitivity = 0.5;
+    QVERIFY(PatientLibrary::better_result(a, b) && !PatientLibrary::better_result(b, a));
+    b.sensitivity = 1.0;
+    b.false_positives = a.false_positives + 1;
+    QVERIFY(PatientLibrary::better_result(a, b));
+    b.passed = true;
+    QVERIFY(PatientLibrary::better_result(b, a));
+
+    // Removing a trainee removes their results only.
+    QVERIFY(lib.remove_trainee("Bea"));
+    QVERIFY(!lib.remove_trainee("Bea"));
+    QCOMPARE(lib.results("Al").size(), std::size_t(3));
+    QCOMPARE(lib.trainees().size(), std::size_t(1));
   }
 
   void newerSchemaIsRefused() {
@@ -142,7 +331,7 @@ class TestPatientLibrary : public QObject {
     QSqlDatabase::removeDatabase("bump");
     const std::string before = bytes_of(p);
     const QString e = error_opening({p});
-    QVERIFY2(e.contains(QString::fromStdString(p)) && e.contains("schema version 99, newer than this program's (3)"), qPrintable(e));
+    QVERIFY2(e.contains(QString::fromStdString(p)) && e.contains(QString("schema version 99, newer than this program's (%1)").arg(PatientLibrary::kSchemaVersion)), qPrintable(e));
     QCOMPARE(bytes_of(p), before);
   }
 
@@ -241,6 +430,26 @@ class TestPatientLibrary : public QObject {
       QCOMPARE(lib.find("pg-test")->mesh, r.mesh);
       QVERIFY(lib.find("paper-case"));
       QVERIFY(lib.remove("pg-test"));
+      // Trainees and results: NULLs, doubles and order by time on PostgreSQL too.
+      lib.remove_trainee("pg-trainee");
+      lib.add_trainee("pg-trainee");
+      ExamResult x;
+      x.trainee = "pg-trainee";
+      x.case_name = "paper-case";
+      x.started = "2026-11-22T10:00:00Z";
+      x.coverage_deep = 0.123456789;
+      x.score = {{"x", 1}};
+      lib.record_result(x);
+      x.started = "2026-11-21T10:00:00Z";
+      x.sensitivity = 0.5;
+      lib.record_result(x);
+      const auto v = lib.results("pg-trainee");
+      QCOMPARE(v.size(), std::size_t(2));
+      QCOMPARE(v[0].sensitivity.value_or(-1), 0.5);
+      QVERIFY(!v[1].sensitivity);
+      QCOMPARE(v[1].coverage_deep, 0.123456789);
+      QVERIFY(!lib.class_summary().empty());
+      QVERIFY(lib.remove_trainee("pg-trainee"));
     }
   }
 };

@@ -1,7 +1,10 @@
 // The workstation window (ui/main_window.h) with its real threads and the simulated
 // HandHIRO: panels present; adding and painting a tumour changes the stiffness of the
 // right elements in the running simulation and undo restores them; the force plots
-// receive data; trainee mode hides tumours and locks the instructor panels; the 3-D view
+// receive data; the trainee modes (guided practice, exam) hide every widget that shows the
+// tumours (panels, outlines, colour maps, the patient's name, the instructor's events),
+// returning to instructor mode asks for a confirmation, a mark carries its confidence into
+// the recording and End exam stops the marks; the 3-D view
 // shows the breast in mono and anaglyph, is presented by a native child window (no
 // QOpenGLWidget: docs/gui.md) that follows the layout, takes the mouse for palpation and the
 // brush, and is composited into window grabs (screenshots); in Japanese every menu, panel title and button
@@ -12,6 +15,12 @@
 #include <functional>
 
 #include <QAbstractButton>
+#include <QApplication>
+#include <QComboBox>
+#include <QMessageBox>
+#include <QPointer>
+#include <QStatusBar>
+#include <QTimer>
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QLabel>
@@ -23,8 +32,21 @@
 #include <QSettings>
 #include <QStandardPaths>
 #include <QUndoStack>
+#include <QChartView>
+#include <QLineSeries>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QPushButton>
+#include <QFile>
+#include <fstream>
 
 #include "force_plots.h"
+#include "progress_window.h"
+#include "score_dialog.h"
+#include "store/patient_library.h"
+#include "live/training_session.h"
+#include "review/workstation_recorder.h"
+#include "store/recording.h"
 #include "main_window.h"
 #include "panels.h"
 #include "tumour_editor.h"
@@ -78,7 +100,40 @@ class TstUiMainWindow : public QObject {
   Q_OBJECT
 
  private:
+  QTemporaryDir db_dir_;  // the session's patient library (PALPATION_DB): trainees and results
   std::unique_ptr<ui::MainWindow> w_;
+
+  // Docs' screenshots when PALPATION_DOC_SCREENSHOTS names a folder.
+  static void doc_shot(const QImage& img, const char* name) {
+    const QString dir = qEnvironmentVariable("PALPATION_DOC_SCREENSHOTS");
+    if (!dir.isEmpty()) QVERIFY(img.save(QDir(dir).filePath(QString::fromLatin1(name))));
+  }
+  // Pixels of the view in the overlay's light, medium or deep colour (+-12 per channel).
+  static double coverage_pixels(const QImage& img0) {
+    const QImage img = img0.convertToFormat(QImage::Format_RGB32);
+    double n = 0;
+    for (int y = 0; y < img.height(); ++y) {
+      const QRgb* row = reinterpret_cast<const QRgb*>(img.constScanLine(y));
+      for (int x = 0; x < img.width(); ++x)
+        for (int l = 1; l <= 3; ++l) {
+          const auto* c = ui::VtkView::kCoverageColour[l];
+          // Lit: the shade scales the colour; compare the hue by ratios to the red channel.
+          const double r = qRed(row[x]);
+          if (r < 60) continue;
+          if (std::abs(qGreen(row[x]) / r - c[1] / double(c[0])) < 0.06 && std::abs(qBlue(row[x]) / r - c[2] / double(c[0])) < 0.06) {
+            n += 1;
+            break;
+          }
+        }
+    }
+    return n / double(img.width() * img.height());
+  }
+  // The scripted hand palpates on its own (the Device panel's first mode).
+  void scripted_hand() {
+    auto* dev = w_->findChild<ui::DevicePanel*>();
+    QVERIFY(dev);
+    dev->mode->setCurrentIndex(0);
+  }
 
   void pump() { QTest::qWait(20); }
   // Waits until the simulation has applied every command posted so far.
@@ -95,6 +150,69 @@ class TstUiMainWindow : public QObject {
     QCoreApplication::sendPostedEvents(nullptr, QEvent::LanguageChange);
     return ok;
   }
+  // Answers the next modal message box with `button`; its object name goes to `seen`.
+  // The returned timer is deleted by the caller once the action has run.
+  QTimer* answer_next_box(QMessageBox::StandardButton button, QString* seen) {
+    auto* t = new QTimer(this);
+    t->setInterval(20);
+    connect(t, &QTimer::timeout, this, [t, button, seen] {
+      if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+        *seen = box->objectName();
+        t->stop();
+        box->button(button)->click();
+      }
+    });
+    t->start();
+    return t;
+  }
+  // Every text a user can read now: visible widgets' labels, buttons, list entries, combo
+  // box entries, window titles and tooltips, the status bar's message, visible menu titles
+  // and actions (with their tooltips), in every top-level window.
+  QStringList readable_texts() const {
+    QStringList out;
+    std::function<void(const QList<QAction*>&)> walk = [&](const QList<QAction*>& actions) {
+      for (QAction* a : actions) {
+        if (!a->isVisible() || a->isSeparator()) continue;
+        out << a->text() << a->toolTip();
+        if (QMenu* m = a->menu()) {
+          out << m->title();
+          walk(m->actions());
+        }
+      }
+    };
+    walk(w_->menuBar()->actions());
+    out << w_->statusBar()->currentMessage();
+    for (QWidget* top : QApplication::topLevelWidgets()) {
+      if (!top->isVisible()) continue;
+      QList<QWidget*> all = top->findChildren<QWidget*>();
+      all.prepend(top);
+      for (QWidget* x : all) {
+        if (!x->isVisible()) continue;
+        out << x->windowTitle() << x->toolTip();
+        if (auto* l = qobject_cast<QLabel*>(x)) out << l->text();
+        if (auto* b = qobject_cast<QAbstractButton*>(x)) out << b->text();
+        if (auto* c = qobject_cast<QComboBox*>(x))
+          for (int i = 0; i < c->count(); ++i) out << c->itemText(i) << c->itemData(i, Qt::ToolTipRole).toString();
+        if (auto* lw = qobject_cast<QListWidget*>(x))
+          for (int i = 0; i < lw->count(); ++i) out << lw->item(i)->text();
+        for (QAction* a : x->actions())
+          if (a->isVisible()) out << a->text() << a->toolTip();
+      }
+    }
+    out.removeAll(QString());
+    return out;
+  }
+  // Texts that give the tumours away: the word (English or Japanese), a modulus (the GUI
+  // writes every modulus in kPa), the patient's name (the phantom's names the tumour).
+  static QStringList revealing(const QStringList& texts) {
+    QStringList bad;
+    for (const QString& t : texts)
+      if (t.contains(QLatin1String("tumour"), Qt::CaseInsensitive) || t.contains(QStringLiteral("腫瘍")) ||
+          t.contains(QLatin1String("kPa")) || t.contains(QLatin1String("phantom"), Qt::CaseInsensitive))
+        bad << t;
+    return bad;
+  }
+
   // What the user reads in the menus (titles and actions, recursively), on the dock
   // titles and on the panels' buttons, in a fixed order. The Language menu is left out: it
   // names each language in itself.
@@ -124,6 +242,8 @@ class TstUiMainWindow : public QObject {
  private slots:
   void initTestCase() {
     QStandardPaths::setTestModeEnabled(true);
+    QVERIFY(db_dir_.isValid());
+    qputenv("PALPATION_DB", db_dir_.filePath(QStringLiteral("patients.sqlite")).toUtf8());
     QSettings().remove(QStringLiteral("language"));  // a failed run leaves Japanese stored
     ui::VtkView::use_default_surface_format();
     app::live::WorkstationOptions opt;
@@ -514,13 +634,336 @@ class TstUiMainWindow : public QObject {
 
   void trainee_mode() {
     w_->set_trainee(true);
+    QCOMPARE(w_->mode(), app::live::TrainingMode::GuidedPractice);
     QVERIFY(!w_->view()->tumours_visible());
-    for (auto* d : w_->instructor_docks()) QVERIFY(!d->widget()->isEnabled());
+    for (auto* d : w_->instructor_docks()) {
+      QVERIFY(d->isHidden());
+      QVERIFY(!d->toggleViewAction()->isVisible());
+    }
     QVERIFY(w_->workstation().device().mode() == app::live::HandMode::Mouse);
     QCOMPARE(w_->view()->tool(), ui::VtkView::Tool::Palpate);
     w_->set_trainee(false);
     QVERIFY(w_->view()->tumours_visible());
-    for (auto* d : w_->instructor_docks()) QVERIFY(d->widget()->isEnabled());
+    for (auto* d : w_->instructor_docks()) QVERIFY(!d->isHidden());
+    QTRY_VERIFY(w_->tumour_panel()->list->isVisible());
+  }
+
+  // In Exam mode nothing the trainee can read shows where or how stiff the tumour is: the
+  // instructor docks are hidden (not greyed), the view shows neither outlines nor a colour
+  // map, no visible text names a tumour, a modulus or the patient, and an instructor's
+  // edit made meanwhile does not reach the status bar.
+  void exam_mode_hides_the_tumours() {
+    // Instructor mode first: the same walk finds the tumour list and the moduli (the check
+    // can fail).
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Instructor);
+    w_->tumour_dock()->raise();
+    QTRY_VERIFY(w_->tumour_panel()->list->isVisible());
+    const QStringList before = revealing(readable_texts());
+    QVERIFY2(before.join(QLatin1Char('|')).contains(QLatin1String("Patient's tumour")), qPrintable(before.join(QStringLiteral(" | "))));
+    QVERIFY(w_->findChild<QLabel*>(QStringLiteral("TrainingModeLabel"))->text().startsWith(QLatin1String("Instructor")));
+
+    w_->view()->set_colour_mode(ui::VtkView::ColourMap::Stress);  // an instructor's stress map left on
+    w_->set_mode(app::live::TrainingMode::Exam);
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);
+    QVERIFY(w_->training().exam_running());
+    pump();
+    for (auto* d : w_->instructor_docks()) {
+      QVERIFY2(d->isHidden() && !d->isVisible(), qPrintable(d->objectName()));
+      QVERIFY(!d->toggleViewAction()->isVisible());
+    }
+    for (QWidget* x : {static_cast<QWidget*>(w_->tumour_panel()), static_cast<QWidget*>(w_->patient_panel()),
+                       static_cast<QWidget*>(w_->tumour_panel()->list)})
+      QVERIFY(!x->isVisible());
+    QVERIFY(!w_->view()->tumours_visible());
+    QCOMPARE(w_->view()->colour_mode(), ui::VtkView::ColourMap::None);
+    QVERIFY(!w_->workstation().stress_enabled());
+    QVERIFY(!w_->createPopupMenu());  // no dock toggles on a right click
+    const QString mode_label = w_->findChild<QLabel*>(QStringLiteral("TrainingModeLabel"))->text();
+    QVERIFY2(mode_label.startsWith(QLatin1String("Exam: case C-")), qPrintable(mode_label));
+
+    // An instructor's edit during the exam: logged and recorded, not shown.
+    const int added = w_->editor()->add_shape(app::live::TumourShape::Sphere, Eigen::Vector3d(0.12, 0.0, 0.03),
+                                              Eigen::Vector3d::Constant(0.01), 90000.0);
+    QVERIFY(added > 0);
+    pump();
+    const QStringList texts = readable_texts();
+    const QStringList bad = revealing(texts);
+    QVERIFY2(bad.isEmpty(), qPrintable(QStringLiteral("revealing in Exam mode: ") + bad.join(QStringLiteral(" | "))));
+    QVERIFY2(texts.size() > 20, qPrintable(texts.join(QStringLiteral(" | "))));  // the walk read the window
+
+    // The picture: no tumour red through an opaque skin.
+    QTest::qWait(300);
+    const ImageStats st = stats(w_->view()->grabFramebuffer());
+    qInfo("exam view: skin %.3f, tumour %.4f", st.skin_fraction, st.tumour);
+    QVERIFY(st.skin_fraction > 0.05);
+    QVERIFY2(st.tumour < 0.008, qPrintable(QString::number(st.tumour)));
+
+    w_->editor()->undo_stack()->undo();
+    QVERIFY(synced());
+  }
+
+  // Back to Instructor from a trainee mode takes the instructor's confirmation: refused,
+  // the exam goes on; confirmed, everything shows again. Into a trainee mode: no question.
+  void instructor_mode_needs_confirmation() {
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);
+    auto* to_instructor = w_->findChild<QAction*>(QStringLiteral("mode_instructor"));
+    auto* to_exam = w_->findChild<QAction*>(QStringLiteral("mode_exam"));
+    QVERIFY(to_instructor && to_exam);
+    QVERIFY(to_instructor->isVisible() && to_instructor->isEnabled());
+    QString seen;
+    QPointer<QTimer> t = answer_next_box(QMessageBox::No, &seen);
+    to_instructor->trigger();
+    delete t.data();
+    QCOMPARE(seen, QStringLiteral("ConfirmModeChange"));
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);
+    QVERIFY(to_exam->isChecked() && !to_instructor->isChecked());
+    QVERIFY(w_->training().exam_running());
+    for (auto* d : w_->instructor_docks()) QVERIFY(d->isHidden());
+
+    seen.clear();
+    t = answer_next_box(QMessageBox::Yes, &seen);
+    to_instructor->trigger();
+    delete t.data();
+    QCOMPARE(seen, QStringLiteral("ConfirmModeChange"));
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Instructor);
+    QVERIFY(!w_->training().exam_running());
+    QVERIFY(w_->view()->tumours_visible());
+    for (auto* d : w_->instructor_docks()) QVERIFY(!d->isHidden());
+    // Leaving the exam ended it: logged before the mode change.
+    const auto events = w_->workstation().events();
+    QVERIFY(events.size() >= 2);
+    QCOMPARE(events[events.size() - 2].kind, app::live::EventKind::ExamEnded);
+    QCOMPARE(events.back().kind, app::live::EventKind::Mode);
+    QCOMPARE(events.back().mode, app::live::ModeChange::Instructor);
+
+    // Instructor -> Exam asks nothing.
+    seen.clear();
+    t = answer_next_box(QMessageBox::No, &seen);
+    to_exam->trigger();
+    QTest::qWait(100);
+    delete t.data();
+    QVERIFY2(seen.isEmpty(), qPrintable(seen));
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);
+  }
+
+  // A mark carries the confidence chosen in the toolbar into the recording (the mark's data
+  // and the event log's line); End exam stops the marks and is logged.
+  void mark_carries_its_confidence() {
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);
+    auto& ws = w_->workstation();
+    const auto g = ws.geometry();
+    QVERIFY(g);
+    Eigen::Vector3d top = g->rest.front();
+    for (const auto& p : g->rest)
+      if (p.z() > top.z()) top = p;
+    auto* box = w_->confidence_box();
+    QVERIFY(box && box->isVisible() && box->isEnabled());
+    QCOMPARE(box->count(), 4);
+    box->setCurrentIndex(1);  // likely, 50 %
+    QCOMPARE(w_->training().mark_confidence(), 0.5);
+    ws.set_mouse_finger(top + Eigen::Vector3d(0, 0, 0.008 - 0.003), true);
+    QTRY_VERIFY_WITH_TIMEOUT(ws.snapshot().finger_active[device::kIndex], 10000);
+    const int n = w_->mark_lump();
+    QVERIFY(n > 0);
+    box->setCurrentIndex(3);
+    const int certain = w_->mark_lump();
+    QCOMPARE(certain, n + 1);
+
+    QSignalSpy ended(w_.get(), &ui::MainWindow::examEnded);
+    auto* end = w_->findChild<QAction*>(QStringLiteral("end_exam"));
+    QVERIFY(end && end->isVisible() && end->isEnabled());
+    QVERIFY(w_->end_exam());
+    QCOMPARE(ended.count(), 1);
+    QVERIFY(!end->isEnabled());
+    QVERIFY(!w_->end_exam());                 // once
+    QCOMPARE(w_->mark_lump(), 0);             // no marks after the end
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);  // still hidden until the instructor returns
+    QVERIFY(w_->findChild<QLabel*>(QStringLiteral("TrainingModeLabel"))->text().startsWith(QLatin1String("Exam ended")));
+    ws.set_mouse_finger(top + Eigen::Vector3d(0, 0, 0.05), false);
+
+    QTest::qWait(200);  // the event log reaches the recorder at the window's next poll
+    w_->recorder()->flush();
+    app::store::Recording rec;
+    try {
+      rec = app::store::read_recording(w_->recorder()->path());
+    } catch (const std::exception& e) {
+      QFAIL(e.what());
+    }
+    QCOMPARE(rec.header["settings"]["mode"].get<std::string>(), std::string("instructor"));
+    std::map<int, double> data, logged;
+    bool exam_mode = false, exam_ended = false;
+    for (const auto& e : rec.events) {
+      if (e["kind"] == "mark") data[e["mark"].get<int>()] = e["confidence"].get<double>();
+      if (e["kind"] != "instructor" || !e.contains("args")) continue;
+      const auto ev = app::live::event_from_json(e["event"].get<std::string>(), e["args"]);
+      QVERIFY(ev);
+      if (ev->kind == app::live::EventKind::Mark) logged[ev->mark] = ev->confidence;
+      exam_mode |= ev->kind == app::live::EventKind::Mode && ev->mode == app::live::ModeChange::Exam;
+      exam_ended |= ev->kind == app::live::EventKind::ExamEnded;
+    }
+    QVERIFY2(data.count(n) && data.count(certain) && logged.count(n) && logged.count(certain),
+             qPrintable(QStringLiteral("marks %1, %2: data %3, logged %4 of %5 events")
+                            .arg(n)
+                            .arg(certain)
+                            .arg(data.size())
+                            .arg(logged.size())
+                            .arg(rec.events.size())));
+    QCOMPARE(data[n], 0.5);
+    QCOMPARE(data[certain], 1.0);
+    QCOMPARE(logged[n], 0.5);
+    QCOMPARE(logged[certain], 1.0);
+    QVERIFY(exam_mode);
+    QVERIFY(exam_ended);
+    // A mark of a recording made before marks had a confidence reads as certain.
+    const auto old = app::live::event_from_json("mark", nlohmann::json{{"mark", 1}, {"position", {0.1, 0.0, 0.05}}});
+    QVERIFY(old);
+    QCOMPARE(old->confidence, 1.0);
+
+    QString seen;
+    QPointer<QTimer> t = answer_next_box(QMessageBox::Yes, &seen);
+    QVERIFY(w_->request_mode(app::live::TrainingMode::Instructor));
+    delete t.data();
+    QCOMPARE(seen, QStringLiteral("ConfirmModeChange"));
+    QCOMPARE(w_->mode(), app::live::TrainingMode::Instructor);
+  }
+
+  // The coverage overlay: on in Instructor mode and Guided practice when toggled (its
+  // colours reach the view's image once the hand has pressed), absent in Exam even when
+  // toggled; the figures in the status bar likewise; Clear coverage for the instructor only.
+  void coverage_overlay_follows_the_mode() {
+    using app::live::TrainingMode;
+    QCOMPARE(w_->mode(), TrainingMode::Instructor);
+    QVERIFY(w_->library());
+    auto* a = w_->coverage_action();
+    auto* clear = w_->findChild<QAction*>(QStringLiteral("clear_coverage"));
+    QVERIFY(a && clear && a->isVisible() && clear->isVisible());
+    a->setChecked(false);
+    QVERIFY(!w_->view()->coverage_visible());
+    a->setChecked(true);
+    QVERIFY(w_->view()->coverage_visible());
+    QVERIFY(w_->coverage_label()->isVisible());
+    QVERIFY2(w_->coverage_label()->text().contains(QLatin1String("deep")), qPrintable(w_->coverage_label()->text()));
+    clear->trigger();
+    QCOMPARE(w_->training().exam().coverage()[0], 0.0);
+
+    w_->set_trainee_name(QStringLiteral("Alice Example"));
+    w_->set_mode(TrainingMode::GuidedPractice);
+    QVERIFY(w_->view()->coverage_visible());
+    QVERIFY(a->isVisible() && !clear->isVisible());
+    QVERIFY(w_->coverage_label()->isVisible());
+    scripted_hand();
+    QTRY_VERIFY_WITH_TIMEOUT(w_->training().exam().coverage()[0] > 0.02, 60000);
+    QTRY_VERIFY_WITH_TIMEOUT(w_->view()->coverage_counts()[1] + w_->view()->coverage_counts()[2] + w_->view()->coverage_counts()[3] > 0,
+                             5000);
+    QTRY_VERIFY_WITH_TIMEOUT(coverage_pixels(w_->view()->grabFramebuffer()) > 0.002, 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(w_->coverage_label()->text().contains(ui::ScoreDialog::percent(w_->training().exam().coverage()[0])), 2000);
+    QTest::qWait(3000);  // more palpation for the screenshot
+    doc_shot(ui::VtkView::grab_with_views(w_.get()), "training-overlay.png");
+    a->setChecked(false);
+    QVERIFY(!w_->view()->coverage_visible());
+    QTRY_COMPARE_WITH_TIMEOUT(coverage_pixels(w_->view()->grabFramebuffer()), 0.0, 5000);
+    a->setChecked(true);
+
+    // Exam: leaving the practice ends it (its result stored), the overlay goes, toggled or not.
+    w_->set_mode(TrainingMode::Exam);
+    QVERIFY(!w_->score_dialog() || !w_->score_dialog()->isVisible());  // the practice's score closed with the new exam
+    QVERIFY(a->isChecked());
+    QVERIFY(!a->isVisible());
+    QVERIFY(!w_->view()->coverage_visible());
+    QVERIFY(!w_->coverage_label()->isVisible());
+    a->setChecked(false);
+    a->setChecked(true);
+    scripted_hand();
+    QTRY_VERIFY_WITH_TIMEOUT(w_->training().exam().coverage()[0] > 0.02, 60000);
+    QTest::qWait(600);  // several refreshes of the coverage
+    QVERIFY(!w_->view()->coverage_visible());
+    QVERIFY(!w_->coverage_label()->isVisible());
+    QCOMPARE(coverage_pixels(w_->view()->grabFramebuffer()), 0.0);
+  }
+
+  // The end of the exam shows its score (the figures of TrainingSession::last_score), Save
+  // report writes the report into the folder chosen, the trainee's result is in the library
+  // and the instructor's progress window lists both sessions.
+  void exam_end_shows_the_score() {
+    using app::live::TrainingMode;
+    QCOMPARE(w_->mode(), TrainingMode::Exam);
+    int mark = 0;  // QTRY evaluates its condition again after success: mark once
+    QTRY_VERIFY_WITH_TIMEOUT(mark > 0 || (mark = w_->mark_lump()) > 0, 20000);
+    QCOMPARE(w_->training().exam().marks().size(), std::size_t(1));
+    QVERIFY(w_->end_exam());
+    ui::ScoreDialog* d = w_->score_dialog();
+    QVERIFY(d);
+    QTRY_VERIFY(d->isVisible());
+    QVERIFY(w_->training().last_score());
+    const auto& s = w_->training().last_score()->score;
+    QCOMPARE(s.tumours.size(), std::size_t(1));  // the default patient's
+    QCOMPARE(s.marks.size(), std::size_t(1));
+    QCOMPARE(d->figure(QStringLiteral("found")), QStringLiteral("%1 of 1").arg(s.hits));
+    QCOMPARE(d->figure(QStringLiteral("false_positives")), QString::number(s.false_positives));
+    QCOMPARE(s.hits + s.false_positives, 1);
+    QCOMPARE(d->figure(QStringLiteral("sensitivity")), ui::ScoreDialog::percent(s.sensitivity));
+    QCOMPARE(d->figure(QStringLiteral("ppv")), ui::ScoreDialog::percent(s.ppv));
+    QCOMPARE(d->figure(QStringLiteral("time")), QStringLiteral("%1 s").arg(s.exam_time, 0, 'f', 0));
+    QCOMPARE(d->figure(QStringLiteral("coverage")), QStringLiteral("light %1, medium %2, deep %3")
+                                                        .arg(ui::ScoreDialog::percent(s.coverage[0]), ui::ScoreDialog::percent(s.coverage[1]),
+                                                             ui::ScoreDialog::percent(s.coverage[2])));
+    QVERIFY(s.coverage[0] > 0.02);
+    QCOMPARE(d->figure(QStringLiteral("strips")), QString::number(s.pattern.strips));
+    QCOMPARE(d->figure(QStringLiteral("deep")),
+             QStringLiteral("tumour 1: %1").arg(s.tumours[0].deep_reached ? QStringLiteral("yes") : QStringLiteral("no")));
+    QVERIFY(!s.advice.empty());
+    QVERIFY(d->figure(QStringLiteral("advice")).contains(QString::fromStdString(s.advice.front())));
+    QVERIFY(d->has_coverage_image());
+    doc_shot(d->grab().toImage(), "training-score.png");
+
+    // Save report, into a folder set here (the button asks otherwise).
+    QTemporaryDir out;
+    QVERIFY(out.isValid());
+    const QString dir = out.filePath(QStringLiteral("report"));
+    d->set_report_folder(dir);
+    QSignalSpy saved(d, &ui::ScoreDialog::reportSaved);
+    d->save_button()->click();
+    QCOMPARE(saved.count(), 1);
+    for (const char* f : {"report.html", "report.pdf", "score.json", "coverage.png"})
+      QVERIFY2(QFile::exists(QDir(dir).filePath(QString::fromLatin1(f))), f);
+    std::ifstream js(QDir(dir).filePath(QStringLiteral("score.json")).toStdString());
+    const auto j = nlohmann::json::parse(js);
+    QVERIFY2(j.dump().find(app::live::anonymous_case_code(w_->patient_panel()->chosen().toStdString())) != std::string::npos,
+             j.dump().substr(0, 400).c_str());
+
+    // The library: the practice's and the exam's results, the exam's figures last.
+    const auto results = w_->library()->results("Alice Example");
+    QCOMPARE(results.size(), std::size_t(2));
+    QCOMPARE(results.back().false_positives, s.false_positives);
+    QCOMPARE(results.back().coverage_light, s.coverage[0]);
+    QCOMPARE(results.back().case_name, w_->patient_panel()->chosen().toStdString());
+    QVERIFY(!w_->open_progress_window());  // a trainee mode: no progress window
+
+    // Back with the instructor: the score closes with nothing, the progress window lists
+    // both sessions.
+    w_->set_mode(TrainingMode::Instructor);
+    QVERIFY(w_->trainee_name().isEmpty());
+    auto* p = w_->open_progress_window();
+    QVERIFY(p);
+    QVERIFY(p->isVisible());
+    QVERIFY(p->select_trainee(QStringLiteral("Alice Example")));
+    QCOMPARE(p->sessions_table()->rowCount(), 2);
+    QCOMPARE(p->sessions_table()->item(1, 3)->text(), QString::number(s.false_positives));
+    QCOMPARE(p->sessions_table()->item(1, 4)->text(), ui::ScoreDialog::percent(s.coverage[0]));
+    QCOMPARE(p->charts().size(), 4);
+    auto* cov = p->charts()[2]->chart();
+    QCOMPARE(cov->series().size(), 3);
+    QCOMPARE(qobject_cast<QLineSeries*>(cov->series()[0])->count(), 2);
+    QCOMPARE(p->class_table()->rowCount() >= 1, true);
+    bool listed = false;
+    for (int r = 0; r < p->class_table()->rowCount(); ++r)
+      if (p->class_table()->item(r, 0)->text() == QStringLiteral("Alice Example")) listed = p->class_table()->item(r, 1)->text() == QStringLiteral("2");
+    QVERIFY(listed);
+    QTest::qWait(300);
+    doc_shot(p->grab().toImage(), "training-progress.png");
+    p->close();
+    if (w_->score_dialog()) w_->score_dialog()->close();
+    QTest::qWait(50);
   }
 
   // The Japanese catalogue (translations/palpation_ja.ts, compiled into :/i18n/palpation_ja.qm

@@ -1,0 +1,141 @@
+#include "train/score_recording.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "phantom.h"
+#include "scenario.h"
+#include "simulation.h"
+
+namespace palpation::app::train {
+
+using nlohmann::json;
+
+namespace {
+
+std::string fmt_m(const Eigen::Vector3d& p) {
+  char b[96];
+  std::snprintf(b, sizeof b, "(%.3f, %.3f, %.3f) m", p.x(), p.y(), p.z());
+  return b;
+}
+
+// The fingertip samples are thinned to one per finger every 4 ms: a pad moves well under
+// a millimetre in that time at palpation speeds (a few cm/s), below the skin mesh's
+// resolution, and a 5-minute recording scores in a fraction of a second.
+constexpr double kSamplePeriod = 0.004;
+constexpr double kPlotPeriod = 0.02;
+
+}  // namespace
+
+ScoredExam score_recording(const store::Recording& rec, const PressureThresholds& thresholds) {
+  if (!rec.complete)
+    throw ScoreError(rec.path + ": the recording was cut short (" +
+                     (rec.interrupted.empty() ? std::string("no end chunk") : rec.interrupted) +
+                     "): recover it first (palpation replay " + rec.path + " --recover), then score it");
+  if (!rec.header.contains("scenario") || !rec.header["scenario"].is_object())
+    throw ScoreError(rec.path + ": header: no scenario (the patient cannot be rebuilt)");
+  sim::Scenario sc;
+  std::uint64_t swap_index = 0;
+  bool swapped = false;
+  try {
+    sc = sim::parse_scenario(rec.header["scenario"].dump(), rec.path + ": header scenario");
+    // The exam is on the last patient the session loaded.
+    for (const json& e : rec.events)
+      if (e.is_object() && e.value("kind", "") == "parameter" && e.value("command", "") == "patient" && e.contains("scenario") &&
+          e.contains("index") && e["index"].is_number_unsigned()) {
+        sc = sim::parse_scenario(e["scenario"].dump(), rec.path + ": patient change");
+        swap_index = e["index"].get<std::uint64_t>();
+        swapped = true;
+      }
+  } catch (const sim::ScenarioError& e) {
+    throw ScoreError(e.what());
+  }
+  ScoredExam out;
+  out.patient = sc.patient.mesh.empty() ? sc.patient.phantom : sc.patient.mesh;
+  auto model = std::make_shared<const sim::Model>(sim::build_scenario_model(sc, sim::patient_mesh(sc)));
+  // The moduli at the end: the scenario's inclusions and the instructor's edits since.
+  std::vector<double> young = model->materials.young;
+  for (const json& e : rec.events) {
+    if (!e.is_object() || e.value("kind", "") != "parameter" || e.value("command", "") != "young" || !e.contains("changes") ||
+        !e["changes"].is_array())
+      continue;
+    if (swapped && (!e.contains("index") || !e["index"].is_number_unsigned() || e["index"].get<std::uint64_t>() < swap_index))
+      continue;
+    for (const auto& c : e["changes"])
+      if (c.is_array() && c.size() == 2 && c[0].is_number_integer() && c[1].is_number()) {
+        const long long el = c[0].get<long long>();
+        if (el >= 0 && el < static_cast<long long>(young.size())) young[std::size_t(el)] = c[1].get<double>();
+      }
+  }
+  auto skin = std::make_shared<const SkinMap>(build_skin_map(*model));
+  out.skin = skin;
+  ExamTracker tracker(skin, thresholds);
+  const int nf = std::max(0, rec.fingers);
+  std::vector<double> last(std::size_t(nf), -1e300);
+  out.plot_force.assign(std::size_t(nf), {});
+  double last_plot = -1e300;
+  auto sample = [&](double t, int k, const Eigen::Vector3d& x, double r, double f) {
+    if (t - last[std::size_t(k)] < kSamplePeriod) return;
+    last[std::size_t(k)] = t;
+    tracker.add({t, k, x, r, f});
+    ++out.samples;
+  };
+  if (!rec.steps.empty()) {
+    for (const store::RecordedStep& st : rec.steps) {
+      if (swapped && st.commands_applied <= swap_index) continue;
+      for (int k = 0; k < nf && k < int(st.fingers.size()); ++k) {
+        const auto& fi = st.fingers[std::size_t(k)];
+        if (fi.active) sample(st.t, k, fi.x, fi.radius, fi.f.norm());
+      }
+      if (st.t - last_plot >= kPlotPeriod) {
+        last_plot = st.t;
+        out.plot_t.push_back(st.t);
+        for (int k = 0; k < nf; ++k)
+          out.plot_force[std::size_t(k)].push_back(k < int(st.fingers.size()) ? st.fingers[std::size_t(k)].f.norm() : 0.0);
+      }
+    }
+  } else {
+    for (std::size_t i = 0; i < rec.ticks(); ++i) {
+      const double t = rec.t[i];
+      for (int k = 0; k < nf; ++k) {
+        const double r = k < int(sc.fingers.size()) ? sc.fingers[std::size_t(k)].radius : 0.008;
+        sample(t, k, rec.x[i * std::size_t(nf) + std::size_t(k)], r, rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
+      }
+      if (t - last_plot >= kPlotPeriod) {
+        last_plot = t;
+        out.plot_t.push_back(t);
+        for (int k = 0; k < nf; ++k) out.plot_force[std::size_t(k)].push_back(rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
+      }
+    }
+  }
+  // Marks: the session's mark events and the scripted trainee's.
+  std::vector<Mark> marks;
+  for (const json& e : rec.events) {
+    if (!e.is_object() || e.value("kind", "") != "mark" || !e.contains("t") || !e["t"].is_number()) continue;
+    const json& p = e.contains("position") ? e["position"] : json();
+    if (!(p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() && p[2].is_number())) continue;
+    Mark m;
+    m.t = e["t"].get<double>();
+    m.position = Eigen::Vector3d(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    if (e.contains("confidence") && e["confidence"].is_number()) m.confidence = std::clamp(e["confidence"].get<double>(), 0.0, 1.0);
+    marks.push_back(m);
+  }
+  for (const sim::ScenarioMark& sm : sc.marks) marks.push_back({sm.t, sm.position, sm.confidence});
+  for (std::size_t i = 0; i < marks.size(); ++i) {
+    const double d = skin->distance(marks[i].position);
+    if (!marks[i].position.allFinite() || !(d <= kMarkMaxDistance))
+      throw ScoreError(rec.path + ": mark " + std::to_string(i + 1) + " at t = " + std::to_string(marks[i].t) + " s, " +
+                       fmt_m(marks[i].position) + ": outside the body (" + std::to_string(int(std::lround(d * 1000))) +
+                       " mm from the skin; at most " + std::to_string(int(kMarkMaxDistance * 1000)) + " mm)");
+  }
+  const double pad = sc.fingers.empty() ? kPadRadius : sc.fingers.front().radius;
+  const auto tumours = find_tumours(model->rest, model->tets, young, sc.young_modulus, *skin, pad);
+  double duration = rec.duration();
+  if (!rec.steps.empty()) duration = std::max(duration, rec.steps.back().t);
+  out.score = score_exam(tracker, tumours, std::move(marks), duration);
+  out.face_level = tracker.face_level();
+  return out;
+}
+
+}  // namespace palpation::app::train

@@ -1,0 +1,42 @@
+// An exam scored from a recording (`palpation score`, the review): the patient rebuilt
+// from the recording's scenario, the fingertips from its steps (the simulation's own
+// spheres and forces) or, for recordings without steps, its 1 kHz ticks, the marks from
+// its mark events and its scenario's "marks". Qt-free.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "store/recording.h"
+#include "train/exam.h"
+
+namespace palpation::app::train {
+
+/// Input the scorer refuses: what() names the recording and what is wrong.
+class ScoreError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Marks further than this from the skin are outside the body (a mark is placed on the
+/// skin; 2 cm allows for a fingertip's radius and a pressed-in skin).
+inline constexpr double kMarkMaxDistance = 0.02;
+
+struct ScoredExam {
+  ExamScore score;
+  std::shared_ptr<const SkinMap> skin;
+  std::vector<unsigned char> face_level;          // highest level on each skin face
+  /// |force| on each finger against time, the simulation's (steps) or as sent (ticks),
+  /// decimated to 50 Hz: the report's force plot.
+  std::vector<double> plot_t;
+  std::vector<std::vector<double>> plot_force;     // per finger
+  std::string patient;                             // what the recording's scenario calls the patient
+  int samples = 0;                                 // fingertip samples scored
+};
+
+/// Scores a recording. Throws ScoreError for one cut short (no end chunk: recover it first),
+/// a scenario that cannot be read, or marks outside the body.
+ScoredExam score_recording(const store::Recording& rec, const PressureThresholds& thresholds = {});
+}  // namespace palpation::app::train
