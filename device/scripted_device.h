@@ -48,6 +48,8 @@ class ScriptedDevice : public HapticDevice {
   /// Fills the state's clock, sequence and link fields of a read at now_ns; returns
   /// whether the device is connected.
   bool stamp(std::int64_t now_ns, DeviceState& state);
+  /// The script's clock starts again at the next read() (from the reading thread).
+  void restart_clock() { started_ = false; }
 
  private:
   HandScript script_;

@@ -10,6 +10,7 @@ bool SimulatedHand::read(std::int64_t now_ns, DeviceState& state) {
   const double dt = prev_ns_ > 0 ? double(now_ns - prev_ns_) * 1e-9 : 0.0;
   prev_ns_ = now_ns;
   if (mode() == Mode::Script) {
+    if (restart_.exchange(false, std::memory_order_acq_rel)) restart_clock();
     const bool ok = ScriptedDevice::read(now_ns, state);
     for (int f = 0; f < kMaxFingers; ++f)
       if (state.fingers[f].present) last_pos_[f] = state.fingers[f].position;

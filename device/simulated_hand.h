@@ -28,9 +28,14 @@ class SimulatedHand : public ScriptedDevice {
     std::array<bool, kMaxFingers> present{};
   };
   void set_targets(const Targets& t) { targets_.publish(t); }
+  /// Any thread: the script starts over at the next read (the hand begins its palpation
+  /// when the simulation is ready, not while a patient loads: a fingertip that is already
+  /// deep below the skin at the body's first step is pulled in).
+  void restart_script() { restart_.store(true, std::memory_order_release); }
 
  private:
   std::atomic<int> mode_{0};
+  std::atomic<bool> restart_{false};
   TripleBuffer<Targets> targets_;
   std::array<Vec3, kMaxFingers> last_pos_{};
   std::int64_t prev_ns_ = 0;

@@ -662,469 +662,534 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="139"/>
+        <location filename="../ui/main_window.cpp" line="145"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation>マウス触診: 乳房の上で動かします。ホイールまたは下向きのドラッグで指先を押し込みます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="149"/>
+        <location filename="../ui/main_window.cpp" line="155"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation>その形状の中に要素がありません。追加されませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="226"/>
+        <location filename="../ui/main_window.cpp" line="234"/>
         <source>This session is not recorded: %1</source>
         <translation>このセッションは記録されていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="228"/>
+        <location filename="../ui/main_window.cpp" line="236"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation>中断された記録を復元しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="230"/>
+        <location filename="../ui/main_window.cpp" line="238"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation>患者ライブラリを使えません（内蔵ファントムのみ）: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="270"/>
+        <location filename="../ui/main_window.cpp" line="278"/>
         <source>no patient library is open: %1</source>
         <translation>患者ライブラリが開かれていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="305"/>
+        <location filename="../ui/main_window.cpp" line="313"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation>乳房に触れている指先がありません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="305"/>
+        <location filename="../ui/main_window.cpp" line="313"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation>このセッションは記録されていません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="345"/>
+        <location filename="../ui/main_window.cpp" line="355"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation>患者「%1」を保存しました。選んで「患者を読み込む」を押すと触診できます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="358"/>
+        <location filename="../ui/main_window.cpp" line="368"/>
         <source>Open a session recording</source>
         <translation>セッションの記録を開く</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="359"/>
+        <location filename="../ui/main_window.cpp" line="369"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation>セッションの記録 (*.palrec *.prec);;すべてのファイル (*)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="362"/>
+        <location filename="../ui/main_window.cpp" line="372"/>
         <source>Cannot open the recording</source>
         <translation>記録を開けません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="366"/>
+        <location filename="../ui/main_window.cpp" line="376"/>
         <source>Save screenshot</source>
         <translation>スクリーンショットを保存</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="366"/>
+        <location filename="../ui/main_window.cpp" line="376"/>
         <source>PNG images (*.png)</source>
         <translation>PNG 画像 (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="396"/>
-        <location filename="../ui/main_window.cpp" line="531"/>
+        <location filename="../ui/main_window.cpp" line="406"/>
+        <location filename="../ui/main_window.cpp" line="566"/>
         <source>Stereo</source>
         <translation>立体視</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="406"/>
+        <location filename="../ui/main_window.cpp" line="416"/>
         <source>Eye separation</source>
         <translation>眼間距離</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="406"/>
+        <location filename="../ui/main_window.cpp" line="416"/>
         <source>Eye angle (degrees):</source>
         <translation>視差角（度）:</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="469"/>
+        <location filename="../ui/main_window.cpp" line="495"/>
         <source>End the exam now? No more marks can be made after it.</source>
         <translation>試験を今終了しますか？終了後はマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="517"/>
+        <location filename="../ui/main_window.cpp" line="552"/>
         <source>Palpation Trainer</source>
         <translation>触診トレーナー</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="518"/>
+        <location filename="../ui/main_window.cpp" line="553"/>
         <source>&amp;File</source>
         <translation>ファイル(&amp;F)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="519"/>
+        <location filename="../ui/main_window.cpp" line="554"/>
         <source>&amp;Open recording...</source>
         <translation>記録を開く(&amp;O)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="520"/>
+        <location filename="../ui/main_window.cpp" line="555"/>
         <source>Mark lump here (M)</source>
         <translation>しこりをマーク (M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="521"/>
+        <location filename="../ui/main_window.cpp" line="556"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation>研修生:「ここにしこりがある」― 人差し指の指先の位置を記録にマークします</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="522"/>
+        <location filename="../ui/main_window.cpp" line="557"/>
         <source>Save &amp;screenshot...</source>
         <translation>スクリーンショットを保存(&amp;S)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="523"/>
+        <location filename="../ui/main_window.cpp" line="558"/>
         <source>&amp;Quit</source>
         <translation>終了(&amp;Q)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="524"/>
+        <location filename="../ui/main_window.cpp" line="559"/>
         <source>&amp;Edit</source>
         <translation>編集(&amp;E)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="525"/>
+        <location filename="../ui/main_window.cpp" line="560"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="526"/>
+        <location filename="../ui/main_window.cpp" line="561"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="527"/>
+        <location filename="../ui/main_window.cpp" line="562"/>
         <source>&amp;View</source>
         <translation>表示(&amp;V)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="528"/>
+        <location filename="../ui/main_window.cpp" line="563"/>
         <source>Camera</source>
         <translation>カメラ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="529"/>
+        <location filename="../ui/main_window.cpp" line="564"/>
         <source>Oblique</source>
         <translation>斜め</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="529"/>
+        <location filename="../ui/main_window.cpp" line="564"/>
         <source>Top</source>
         <translation>上</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="529"/>
+        <location filename="../ui/main_window.cpp" line="564"/>
         <source>Side</source>
         <translation>側面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="529"/>
+        <location filename="../ui/main_window.cpp" line="564"/>
         <source>Front</source>
         <translation>正面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="532"/>
+        <location filename="../ui/main_window.cpp" line="567"/>
         <source>Mono</source>
         <translation>モノ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="532"/>
+        <location filename="../ui/main_window.cpp" line="567"/>
         <source>Anaglyph (red/cyan)</source>
         <translation>アナグリフ（赤/シアン）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="532"/>
+        <location filename="../ui/main_window.cpp" line="567"/>
         <source>Side by side</source>
         <translation>サイドバイサイド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="532"/>
+        <location filename="../ui/main_window.cpp" line="567"/>
         <source>Interlaced</source>
         <translation>インターレース</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="532"/>
+        <location filename="../ui/main_window.cpp" line="567"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation>クアッドバッファ（シャッターメガネ）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="534"/>
+        <location filename="../ui/main_window.cpp" line="569"/>
         <source>Eye separation...</source>
         <translation>眼間距離...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="535"/>
+        <location filename="../ui/main_window.cpp" line="570"/>
         <source>Mirrored (half-mirror display)</source>
         <translation>鏡像（ハーフミラー表示）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="536"/>
+        <location filename="../ui/main_window.cpp" line="571"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation>高速描画（ソフトウェア OpenGL）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="537"/>
+        <location filename="../ui/main_window.cpp" line="572"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation>軽い 3D 表示：単色の背景、皮膚のハイライトなし、陰影なしの胸壁。コンピューターが OpenGL をソフトウェアで描画するときは自動でオンになります。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="539"/>
+        <location filename="../ui/main_window.cpp" line="574"/>
         <source>Displacement colour map</source>
         <translation>変位カラーマップ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="540"/>
+        <location filename="../ui/main_window.cpp" line="575"/>
         <source>Stress colour map (von Mises)</source>
         <translation>応力カラーマップ（ミーゼス）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="541"/>
+        <location filename="../ui/main_window.cpp" line="576"/>
         <source>Show tumours</source>
         <translation>腫瘍を表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="542"/>
+        <location filename="../ui/main_window.cpp" line="577"/>
         <source>Panels</source>
         <translation>パネル</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="543"/>
+        <location filename="../ui/main_window.cpp" line="578"/>
         <source>&amp;Mode</source>
         <translation>モード(&amp;M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="544"/>
+        <location filename="../ui/main_window.cpp" line="579"/>
         <source>Instructor mode</source>
         <translation>指導者モード</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="556"/>
+        <location filename="../ui/main_window.cpp" line="588"/>
+        <source>Coverage overlay</source>
+        <translation>触診範囲の表示</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="589"/>
+        <source>Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. Not shown in an exam.</source>
+        <translation>皮膚を到達した最大の圧で色分けします：黄は軽い圧、橙は中程度の圧、赤は深い圧。試験中は表示しません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="591"/>
+        <source>Clear coverage</source>
+        <translation>触診範囲を消去</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="592"/>
+        <source>Trainee progress...</source>
+        <translation>研修生の進捗...</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="593"/>
+        <source>Each trainee&apos;s exams over time and the class&apos;s results</source>
+        <translation>各研修生の試験の推移とクラスの成績</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="597"/>
         <source>Tools</source>
         <translation>ツール</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="557"/>
+        <location filename="../ui/main_window.cpp" line="598"/>
+        <source>Coverage</source>
+        <translation>触診範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="599"/>
         <source>Camera / scripted hand</source>
         <translation>カメラ / 自動触診ハンド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="558"/>
+        <location filename="../ui/main_window.cpp" line="600"/>
         <source>Palpate with the mouse</source>
         <translation>マウスで触診</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="753"/>
+        <location filename="../ui/main_window.cpp" line="674"/>
+        <source>Trainee</source>
+        <translation>研修生</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="675"/>
+        <source>Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored).</source>
+        <translation>研修生は誰ですか？名前を選ぶか新しい名前を入力してください（空欄：匿名、結果は保存されません）。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="693"/>
+        <source>Trainee not added to the library: %1</source>
+        <translation>研修生をライブラリに追加できませんでした：%1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="704"/>
+        <source>Patient library not available: %1</source>
+        <translation>患者ライブラリを使用できません：%1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="737"/>
+        <source>The exam&apos;s result is not stored: %1</source>
+        <translation>試験の結果は保存されていません：%1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="763"/>
+        <source>Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7</source>
+        <translation>触診範囲：%1 なし %2 軽い圧 %3 %4 中程度 %5 %6 深い圧 %7</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="845"/>
+        <source>, trainee %1</source>
+        <translation>、研修生 %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="916"/>
         <source>Not recording</source>
         <translation>記録していません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="754"/>
+        <location filename="../ui/main_window.cpp" line="917"/>
         <source>Recording stopped: %1</source>
         <translation>記録が停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="755"/>
+        <location filename="../ui/main_window.cpp" line="918"/>
         <source>Recording (%1 marks)</source>
         <translation>記録中（マーク %1 件）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="124"/>
-        <location filename="../ui/main_window.cpp" line="559"/>
+        <location filename="../ui/main_window.cpp" line="130"/>
+        <location filename="../ui/main_window.cpp" line="601"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="299"/>
+        <location filename="../ui/main_window.cpp" line="307"/>
         <source>The exam has ended: nothing marked.</source>
         <translation>試験は終了しています。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="312"/>
+        <location filename="../ui/main_window.cpp" line="322"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
         <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm、確信度 %5 % を記録しました。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="545"/>
+        <location filename="../ui/main_window.cpp" line="580"/>
         <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
         <translation>指導者の表示: 答えを含むすべてのパネル。研修生のモードから戻るときは確認を求めます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="547"/>
+        <location filename="../ui/main_window.cpp" line="582"/>
         <source>Guided practice</source>
         <translation>ガイド付き練習</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="548"/>
+        <location filename="../ui/main_window.cpp" line="583"/>
         <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
         <translation>研修生: 触診してマークします。指導者のパネルは表示されません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="549"/>
+        <location filename="../ui/main_window.cpp" line="584"/>
         <source>Exam</source>
         <translation>試験</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="550"/>
+        <location filename="../ui/main_window.cpp" line="585"/>
         <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
         <translation>研修生の試験: 触診してマークします。試験が終わるまで答えは表示されません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="551"/>
+        <location filename="../ui/main_window.cpp" line="586"/>
         <source>End exam</source>
         <translation>試験を終了</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="552"/>
+        <location filename="../ui/main_window.cpp" line="587"/>
         <source>Stops the exam: no more marks.</source>
         <translation>試験を終了します。以後はマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="553"/>
+        <location filename="../ui/main_window.cpp" line="594"/>
         <source>Possible (25 %)</source>
         <translation>可能性あり (25 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="553"/>
+        <location filename="../ui/main_window.cpp" line="594"/>
         <source>Likely (50 %)</source>
         <translation>たぶん (50 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="553"/>
+        <location filename="../ui/main_window.cpp" line="594"/>
         <source>Probable (75 %)</source>
         <translation>おそらく (75 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="553"/>
+        <location filename="../ui/main_window.cpp" line="594"/>
         <source>Certain (100 %)</source>
         <translation>確実 (100 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="555"/>
+        <location filename="../ui/main_window.cpp" line="596"/>
         <source>How sure you are of the next mark</source>
         <translation>次のマークの確信度</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="560"/>
+        <location filename="../ui/main_window.cpp" line="602"/>
         <source>Tumours</source>
         <translation>腫瘍</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="561"/>
+        <location filename="../ui/main_window.cpp" line="603"/>
         <source>Forces</source>
         <translation>力</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="562"/>
+        <location filename="../ui/main_window.cpp" line="604"/>
         <source>Simulation</source>
         <translation>シミュレーション</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="563"/>
+        <location filename="../ui/main_window.cpp" line="605"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="600"/>
+        <location filename="../ui/main_window.cpp" line="644"/>
         <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
         <translation>指導者モードに戻りますか？研修生のセッションを終了し、答え、患者の詳細、すべてのパネルを表示します。指導者専用の操作です。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
+        <location filename="../ui/main_window.cpp" line="646"/>
         <source>Leave the exam? This ends it: no more marks can be made in it.</source>
         <translation>試験を抜けますか？試験は終了し、この試験ではもうマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="603"/>
+        <location filename="../ui/main_window.cpp" line="647"/>
         <source>Change of mode</source>
         <translation>モードの切り替え</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="685"/>
+        <location filename="../ui/main_window.cpp" line="847"/>
         <source>Instructor: %1</source>
         <translation>指導者: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="687"/>
+        <location filename="../ui/main_window.cpp" line="849"/>
         <source>Guided practice: case %1</source>
         <translation>ガイド付き練習: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="687"/>
+        <location filename="../ui/main_window.cpp" line="849"/>
         <source>Guided practice ended: case %1</source>
         <translation>ガイド付き練習終了: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="688"/>
+        <location filename="../ui/main_window.cpp" line="850"/>
         <source>Exam: case %1</source>
         <translation>試験: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="688"/>
+        <location filename="../ui/main_window.cpp" line="850"/>
         <source>Exam ended: case %1</source>
         <translation>試験終了: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="702"/>
+        <location filename="../ui/main_window.cpp" line="864"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation>節点 %1、四面体 %2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="743"/>
+        <location filename="../ui/main_window.cpp" line="906"/>
         <source>Backend: %1</source>
         <translation>バックエンド: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="743"/>
+        <location filename="../ui/main_window.cpp" line="906"/>
         <source>Backend: %1 (fallback)</source>
         <translation>バックエンド: %1（フォールバック）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="745"/>
+        <location filename="../ui/main_window.cpp" line="908"/>
         <source>Simulation: %1 Hz</source>
         <translation>シミュレーション: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="746"/>
+        <location filename="../ui/main_window.cpp" line="909"/>
         <source>Haptic: %1 Hz</source>
         <translation>力覚: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="748"/>
+        <location filename="../ui/main_window.cpp" line="911"/>
         <source>mouse</source>
         <translation>マウス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="749"/>
+        <location filename="../ui/main_window.cpp" line="912"/>
         <source>simulated HandHIRO</source>
         <translation>シミュレーションの HandHIRO</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="750"/>
+        <location filename="../ui/main_window.cpp" line="913"/>
         <source>Device: %1, %2</source>
         <translation>デバイス: %1、%2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="750"/>
+        <location filename="../ui/main_window.cpp" line="913"/>
         <source>connected</source>
         <translation>接続中</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="750"/>
+        <location filename="../ui/main_window.cpp" line="913"/>
         <source>not connected</source>
         <translation>未接続</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="751"/>
+        <location filename="../ui/main_window.cpp" line="914"/>
         <source>View: %1 fps</source>
         <translation>表示: %1 fps</translation>
     </message>
@@ -1205,6 +1270,156 @@
         <location filename="../ui/panels.cpp" line="140"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation>ファントム患者のみ。取り込んだスキャンはメッシュ生成時の解像度のままです。</translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::ProgressWindow</name>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="83"/>
+        <source>Trainee progress</source>
+        <translation>研修生の進捗</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <source>Date</source>
+        <translation>日時</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <source>Case</source>
+        <translation>症例</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <location filename="../ui/progress_window.cpp" line="194"/>
+        <source>Sensitivity</source>
+        <translation>感度</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <location filename="../ui/progress_window.cpp" line="195"/>
+        <source>False positives</source>
+        <translation>偽陽性</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <location filename="../ui/progress_window.cpp" line="197"/>
+        <source>Light</source>
+        <translation>軽い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <location filename="../ui/progress_window.cpp" line="197"/>
+        <source>Medium</source>
+        <translation>中程度</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="89"/>
+        <location filename="../ui/progress_window.cpp" line="197"/>
+        <source>Deep</source>
+        <translation>深い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="90"/>
+        <source>Deep over tumours</source>
+        <translation>腫瘍上の深い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="90"/>
+        <source>Exam time (s)</source>
+        <translation>試験時間（秒）</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="90"/>
+        <location filename="../ui/progress_window.cpp" line="113"/>
+        <source>Passed</source>
+        <translation>合格</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="106"/>
+        <source>Trainee:</source>
+        <translation>研修生：</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="111"/>
+        <location filename="../ui/progress_window.cpp" line="113"/>
+        <source>Trainee</source>
+        <translation>研修生</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="113"/>
+        <source>Exams</source>
+        <translation>試験数</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="113"/>
+        <source>Latest</source>
+        <translation>最新</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="113"/>
+        <source>Latest sensitivity</source>
+        <translation>最新の感度</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="113"/>
+        <source>Latest false positives</source>
+        <translation>最新の偽陽性</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="114"/>
+        <source>Latest deep coverage</source>
+        <translation>最新の深い圧の範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="114"/>
+        <source>Best</source>
+        <translation>最良</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="114"/>
+        <source>Best sensitivity</source>
+        <translation>最良の感度</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="114"/>
+        <source>Best false positives</source>
+        <translation>最良の偽陽性</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="115"/>
+        <source>Best deep coverage</source>
+        <translation>最良の深い圧の範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="117"/>
+        <source>Class</source>
+        <translation>クラス</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="147"/>
+        <source>No patient library is open: no trainees.</source>
+        <translation>患者ライブラリが開かれていません：研修生はいません。</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="191"/>
+        <source>yes</source>
+        <translation>はい</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="191"/>
+        <source>no</source>
+        <translation>いいえ</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="196"/>
+        <source>Coverage</source>
+        <translation>触診範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/progress_window.cpp" line="199"/>
+        <source>Exam time</source>
+        <translation>試験時間</translation>
     </message>
 </context>
 <context>
@@ -1348,6 +1563,124 @@
         <location filename="../ui/review_window.cpp" line="409"/>
         <source>Written: %1</source>
         <translation>書き出しました: %1</translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::ScoreDialog</name>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="25"/>
+        <source>Exam score</source>
+        <translation>試験の成績</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="29"/>
+        <source>Tumours found:</source>
+        <translation>発見した腫瘍：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="29"/>
+        <source>%1 of %2</source>
+        <translation>%2 個中 %1 個</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="30"/>
+        <source>False positives:</source>
+        <translation>偽陽性：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="31"/>
+        <source>Sensitivity:</source>
+        <translation>感度：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="32"/>
+        <source>Positive predictive value:</source>
+        <translation>陽性適中率：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="33"/>
+        <source>Position error:</source>
+        <translation>位置の誤差：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="34"/>
+        <source>%1 mm (mean over the tumours found)</source>
+        <translation>%1 mm（発見した腫瘍の平均）</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="35"/>
+        <source>Exam time:</source>
+        <translation>試験時間：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="35"/>
+        <source>%1 s</source>
+        <translation>%1 秒</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="36"/>
+        <source>Coverage:</source>
+        <translation>触診範囲：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="37"/>
+        <source>light %1, medium %2, deep %3</source>
+        <translation>軽い圧 %1、中程度 %2、深い圧 %3</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="39"/>
+        <source>Vertical strips:</source>
+        <translation>縦方向の帯：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <source>tumour %1: %2</source>
+        <translation>腫瘍 %1：%2</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <source>yes</source>
+        <translation>はい</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <source>no</source>
+        <translation>いいえ</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="43"/>
+        <source>Deep pressure over each tumour:</source>
+        <translation>各腫瘍上の深い圧：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="46"/>
+        <source>Advice:</source>
+        <translation>助言：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="56"/>
+        <source>Skin from above: grey not pressed, yellow light, orange medium, red deep; circles: the tumours (green: found); marks: green correct, red false</source>
+        <translation>上から見た皮膚：灰色は未触診、黄は軽い圧、橙は中程度、赤は深い圧。円：腫瘍（緑：発見）。マーク：緑は正しい、赤は誤り</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="60"/>
+        <source>Save report...</source>
+        <translation>報告書を保存...</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="63"/>
+        <source>Close</source>
+        <translation>閉じる</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="67"/>
+        <source>Save the exam report into</source>
+        <translation>試験の報告書の保存先</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="71"/>
+        <source>Save report</source>
+        <translation>報告書を保存</translation>
     </message>
 </context>
 <context>
@@ -1658,22 +1991,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="578"/>
+        <location filename="../ui/vtk_view.cpp" line="599"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation>このプラットフォーム（%1）ではネイティブウィンドウの OpenGL コンテキストを作れません</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="581"/>
+        <location filename="../ui/vtk_view.cpp" line="602"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation>このディスプレイの OpenGL（%1）にはステレオバッファがありません。クアッドバッファ立体視にはステレオ対応の GPU、ドライバ、ディスプレイが必要です</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="761"/>
+        <location filename="../ui/vtk_view.cpp" line="821"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation>クアッドバッファ立体視は使えません: %1。代わりにアナグリフ（赤青メガネ）で表示します。サイドバイサイドとインターレースも使えます。</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="763"/>
+        <location filename="../ui/vtk_view.cpp" line="823"/>
         <source>the view is not initialised yet</source>
         <translation>ビューがまだ初期化されていません</translation>
     </message>

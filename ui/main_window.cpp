@@ -113,7 +113,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   st_coverage_ = new QLabel;
   st_coverage_->setObjectName(QStringLiteral("CoverageLabel"));
   st_coverage_->setTextFormat(Qt::RichText);
-  for (auto* l : {st_mode_, st_coverage_, st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
+  for (auto* l : {st_mode_, st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
 
   build_actions();
 
@@ -540,6 +540,12 @@ void MainWindow::build_actions() {
   toolbar_->addAction(a_practice_);
   toolbar_->addAction(a_exam_);
   toolbar_->addAction(a_end_exam_);
+  // The coverage figures with the overlay's legend, a row of their own under the tools
+  // (update_coverage shows it where the mode allows).
+  addToolBarBreak(Qt::TopToolBarArea);
+  coverage_bar_ = addToolBar(QString());
+  coverage_bar_->setObjectName(QStringLiteral("CoverageToolBar"));
+  coverage_bar_->addWidget(st_coverage_);
 }
 
 void MainWindow::retranslate() {
@@ -589,6 +595,7 @@ void MainWindow::retranslate() {
   for (int i = 0; i < 4; ++i) confidence_->setItemText(i, conf[i]);
   confidence_->setToolTip(tr("How sure you are of the next mark"));
   toolbar_->setWindowTitle(tr("Tools"));
+  coverage_bar_->setWindowTitle(tr("Coverage"));
   a_camera_tool_->setText(tr("Camera / scripted hand"));
   a_palpate_tool_->setText(tr("Palpate with the mouse"));
   patient_dock_->setWindowTitle(tr("Patient"));
@@ -739,12 +746,13 @@ void MainWindow::exam_scored() {
 }
 
 void MainWindow::update_coverage() {
-  if (!a_coverage_ || !st_coverage_) return;
+  if (!a_coverage_ || !coverage_bar_) return;
   const bool allowed = training_->overlay_allowed();
   const bool on = allowed && a_coverage_->isChecked();
   if (on) view_->set_coverage(training_->exam().surface_levels());
   view_->set_coverage_visible(on);
-  st_coverage_->setVisible(allowed);
+  coverage_bar_->setVisible(allowed);
+  coverage_bar_->toggleViewAction()->setVisible(allowed);
   if (!allowed) return;
   // The figures with the overlay's legend: a square of each level's colour.
   auto square = [](int l) {

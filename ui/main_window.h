@@ -117,7 +117,7 @@ class MainWindow : public QMainWindow {
   /// View > Coverage overlay: the skin coloured by the pressure level reached, shown in
   /// Instructor mode and Guided practice while checked, never in Exam.
   QAction* coverage_action() const { return a_coverage_; }
-  /// The status bar's coverage figures and legend (hidden in Exam).
+  /// The coverage figures and legend, a toolbar row of their own (hidden in Exam).
   QLabel* coverage_label() const { return st_coverage_; }
   /// The score of the exam that ended last, shown when it ended (null once closed, or
   /// when a new exam started).
@@ -207,6 +207,7 @@ class MainWindow : public QMainWindow {
   QPointer<ProgressWindow> progress_;
   QAction *a_coverage_ = nullptr, *a_clear_coverage_ = nullptr, *a_progress_ = nullptr;
   QLabel* st_coverage_ = nullptr;
+  QToolBar* coverage_bar_ = nullptr;  // st_coverage_'s row
   QString trainee_name_;
   QAction *a_open_rec_ = nullptr, *a_mark_ = nullptr;
   QLabel* st_rec_ = nullptr;

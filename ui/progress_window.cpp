@@ -69,6 +69,7 @@ void fill_chart(QChartView* view, const QString& title, const QList<QPair<QStrin
     line->attachAxis(y);
   }
   y->setRange(0, top > 0 ? top * 1.1 : 1.0);
+  y->applyNiceNumbers();
   chart->legend()->setVisible(series.size() > 1);
   QChart* old = view->chart();
   view->setChart(chart);
@@ -184,7 +185,8 @@ void ProgressWindow::show_trainee() {
   for (int r = 0; r < int(results.size()); ++r) {
     const auto& e = results[std::size_t(r)];
     set_row(sessions_, r,
-            {QString::fromStdString(e.started), QString::fromStdString(e.case_name), pct(e.sensitivity), QString::number(e.false_positives),
+            {QString::fromStdString(e.started).replace(QLatin1Char('T'), QLatin1Char(' ')).remove(QLatin1Char('Z')),
+             QString::fromStdString(e.case_name), pct(e.sensitivity), QString::number(e.false_positives),
              pct(e.coverage_light), pct(e.coverage_medium), pct(e.coverage_deep), pct(e.deep_reached),
              QString::number(e.exam_time, 'f', 0), e.passed ? tr("yes") : tr("no")});
   }

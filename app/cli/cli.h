@@ -8,6 +8,7 @@
 #include <string>
 
 #include "scenario.h"
+#include "store/recording.h"
 
 namespace palpation::app::cli {
 
@@ -23,6 +24,10 @@ using CommandAction = std::function<int()>;
 /// Throws sim::ScenarioError naming the argument.
 sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend = {},
                                 const std::string& resolution = {});
+
+/// A recording argument, read (app/store/recording.h); a bad file is bad input: throws
+/// sim::ScenarioError with the reader's message (file, chunk, offset, reason).
+store::Recording read_recording_arg(const std::string& path);
 
 CommandAction add_scenario_command(CLI::App& app);
 CommandAction add_run_command(CLI::App& app);

@@ -21,4 +21,12 @@ sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backe
   return s;
 }
 
+store::Recording read_recording_arg(const std::string& path) {
+  try {
+    return store::read_recording(path);
+  } catch (const store::RecordingError& e) {
+    throw sim::ScenarioError(e.what());
+  }
+}
+
 }  // namespace palpation::app::cli

@@ -17,8 +17,6 @@ using review::ReplayResult;
 using review::replay_recording;
 using store::OutputDir;
 using store::Recording;
-using store::RecordingError;
-using store::read_recording;
 
 CommandAction add_replay_command(CLI::App& app) {
   auto* sub = app.add_subcommand("replay", "Re-simulate a session recording; writes DIR/fingers.csv and DIR/summary.json "
@@ -35,12 +33,7 @@ CommandAction add_replay_command(CLI::App& app) {
   sub->add_flag("--check", o->check, "Only validate the recording and print what it holds");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {
-    Recording rec;
-    try {
-      rec = read_recording(o->recording);
-    } catch (const RecordingError& e) {
-      throw sim::ScenarioError(e.what());
-    }
+    Recording rec = read_recording_arg(o->recording);
     const char* state = rec.complete ? (rec.recovered ? "recovered after an interruption" : "complete") : "interrupted";
     std::printf("recording: %s: version %u, %d finger(s), %zu ticks (%.3f s), %zu events, %s%s%s\n", rec.path.c_str(),
                 rec.version, rec.fingers, rec.ticks(), rec.duration(), rec.events.size(), state,

@@ -20,8 +20,6 @@
 namespace palpation::app::cli {
 
 using store::Recording;
-using store::RecordingError;
-using store::read_recording;
 
 namespace {
 std::string now_iso() {
@@ -56,12 +54,7 @@ CommandAction add_score_command(CLI::App& app) {
   sub->add_option("--curriculum-case", o->curriculum_case, "The curriculum's case (1, 2, ...) this exam was")->check(CLI::PositiveNumber);
 #endif
   return [o]() {
-    Recording rec;
-    try {
-      rec = read_recording(o->recording);
-    } catch (const RecordingError& e) {
-      throw sim::ScenarioError(e.what());
-    }
+    Recording rec = read_recording_arg(o->recording);
     train::PressureThresholds th;
     if (!o->thresholds.empty()) {
       std::ifstream in(o->thresholds);

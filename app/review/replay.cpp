@@ -42,7 +42,7 @@ ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt) {
   // Tick i of the recording against tick i of the replay (both 1 kHz from the start). A
   // session recorded the device's forces: the simulated ones times its force scale
   // (live/force_mapping.h; 1 in recordings made before the scale).
-  const double scale = rec.header.contains("session") ? rec.header["session"].value("force_scale", 1.0) : 1.0;
+  const double scale = store::recorded_force_scale(rec);
   const std::size_t nf = std::size_t(rec.fingers);
   const std::size_t n = std::min(rec.ticks(), r.run.samples.size() / nf);
   for (std::size_t i = 0; i < n; ++i)

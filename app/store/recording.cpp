@@ -416,4 +416,12 @@ RecoverResult recover_recording(const std::string& path) {
   return res;
 }
 
+double recorded_force_scale(const Recording& r) {
+  if (!r.header.is_object() || !r.header.contains("session") || !r.header["session"].is_object()) return 1.0;
+  const nlohmann::json& s = r.header["session"];
+  if (!s.contains("force_scale") || !s["force_scale"].is_number()) return 1.0;
+  const double v = s["force_scale"].get<double>();
+  return std::isfinite(v) && v > 0 ? v : 1.0;
+}
+
 }  // namespace palpation::app::store

@@ -122,6 +122,11 @@ struct Recording {
   double duration() const { return t.empty() ? 0.0 : t.back(); }
 };
 
+/// The force scale the recorded session sent to its device (header "session"."force_scale",
+/// app/live/force_mapping.h): the ticks' forces are this times the simulated ones. 1 for
+/// recordings made before the scale, and for a missing or unusable value.
+double recorded_force_scale(const Recording& r);
+
 /// Reads and validates a recording. A torn tail (no end chunk; the last chunk cut short or
 /// failing its checksum at the end of the file) is not an error: `interrupted` says what
 /// was dropped. Anything else (bad magic, newer version, header checksum, a bad chunk

@@ -96,16 +96,19 @@ ScoredExam score_recording(const store::Recording& rec, const PressureThresholds
       }
     }
   } else {
+    // Ticks hold the forces sent to the device: back to simulated ones for the levels.
+    const double to_sim = 1.0 / store::recorded_force_scale(rec);
     for (std::size_t i = 0; i < rec.ticks(); ++i) {
       const double t = rec.t[i];
       for (int k = 0; k < nf; ++k) {
         const double r = k < int(sc.fingers.size()) ? sc.fingers[std::size_t(k)].radius : 0.008;
-        sample(t, k, rec.x[i * std::size_t(nf) + std::size_t(k)], r, rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
+        sample(t, k, rec.x[i * std::size_t(nf) + std::size_t(k)], r, to_sim * rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
       }
       if (t - last_plot >= kPlotPeriod) {
         last_plot = t;
         out.plot_t.push_back(t);
-        for (int k = 0; k < nf; ++k) out.plot_force[std::size_t(k)].push_back(rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
+        for (int k = 0; k < nf; ++k)
+          out.plot_force[std::size_t(k)].push_back(to_sim * rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
       }
     }
   }

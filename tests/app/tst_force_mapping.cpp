@@ -12,7 +12,6 @@
 // Measured (2-core VM): see the qInfo lines; docs/simulation.md, "Force scale", has them.
 #include <QtTest>
 
-#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -140,27 +139,6 @@ class TestForceMapping : public QObject {
     sim_ = std::make_unique<sim::Simulation>(sc_);
   }
 
-  void exploreWorkstation() {
-    for (int attempt = 0; attempt < 8; ++attempt) {
-      lv::WorkstationOptions opt;
-      opt.scenario = lv::default_workstation_scenario();
-      opt.haptic_priority = 0;
-      opt.config.force_mapping.scale = attempt % 2 == 0 ? 0.624 : 0.0;
-      lv::Workstation ws(opt);
-      double maxf = 0, maxsent = 0;
-      std::vector<double> pk(8);
-      double t0 = -1;
-      ws.add_step_listener([&](const lv::StepSample& ss) { if (t0 < 0) t0 = ss.t; maxf = std::max(maxf, ss.force[1].norm());
-        const int w = std::min(7, int((ss.t - t0) / 0.4)); pk[w] = std::max(pk[w], ss.force[1].norm()); });
-      ws.add_tick_listener([&](const lv::TickSample& ts) { if (ts.finger == 1) maxsent = std::max(maxsent, ts.force.norm()); });
-      ws.start();
-      const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-      while (std::chrono::steady_clock::now() < end) { ws.poll(); QTest::qWait(20); }
-      ws.stop(); ws.poll();
-      qInfo("attempt %d rule %s scale %.3f: peaks %.1f %.1f %.1f %.1f %.1f %.1f N", attempt, lv::force_scale_rule_name(ws.force_mapping().rule),
-            ws.force_mapping().scale, pk[1], pk[2], pk[3], pk[4], pk[5], pk[6]);
-    }
-  }
   // The rule: the deep press over the stiffest part (the tumour) maps to 90 % of the limit.
   void deepPressMapsIntoTheDevicesRange() {
     const lv::DeviceConfig cfg = lv::default_device_config();
@@ -190,6 +168,9 @@ class TestForceMapping : public QObject {
   }
 
   // The tumour's contrast reaches the device with the scale; without it the clamp eats it.
+  // Measured (2-core VM): s = 0.624: over 4.85 N simulated / 3.03 N sent, beside 3.99 /
+  // 2.49 N, C 0.215 simulated, 0.216 sent, no tick clamped; s = 1: over 4.65 / 4.00 N
+  // (882 of 1,800 ticks clamped), beside 3.88 / 3.88 N, C 0.197 simulated, 0.030 sent.
   void tumourContrastReachesTheDevice() {
     QVERIFY(mapping_.scale < 1.0);
     const lv::DeviceConfig cfg = lv::default_device_config();

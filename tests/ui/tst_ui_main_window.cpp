@@ -18,6 +18,7 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QMessageBox>
+#include <QInputDialog>
 #include <QPointer>
 #include <QStatusBar>
 #include <QTimer>
@@ -45,6 +46,7 @@
 #include "score_dialog.h"
 #include "store/patient_library.h"
 #include "live/training_session.h"
+#include "train/exam.h"
 #include "review/workstation_recorder.h"
 #include "store/recording.h"
 #include "main_window.h"
@@ -165,6 +167,21 @@ class TstUiMainWindow : public QObject {
     t->start();
     return t;
   }
+  // Answers the next modal input dialog with `text` (OK); its object name goes to `seen`.
+  QTimer* answer_next_input(const QString& text, QString* seen) {
+    auto* t = new QTimer(this);
+    t->setInterval(20);
+    connect(t, &QTimer::timeout, this, [t, text, seen] {
+      if (auto* d = qobject_cast<QInputDialog*>(QApplication::activeModalWidget())) {
+        *seen = d->objectName();
+        t->stop();
+        d->setTextValue(text);
+        d->accept();
+      }
+    });
+    t->start();
+    return t;
+  }
   // Every text a user can read now: visible widgets' labels, buttons, list entries, combo
   // box entries, window titles and tooltips, the status bar's message, visible menu titles
   // and actions (with their tooltips), in every top-level window.
@@ -245,6 +262,7 @@ class TstUiMainWindow : public QObject {
     QVERIFY(db_dir_.isValid());
     qputenv("PALPATION_DB", db_dir_.filePath(QStringLiteral("patients.sqlite")).toUtf8());
     QSettings().remove(QStringLiteral("language"));  // a failed run leaves Japanese stored
+    QSettings().remove(QStringLiteral("view/coverage_overlay"));  // and the overlay on
     ui::VtkView::use_default_surface_format();
     app::live::WorkstationOptions opt;
     opt.scenario = app::live::default_workstation_scenario();
@@ -736,13 +754,19 @@ class TstUiMainWindow : public QObject {
     QCOMPARE(events.back().kind, app::live::EventKind::Mode);
     QCOMPARE(events.back().mode, app::live::ModeChange::Instructor);
 
-    // Instructor -> Exam asks nothing.
+    // Instructor -> Exam asks for no confirmation, only who the trainee is (none set):
+    // answered empty, an anonymous exam.
     seen.clear();
     t = answer_next_box(QMessageBox::No, &seen);
+    QString asked;
+    QPointer<QTimer> who = answer_next_input(QString(), &asked);
     to_exam->trigger();
     QTest::qWait(100);
     delete t.data();
+    delete who.data();
     QVERIFY2(seen.isEmpty(), qPrintable(seen));
+    QCOMPARE(asked, QStringLiteral("AskTrainee"));
+    QVERIFY(w_->trainee_name().isEmpty());
     QCOMPARE(w_->mode(), app::live::TrainingMode::Exam);
   }
 
@@ -857,7 +881,26 @@ class TstUiMainWindow : public QObject {
                              5000);
     QTRY_VERIFY_WITH_TIMEOUT(coverage_pixels(w_->view()->grabFramebuffer()) > 0.002, 5000);
     QTRY_VERIFY_WITH_TIMEOUT(w_->coverage_label()->text().contains(ui::ScoreDialog::percent(w_->training().exam().coverage()[0])), 2000);
-    QTest::qWait(3000);  // more palpation for the screenshot
+    if (!qEnvironmentVariableIsEmpty("PALPATION_DOC_SCREENSHOTS")) {
+      // For the screenshot: vertical strips over the breast's left half with the mouse
+      // fingertip (the scorer's scripted trainee), at light then medium pressure.
+      auto* dev = w_->findChild<ui::DevicePanel*>();
+      dev->mode->setCurrentIndex(1);
+      const auto g = w_->workstation().geometry();
+      QVERIFY(g && g->skin);
+      app::train::StripExamSpec spec;
+      spec.x_min = g->skin->lo.x();
+      spec.x_max = 0.5 * (g->skin->lo.x() + g->skin->hi.x());
+      spec.spacing = 0.012;
+      spec.step = 0.004;
+      spec.levels = {app::train::Level::Light, app::train::Level::Medium};
+      for (const auto& f : app::train::vertical_strip_exam(*g->skin, w_->training().exam().thresholds(), spec)) {
+        w_->workstation().set_mouse_finger(f.centre, true);
+        QTest::qWait(8);
+      }
+      w_->workstation().set_mouse_finger(Eigen::Vector3d::Zero(), false);
+      QTest::qWait(500);
+    }
     doc_shot(ui::VtkView::grab_with_views(w_.get()), "training-overlay.png");
     a->setChecked(false);
     QVERIFY(!w_->view()->coverage_visible());
