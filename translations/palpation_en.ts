@@ -60,27 +60,27 @@
 <context>
     <name>ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="34"/>
         <source>thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="34"/>
         <source>index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="33"/>
+        <location filename="../ui/review_window.cpp" line="35"/>
         <source>middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="33"/>
+        <location filename="../ui/review_window.cpp" line="35"/>
         <source>ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="34"/>
+        <location filename="../ui/review_window.cpp" line="36"/>
         <source>little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1428,27 +1428,42 @@
 <context>
     <name>palpation::ui::ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="194"/>
+        <location filename="../ui/review_window.cpp" line="215"/>
         <source>Export the session as CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="194"/>
+        <location filename="../ui/review_window.cpp" line="215"/>
         <source>CSV files (*.csv)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="196"/>
+        <location filename="../ui/review_window.cpp" line="217"/>
         <source>Export CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="199"/>
+        <location filename="../ui/review_window.cpp" line="221"/>
+        <source>Folder for the exam report</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="225"/>
+        <source>Save report</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="226"/>
+        <source>Report written to %1 (%2)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="229"/>
         <source>Folder for the PNG frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/review_window.cpp" line="202"/>
+        <location filename="../ui/review_window.cpp" line="232"/>
         <source>%n frame(s) written to %1</source>
         <translation>
             <numerusform>%n frame written to %1</numerusform>
@@ -1456,115 +1471,171 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="247"/>
+        <location filename="../ui/review_window.cpp" line="277"/>
         <source>Review: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="248"/>
-        <location filename="../ui/review_window.cpp" line="300"/>
+        <location filename="../ui/review_window.cpp" line="278"/>
+        <location filename="../ui/review_window.cpp" line="336"/>
         <source>Pause</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="248"/>
-        <location filename="../ui/review_window.cpp" line="300"/>
-        <location filename="../ui/review_window.cpp" line="309"/>
+        <location filename="../ui/review_window.cpp" line="278"/>
+        <location filename="../ui/review_window.cpp" line="336"/>
+        <location filename="../ui/review_window.cpp" line="345"/>
         <source>Play</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="249"/>
+        <location filename="../ui/review_window.cpp" line="279"/>
         <source>Speed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="250"/>
+        <location filename="../ui/review_window.cpp" line="280"/>
         <source>Export CSV...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="251"/>
+        <location filename="../ui/review_window.cpp" line="281"/>
         <source>Export PNG frames...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="252"/>
+        <location filename="../ui/review_window.cpp" line="282"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="261"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
+        <source>&lt;b&gt;Exam score&lt;/b&gt;</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="284"/>
+        <source>Coverage</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="285"/>
+        <source>The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="286"/>
+        <source>Save report...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="288"/>
+        <source>Scoring the exam...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="297"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="262"/>
+        <location filename="../ui/review_window.cpp" line="298"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="266"/>
+        <location filename="../ui/review_window.cpp" line="302"/>
         <source>%1 (re-sim.)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="268"/>
+        <location filename="../ui/review_window.cpp" line="304"/>
         <source>now</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="269"/>
+        <location filename="../ui/review_window.cpp" line="305"/>
         <source>Events</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="366"/>
+        <location filename="../ui/review_window.cpp" line="398"/>
+        <source>No score: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="371"/>
+        <source>Tumours found: %1 of %2</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="372"/>
+        <source>False positives: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="373"/>
+        <source>Coverage: light %1, medium %2, deep %3</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="375"/>
+        <source>Vertical strips: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="399"/>
+        <source>The exam is still being scored.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="461"/>
         <source>Re-simulation stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="369"/>
+        <location filename="../ui/review_window.cpp" line="464"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="378"/>
+        <location filename="../ui/review_window.cpp" line="473"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="385"/>
+        <location filename="../ui/review_window.cpp" line="480"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="386"/>
+        <location filename="../ui/review_window.cpp" line="481"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="388"/>
+        <location filename="../ui/review_window.cpp" line="483"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="392"/>
+        <location filename="../ui/review_window.cpp" line="487"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="401"/>
+        <location filename="../ui/review_window.cpp" line="496"/>
         <source>The recording was interrupted: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="402"/>
+        <location filename="../ui/review_window.cpp" line="497"/>
         <source>The recording was recovered after an interruption.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="409"/>
+        <location filename="../ui/review_window.cpp" line="504"/>
         <source>Written: %1</source>
         <translation type="unfinished"></translation>
     </message>

@@ -60,27 +60,27 @@
 <context>
     <name>ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="34"/>
         <source>thumb</source>
         <translation>親指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="32"/>
+        <location filename="../ui/review_window.cpp" line="34"/>
         <source>index</source>
         <translation>人差し指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="33"/>
+        <location filename="../ui/review_window.cpp" line="35"/>
         <source>middle</source>
         <translation>中指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="33"/>
+        <location filename="../ui/review_window.cpp" line="35"/>
         <source>ring</source>
         <translation>薬指</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="34"/>
+        <location filename="../ui/review_window.cpp" line="36"/>
         <source>little</source>
         <translation>小指</translation>
     </message>
@@ -1425,142 +1425,213 @@
 <context>
     <name>palpation::ui::ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="194"/>
+        <location filename="../ui/review_window.cpp" line="215"/>
         <source>Export the session as CSV</source>
         <translation>セッションを CSV で出力</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="194"/>
+        <location filename="../ui/review_window.cpp" line="215"/>
         <source>CSV files (*.csv)</source>
         <translation>CSV ファイル (*.csv)</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="196"/>
+        <location filename="../ui/review_window.cpp" line="217"/>
         <source>Export CSV</source>
         <translation>CSV 出力</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="199"/>
+        <location filename="../ui/review_window.cpp" line="221"/>
+        <source>Folder for the exam report</source>
+        <translation>試験の報告書の保存先フォルダ</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="225"/>
+        <source>Save report</source>
+        <translation>報告書を保存</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="226"/>
+        <source>Report written to %1 (%2)</source>
+        <translation>報告書を %1 に書き出しました（%2）</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="229"/>
         <source>Folder for the PNG frames</source>
         <translation>PNG フレームの保存先フォルダ</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/review_window.cpp" line="202"/>
+        <location filename="../ui/review_window.cpp" line="232"/>
         <source>%n frame(s) written to %1</source>
         <translation>
             <numerusform>%1 に %n フレームを書き出しました</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="247"/>
+        <location filename="../ui/review_window.cpp" line="277"/>
         <source>Review: %1</source>
         <translation>レビュー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="248"/>
-        <location filename="../ui/review_window.cpp" line="300"/>
+        <location filename="../ui/review_window.cpp" line="278"/>
+        <location filename="../ui/review_window.cpp" line="336"/>
         <source>Pause</source>
         <translation>一時停止</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="248"/>
-        <location filename="../ui/review_window.cpp" line="300"/>
-        <location filename="../ui/review_window.cpp" line="309"/>
+        <location filename="../ui/review_window.cpp" line="278"/>
+        <location filename="../ui/review_window.cpp" line="336"/>
+        <location filename="../ui/review_window.cpp" line="345"/>
         <source>Play</source>
         <translation>再生</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="249"/>
+        <location filename="../ui/review_window.cpp" line="279"/>
         <source>Speed</source>
         <translation>速度</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="250"/>
+        <location filename="../ui/review_window.cpp" line="280"/>
         <source>Export CSV...</source>
         <translation>CSV 出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="251"/>
+        <location filename="../ui/review_window.cpp" line="281"/>
         <source>Export PNG frames...</source>
         <translation>PNG フレーム出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="252"/>
+        <location filename="../ui/review_window.cpp" line="282"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation>指導者のイベントと研修生のマーク（クリックでその時刻へ移動）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="261"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
+        <source>&lt;b&gt;Exam score&lt;/b&gt;</source>
+        <translation>&lt;b&gt;試験の成績&lt;/b&gt;</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="284"/>
+        <source>Coverage</source>
+        <translation>触診範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="285"/>
+        <source>The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep</source>
+        <translation>到達した最大の圧で色分けした皮膚：灰色はなし、黄は軽い圧、橙は中程度、赤は深い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="286"/>
+        <source>Save report...</source>
+        <translation>報告書を保存...</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="288"/>
+        <source>Scoring the exam...</source>
+        <translation>試験を採点しています...</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="297"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation>各指先の力 (N): デバイスへ送った力（実線）、再シミュレーションの力（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="262"/>
+        <location filename="../ui/review_window.cpp" line="298"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation>各指先の力 (N): 記録（実線）、再シミュレーション（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="266"/>
+        <location filename="../ui/review_window.cpp" line="302"/>
         <source>%1 (re-sim.)</source>
         <translation>%1（再計算）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="268"/>
+        <location filename="../ui/review_window.cpp" line="304"/>
         <source>now</source>
         <translation>現在</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="269"/>
+        <location filename="../ui/review_window.cpp" line="305"/>
         <source>Events</source>
         <translation>イベント</translation>
     </message>
     <message>
         <location filename="../ui/review_window.cpp" line="366"/>
+        <location filename="../ui/review_window.cpp" line="398"/>
+        <source>No score: %1</source>
+        <translation>成績なし：%1</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="371"/>
+        <source>Tumours found: %1 of %2</source>
+        <translation>発見した腫瘍：%2 個中 %1 個</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="372"/>
+        <source>False positives: %1</source>
+        <translation>偽陽性：%1</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="373"/>
+        <source>Coverage: light %1, medium %2, deep %3</source>
+        <translation>触診範囲：軽い圧 %1、中程度 %2、深い圧 %3</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="375"/>
+        <source>Vertical strips: %1</source>
+        <translation>縦方向の帯：%1</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="399"/>
+        <source>The exam is still being scored.</source>
+        <translation>試験はまだ採点中です。</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="461"/>
         <source>Re-simulation stopped: %1</source>
         <translation>再シミュレーションが停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="369"/>
+        <location filename="../ui/review_window.cpp" line="464"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: %4 N（%6 秒の%5、記録された最大の力 %7 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="378"/>
+        <location filename="../ui/review_window.cpp" line="473"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: 0 N（記録された最大の力 %4 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="385"/>
+        <location filename="../ui/review_window.cpp" line="480"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation>再現しました: 同じバックエンドと設定で同じ力になります。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="386"/>
+        <location filename="../ui/review_window.cpp" line="481"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation>完全には再現されていません（バックエンドまたは設定が異なります）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="388"/>
+        <location filename="../ui/review_window.cpp" line="483"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation>1 kHz で送った力はシミュレーションの力と最大 %1 N 異なります（力覚ループの局所接触モデル、カップリング、安全フィルタによる）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="392"/>
+        <location filename="../ui/review_window.cpp" line="487"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation>記録されたデバイス入力から、シナリオの時間刻みで %2 ティック中 %1 ティックを再シミュレーションしました（バックエンド %3）。記録された力との最大差: %4 N（記録された最大の力 %5 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="401"/>
+        <location filename="../ui/review_window.cpp" line="496"/>
         <source>The recording was interrupted: %1</source>
         <translation>記録は途中で中断されています: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="402"/>
+        <location filename="../ui/review_window.cpp" line="497"/>
         <source>The recording was recovered after an interruption.</source>
         <translation>この記録は中断の後に復元されたものです。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="409"/>
+        <location filename="../ui/review_window.cpp" line="504"/>
         <source>Written: %1</source>
         <translation>書き出しました: %1</translation>
     </message>

@@ -23,7 +23,9 @@
 #include <QValueAxis>
 #include <QVBoxLayout>
 
+#include "cli/exam_report.h"
 #include "event_text.h"
+#include "score_dialog.h"
 #include "vtk_view.h"
 
 namespace palpation::ui {
@@ -146,6 +148,18 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, 
   png_ = new QPushButton;
   markers_ = new QListWidget;
   markers_title_ = new QLabel;
+  score_title_ = new QLabel;
+  score_label_ = new QLabel;
+  score_label_->setObjectName(QStringLiteral("ReviewScore"));
+  score_label_->setWordWrap(true);
+  score_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  coverage_ = new QPushButton;
+  coverage_->setObjectName(QStringLiteral("ReviewCoverage"));
+  coverage_->setCheckable(true);
+  coverage_->setEnabled(false);  // until the score is computed
+  report_ = new QPushButton;
+  report_->setObjectName(QStringLiteral("ReviewSaveReport"));
+  report_->setEnabled(false);
 
   auto* controls = new QHBoxLayout;
   controls->addWidget(play_);
@@ -173,6 +187,13 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, 
   auto* sl = new QVBoxLayout(side);
   sl->addWidget(markers_title_);
   sl->addWidget(markers_, 1);
+  sl->addWidget(score_title_);
+  sl->addWidget(score_label_);
+  auto* score_buttons = new QHBoxLayout;
+  score_buttons->addWidget(coverage_);
+  score_buttons->addWidget(report_);
+  score_buttons->addStretch();
+  sl->addLayout(score_buttons);
   auto* dock = new QDockWidget(this);
   dock->setObjectName(QStringLiteral("ReviewEventsDock"));
   dock->setWidget(side);
@@ -194,6 +215,15 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, 
     const QString f = QFileDialog::getSaveFileName(this, tr("Export the session as CSV"), QStringLiteral("session.csv"), tr("CSV files (*.csv)"));
     QString err;
     if (!f.isEmpty() && !export_csv(f, &err)) QMessageBox::warning(this, tr("Export CSV"), err);
+  });
+  connect(coverage_, &QPushButton::toggled, this, &ReviewWindow::set_coverage_visible);
+  connect(report_, &QPushButton::clicked, this, [this] {
+    const QString d = report_folder_.isEmpty() ? QFileDialog::getExistingDirectory(this, tr("Folder for the exam report")) : report_folder_;
+    if (d.isEmpty()) return;
+    QString err;
+    const QStringList files = save_report(d, &err);
+    if (files.isEmpty()) QMessageBox::warning(this, tr("Save report"), err);
+    else statusBar()->showMessage(tr("Report written to %1 (%2)").arg(QDir::toNativeSeparators(d), files.join(QStringLiteral(", "))), 8000);
   });
   connect(png_, &QPushButton::clicked, this, [this] {
     const QString d = QFileDialog::getExistingDirectory(this, tr("Folder for the PNG frames"));
@@ -250,6 +280,12 @@ void ReviewWindow::retranslate() {
   csv_->setText(tr("Export CSV..."));
   png_->setText(tr("Export PNG frames..."));
   markers_title_->setText(tr("Instructor events and trainee marks (click to go there)"));
+  score_title_->setText(tr("<b>Exam score</b>"));
+  coverage_->setText(tr("Coverage"));
+  coverage_->setToolTip(tr("The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep"));
+  report_->setText(tr("Save report..."));
+  if (score_shown_) show_score();
+  else score_label_->setText(tr("Scoring the exam..."));
   // The events in the chosen language from their data (EventText); those recorded without
   // their arguments (older recordings) as recorded.
   const auto& markers = session_->markers();
@@ -318,6 +354,63 @@ void ReviewWindow::tick() {
     timeline_->update();
   }
   if (!session_->playing() && shown_ == nullptr) show_time();  // first frame as soon as it is computed
+  if (!score_shown_ && session_->score_ready()) show_score();
+}
+
+void ReviewWindow::show_score() {
+  score_shown_ = true;
+  const app::train::ScoredExam* ex = session_->score();
+  coverage_->setEnabled(ex != nullptr);
+  report_->setEnabled(ex != nullptr);
+  if (!ex) {
+    score_label_->setText(tr("No score: %1").arg(QString::fromStdString(session_->score_error())));
+    return;
+  }
+  const auto& s = ex->score;
+  QStringList lines;
+  lines << tr("Tumours found: %1 of %2").arg(s.hits).arg(s.tumours.size());
+  lines << tr("False positives: %1").arg(s.false_positives);
+  lines << tr("Coverage: light %1, medium %2, deep %3")
+               .arg(ScoreDialog::percent(s.coverage[0]), ScoreDialog::percent(s.coverage[1]), ScoreDialog::percent(s.coverage[2]));
+  lines << tr("Vertical strips: %1").arg(s.pattern.strips);
+  for (const auto& a : s.advice) lines << QStringLiteral("- ") + QString::fromStdString(a);  // the scorer's English lines
+  score_label_->setText(lines.join(QLatin1Char('\n')));
+  if (view_->coverage_visible()) apply_coverage();
+}
+
+void ReviewWindow::set_coverage_visible(bool on) {
+  if (coverage_->isChecked() != on) coverage_->setChecked(on);  // toggled() comes back here
+  if (on) apply_coverage();
+  view_->set_coverage_visible(on);
+  view_->request_render();
+}
+
+void ReviewWindow::apply_coverage() {
+  // The score's levels on the patient the view shows (the scorer's skin is the same model's surface).
+  if (surface_faces_ == 0 || !session_->score_ready()) return;
+  view_->set_coverage(session_->surface_levels(surface_faces_));
+}
+
+QStringList ReviewWindow::save_report(const QString& dir, QString* error) {
+  const app::train::ScoredExam* ex = session_->score_ready() ? session_->score() : nullptr;
+  if (!ex) {
+    if (error)
+      *error = session_->score_ready() ? tr("No score: %1").arg(QString::fromStdString(session_->score_error()))
+                                       : tr("The exam is still being scored.");
+    return {};
+  }
+  app::cli::ReportInfo info;
+  info.recording = session_->recording().path;
+  info.case_name = ex->patient;
+  info.created = QDateTime::currentDateTimeUtc().toString(Qt::ISODate).toStdString();
+  try {
+    QStringList out;
+    for (const auto& f : app::cli::write_exam_report(*ex, dir.toStdString(), info)) out << QString::fromStdString(f);
+    return out;
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return {};
+  }
 }
 
 void ReviewWindow::refresh_series() {
@@ -348,7 +441,9 @@ void ReviewWindow::show_time() {
   if (!fr) return;
   if (fr->geometry && fr->geometry->generation != generation_) {
     generation_ = fr->geometry->generation;
-    view_->set_patient(fr->geometry);
+    view_->set_patient(fr->geometry);  // clears the coverage overlay's levels
+    surface_faces_ = fr->geometry->surface.size();
+    if (view_->coverage_visible()) apply_coverage();
     // The recorded patient's tumours as it was loaded.
     view_->show_tumours(app::live::TumourDocument(fr->geometry));
   }

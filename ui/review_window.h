@@ -9,6 +9,7 @@
 #include <memory>
 
 #include <QMainWindow>
+#include <QStringList>
 #include <QWidget>
 
 #include "review/review_session.h"
@@ -63,6 +64,20 @@ class ReviewWindow : public QMainWindow {
   QLabel* time_label() const { return time_label_; }
   QLabel* difference_label() const { return diff_label_; }
   QListWidget* marker_list() const { return markers_; }
+  /// The exam's score (ReviewSession::score): "Coverage" shows the pressure levels reached on
+  /// the skin over the patient, the summary the figures and the advice, "Save report..."
+  /// writes the report as `palpation score` does. Review comes after the exam: the answer
+  /// (where the tumours are) may be shown.
+  QPushButton* coverage_button() const { return coverage_; }
+  QPushButton* report_button() const { return report_; }
+  QLabel* score_label() const { return score_label_; }
+  /// Shows or hides the coverage overlay (the "Coverage" toggle).
+  void set_coverage_visible(bool on);
+  /// Writes the report (cli::write_exam_report) into `dir`: the files written, or none with
+  /// `error` set (no score, or a file that cannot be written).
+  QStringList save_report(const QString& dir, QString* error = nullptr);
+  /// The folder "Save report..." writes into without asking; empty (the default): it asks.
+  void set_report_folder(const QString& dir) { report_folder_ = dir; }
   /// The time the plots' cursor stands at (s) and the points they show.
   double plot_cursor() const;
   int plot_points() const;
@@ -86,13 +101,19 @@ class ReviewWindow : public QMainWindow {
   void show_time();
   void refresh_series();
   void update_difference();
+  void show_score();
+  void apply_coverage();
 
   std::unique_ptr<app::review::ReviewSession> session_;
   VtkView* view_ = nullptr;
   Timeline* timeline_ = nullptr;
-  QPushButton *play_ = nullptr, *csv_ = nullptr, *png_ = nullptr;
+  QPushButton *play_ = nullptr, *csv_ = nullptr, *png_ = nullptr, *coverage_ = nullptr, *report_ = nullptr;
   QComboBox* speed_ = nullptr;
   QLabel *time_label_ = nullptr, *diff_label_ = nullptr, *speed_label_ = nullptr, *markers_title_ = nullptr;
+  QLabel *score_title_ = nullptr, *score_label_ = nullptr;
+  QString report_folder_;
+  bool score_shown_ = false;            // the summary shows the computed score (or why there is none)
+  std::size_t surface_faces_ = 0;       // faces of the patient surface the view shows
   QListWidget* markers_ = nullptr;
   QChart* chart_ = nullptr;
   QChartView* chart_view_ = nullptr;

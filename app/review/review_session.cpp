@@ -156,6 +156,7 @@ void ReviewSession::start(const std::string& backend) {
   if (worker_.joinable()) return;
   cancel_.store(false);
   worker_ = std::thread([this, backend] {
+    score();  // before the re-simulation: the review's score and coverage are ready first
     try {
       if (has_steps()) run_steps(backend);
       else run_ticks(backend);
@@ -165,6 +166,37 @@ void ReviewSession::start(const std::string& backend) {
     }
     finished_.store(true, std::memory_order_release);
   });
+}
+
+const train::ScoredExam* ReviewSession::score() const {
+  std::lock_guard<std::mutex> lk(score_mu_);
+  if (!scored_) {
+    scored_ = true;
+    try {
+      score_ = std::make_unique<const train::ScoredExam>(train::score_recording(rec_));
+    } catch (const std::exception& e) {
+      score_error_ = e.what();
+    }
+    score_ready_.store(true, std::memory_order_release);
+  }
+  return score_.get();
+}
+
+std::string ReviewSession::score_error() const {
+  score();
+  std::lock_guard<std::mutex> lk(score_mu_);
+  return score_error_;
+}
+
+std::vector<unsigned char> ReviewSession::surface_levels(std::size_t surface_faces) const {
+  const train::ScoredExam* ex = score();
+  if (!ex || !ex->skin) return {};
+  std::vector<unsigned char> out(surface_faces, 0);
+  for (std::size_t i = 0; i < ex->face_level.size() && i < ex->skin->model_face.size(); ++i) {
+    const int f = ex->skin->model_face[i];
+    if (f >= 0 && std::size_t(f) < out.size()) out[std::size_t(f)] = ex->face_level[i];
+  }
+  return out;
 }
 
 void ReviewSession::cancel() {

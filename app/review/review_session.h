@@ -23,6 +23,7 @@
 
 #include "store/recording.h"
 #include "live/workstation.h"
+#include "train/score_recording.h"
 
 namespace palpation::app::review {
 
@@ -107,6 +108,22 @@ class ReviewSession {
   /// re-simulated force (fx_resim..; empty where not computed). Throws std::runtime_error.
   void export_csv(const std::string& path) const;
 
+  // The exam's score (docs/training.md, "Scoring an exam") ------------------------------
+  /// The recording scored as `palpation score` scores it (train::score_recording: the patient
+  /// rebuilt from the recording's scenario, the fingertips from its steps or ticks, the marks
+  /// from its mark events). Computed once: by the worker before it re-simulates, or by the
+  /// first call. Null when the scorer refuses the recording (cut short, no scenario, marks
+  /// outside the body); score_error() then says why.
+  const train::ScoredExam* score() const;
+  std::string score_error() const;
+  /// Whether score() has been computed (it then returns at once): the GUI asks before it asks
+  /// for the score, so that it never waits on the worker's scoring.
+  bool score_ready() const { return score_ready_.load(std::memory_order_acquire); }
+  /// The highest pressure level reached on each face of the patient's surface, in
+  /// PatientGeometry::surface's order (`surface_faces` faces; the chest wall's and any face
+  /// off the skin 0), from score(): the coverage overlay. Empty when there is no score.
+  std::vector<unsigned char> surface_levels(std::size_t surface_faces) const;
+
   // Playback clock (the GUI advances it) ---------------------------------------------------
   double time() const { return time_; }
   void seek(double t);
@@ -127,6 +144,12 @@ class ReviewSession {
                   const std::vector<sim::FingerInput>& in, const std::vector<Eigen::Vector3d>& f);
 
   Recording rec_;
+  // The score: computed once under score_mu_, never changed after (score() hands out a pointer).
+  mutable std::mutex score_mu_;
+  mutable bool scored_ = false;
+  mutable std::unique_ptr<const train::ScoredExam> score_;
+  mutable std::string score_error_;
+  mutable std::atomic<bool> score_ready_{false};
   std::vector<ReviewMarker> markers_;
   struct Command {
     std::uint64_t index = 0;

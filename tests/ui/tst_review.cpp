@@ -34,6 +34,7 @@
 #include "tumour_editor.h"
 #include "vtk_view.h"
 #include "review/workstation_recorder.h"
+#include "train/score_recording.h"
 
 using namespace palpation;
 
@@ -266,6 +267,86 @@ class TstReview : public QObject {
     QCOMPARE(rw.export_frames(frames, 0.0, 0.2, 10.0), 3);
     QImage img(QDir(frames).filePath(QStringLiteral("frame-0003.png")));
     QVERIFY(img.width() > 400 && img.height() > 300);
+  }
+
+  // The review scores the exam as `palpation score` does: the same figures and levels, the
+  // coverage overlay on the skin faces pressed, the report written into a folder; a
+  // recording cut short is not scored and the review says why.
+  void review_scores_the_exam() {
+    QVERIFY(QFileInfo::exists(rec_path_));
+    const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
+    const app::train::ScoredExam want = app::train::score_recording(rec);
+    int pressed = 0;
+    for (unsigned char l : want.face_level) pressed += l > 0;
+    QVERIFY2(pressed > 0 && want.score.coverage[0] > 0, "the scripted finger pressed on the skin");
+    QCOMPARE(want.score.marks.size(), std::size_t(1));
+
+    ui::ReviewWindow rw(std::make_unique<app::review::ReviewSession>(rec_path_.toStdString()));
+    rw.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&rw));
+    auto& s = rw.session();
+    QTRY_VERIFY_WITH_TIMEOUT(s.score_ready(), 120000);
+    const app::train::ScoredExam* got = s.score();
+    QVERIFY2(got, s.score_error().c_str());
+    QCOMPARE(got->score.hits, want.score.hits);
+    QCOMPARE(got->score.false_positives, want.score.false_positives);
+    QCOMPARE(got->score.tumours.size(), want.score.tumours.size());
+    QCOMPARE(got->score.pattern.strips, want.score.pattern.strips);
+    for (int k = 0; k < app::train::kLevels; ++k) QCOMPARE(got->score.coverage[std::size_t(k)], want.score.coverage[std::size_t(k)]);
+    QVERIFY(got->face_level == want.face_level);
+    // The summary names the figures.
+    QTRY_VERIFY(rw.report_button()->isEnabled());
+    const QString summary = rw.score_label()->text();
+    QVERIFY2(summary.contains(QStringLiteral("Tumours found: %1 of %2").arg(want.score.hits).arg(want.score.tumours.size())) &&
+                 summary.contains(QStringLiteral("False positives: %1").arg(want.score.false_positives)) &&
+                 summary.contains(QStringLiteral("Coverage: light ")),
+             qPrintable(summary));
+
+    // The overlay: hidden until toggled, then exactly the pressed skin faces coloured.
+    QTRY_VERIFY_WITH_TIMEOUT(s.frame_at(s.time()) != nullptr, 120000);
+    rw.tick();  // the first frame's patient in the view
+    QVERIFY(!rw.view()->coverage_visible());
+    QVERIFY(rw.coverage_button()->isEnabled());
+    QTest::mouseClick(rw.coverage_button(), Qt::LeftButton);
+    QVERIFY(rw.coverage_button()->isChecked());
+    QVERIFY(rw.view()->coverage_visible());
+    const auto counts = rw.view()->coverage_counts();
+    QCOMPARE(counts[1] + counts[2] + counts[3], pressed);
+    QVERIFY(counts[0] > pressed);  // the rest of the skin and the chest wall stay uncoloured
+    QTest::mouseClick(rw.coverage_button(), Qt::LeftButton);
+    QVERIFY(!rw.view()->coverage_visible());
+
+    // Save report: into the folder set here, the same score as `palpation score` writes.
+    const QString out = dir_.filePath(QStringLiteral("review-report"));
+    rw.set_report_folder(out);
+    QTest::mouseClick(rw.report_button(), Qt::LeftButton);
+    QVERIFY(QFileInfo::exists(QDir(out).filePath(QStringLiteral("report.html"))));
+    QFile sj(QDir(out).filePath(QStringLiteral("score.json")));
+    QVERIFY(sj.open(QIODevice::ReadOnly));
+    nlohmann::json j = nlohmann::json::parse(sj.readAll().toStdString());
+    QCOMPARE(j.value("recording", std::string()), rec_path_.toStdString());
+    for (const char* k : {"recording", "patient", "trainee", "case"}) j.erase(k);  // what the report adds to the score
+    QCOMPARE(j.dump(), app::train::to_json(want.score).dump());
+
+    // A recording cut short (its end chunk gone): no score, and the review says why.
+    const QString cut = dir_.filePath(QStringLiteral("cut.palrec"));
+    {
+      QFile src(rec_path_);
+      QVERIFY(src.open(QIODevice::ReadOnly));
+      const QByteArray all = src.readAll();
+      QFile dst(cut);
+      QVERIFY(dst.open(QIODevice::WriteOnly));
+      dst.write(all.left(all.size() - 8));
+    }
+    ui::ReviewWindow cw(std::make_unique<app::review::ReviewSession>(cut.toStdString()));
+    QTRY_VERIFY_WITH_TIMEOUT(cw.session().score_ready(), 120000);
+    QVERIFY(!cw.session().score());
+    QVERIFY(cw.session().score_error().find("cut short") != std::string::npos);
+    QTRY_VERIFY(cw.score_label()->text().startsWith(QLatin1String("No score: ")));
+    QVERIFY(!cw.report_button()->isEnabled() && !cw.coverage_button()->isEnabled());
+    QString err;
+    QVERIFY(cw.save_report(dir_.filePath(QStringLiteral("cut-report")), &err).isEmpty());
+    QVERIFY(err.contains(QLatin1String("cut short")));
   }
 
   void corrupted_recording_is_refused() {
