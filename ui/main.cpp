@@ -63,7 +63,10 @@ int main(int argc, char** argv) {
   QCommandLineOption record(QStringLiteral("record"), QStringLiteral("Record the session into FILE (default: a new file in the "
                                                                      "recordings folder)."),
                             QStringLiteral("FILE"));
-  cli.addOptions({shot, secs, lang, trainee, trainee_name, mode, stereo, resolution, device, robot, review, review_at, record});
+  QCommandLineOption case_file(QStringLiteral("case"),
+                               QStringLiteral("Examine this case: a scenario file (palpation case generate) as the patient."),
+                               QStringLiteral("FILE"));
+  cli.addOptions({shot, secs, lang, trainee, trainee_name, mode, stereo, resolution, device, robot, review, review_at, record, case_file});
   cli.process(app);
 
   if (cli.isSet(review)) {
@@ -124,6 +127,14 @@ int main(int argc, char** argv) {
     const std::string last = QSettings().value(QStringLiteral("patient/resolution")).toString().toStdString();
     palpation::app::live::set_phantom_resolution(opt.scenario, last);
   }
+  if (cli.isSet(case_file)) {
+    try {
+      opt.scenario = palpation::app::live::case_patient(cli.value(case_file).toStdString(), res);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "palpation-trainer: --case: %s\n", e.what());
+      return 2;
+    }
+  }
   opt.device = cli.value(device).toStdString();
   if (cli.isSet(robot)) {
     const QString r = cli.value(robot);
@@ -155,7 +166,7 @@ int main(int argc, char** argv) {
   }
   palpation::ui::MainWindow w(std::move(ws), nullptr, cli.isSet(record) ? cli.value(record) : QString(), training);
   if (cli.isSet(trainee_name)) w.set_trainee_name(cli.value(trainee_name));
-  if (!cli.isSet(resolution) && !cli.isSet(shot)) {
+  if (!cli.isSet(resolution) && !cli.isSet(shot) && !cli.isSet(case_file)) {
     // The last patient chosen (QSettings), when the library still has it.
     const QString last = QSettings().value(QStringLiteral("patient/name")).toString();
     if (!last.isEmpty() && last.toStdString() != opt.scenario.source) {

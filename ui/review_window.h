@@ -1,7 +1,8 @@
 // Review mode for students: a recorded session played back. The 3-D view shows
 // the session re-simulated from the recorded input (app::review::ReviewSession's worker thread),
 // the force plots follow the timeline, instructor events and trainee marks sit on the
-// timeline and in a list; play, pause, scrub, speed 0.25x to 4x; CSV and PNG-frame export.
+// timeline and in a list; play, pause, scrub, speed 0.25x to 4x; CSV and PNG-frame export;
+// the exam's score, its coverage overlay and its report.
 // The widgets display app::review::ReviewSession; they hold no state of their own.
 #pragma once
 

@@ -33,4 +33,18 @@ bool set_phantom_resolution(sim::Scenario& s, const std::string& level) {
   return true;
 }
 
+sim::Scenario case_patient(const std::string& path, const std::string& level) {
+  const sim::Scenario file = sim::load_scenario(path);
+  sim::Scenario s = default_workstation_scenario();
+  s.source = path;
+  s.patient = file.patient;
+  s.young_modulus = file.young_modulus;
+  s.poisson_ratio = file.poisson_ratio;
+  s.density = file.density;
+  s.inclusions = file.inclusions;
+  if (!file.patient.phantom.empty() && !set_phantom_resolution(s, level))
+    throw sim::ScenarioError(path + ": patient.resolution: unknown level \"" + level + "\" (coarse, paper, fine)");
+  return s;
+}
+
 }  // namespace palpation::app::live

@@ -23,6 +23,12 @@ std::optional<sim::Scenario> phantom_patient(const std::string& name);
 /// for a phantom ("breast", "box"); nothing when unknown.
 std::optional<double> resolution_edge(const std::string& phantom, const std::string& level);
 
+/// An exam case from a file (a scenario: `palpation case generate`, or any scenario file)
+/// as the workstation's patient: its patient, tissue and tumours, at the phantom
+/// resolution `level`, with the workstation's real-time solver settings and no finger
+/// paths of its own. Throws sim::ScenarioError naming the file, field and reason.
+sim::Scenario case_patient(const std::string& path, const std::string& level);
+
 /// Sets a phantom patient's resolution level and its edge length. False, and `s`
 /// unchanged, for a patient with its own mesh or an unknown level.
 bool set_phantom_resolution(sim::Scenario& s, const std::string& level);

@@ -5,9 +5,12 @@
 #include <QtTest>
 
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 
 #include "live/live_exam.h"
+#include "live/patient_choice.h"
+#include "train/case_generator.h"
 #include "live/workstation.h"
 #include "phantom.h"
 #include "scenario.h"
@@ -256,6 +259,38 @@ class TestTraining : public QObject {
     QCOMPARE(int(e2.score.tumours.size()), 2);
     QCOMPARE(e2.score.hits, 1);
     QCOMPARE(*e2.score.sensitivity, 0.5);
+  }
+
+  // A generated case examined at the workstation (palpation-trainer --case FILE): its
+  // breast and tumours, the workstation's resolution and real-time solver; a bad file is
+  // refused naming it.
+  void caseFileAsThePatient() {
+    const fs::path dir = fs::temp_directory_path() / ("palpation-tst-training-case-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const GeneratedCase c = generate_case(7);
+    const std::string path = (dir / "case.json").string();
+    std::ofstream(path) << sim::scenario_to_json(c.scenario);
+    const sim::Scenario s = app::live::case_patient(path, "coarse");
+    const sim::Scenario ws = app::live::default_workstation_scenario();
+    QCOMPARE(s.inclusions.size(), c.scenario.inclusions.size());
+    for (std::size_t i = 0; i < s.inclusions.size(); ++i) {
+      QCOMPARE(s.inclusions[i].center, c.scenario.inclusions[i].center);
+      QCOMPARE(s.inclusions[i].young_modulus, c.scenario.inclusions[i].young_modulus);
+    }
+    QCOMPARE(s.patient.base_radius, c.scenario.patient.base_radius);
+    QCOMPARE(s.patient.height, c.scenario.patient.height);
+    QCOMPARE(s.patient.resolution, std::string("coarse"));
+    QCOMPARE(s.params.solver.precision, ws.params.solver.precision);
+    QCOMPARE(s.params.solver.cg_tolerance, ws.params.solver.cg_tolerance);
+    const std::string bad = (dir / "bad.json").string();
+    std::ofstream(bad) << "{\"patient\": {\"phantom\": \"breast\"}, \"fingers\": 3}";
+    try {
+      app::live::case_patient(bad, "coarse");
+      QFAIL("a bad case file was taken");
+    } catch (const sim::ScenarioError& e) {
+      QVERIFY2(std::string(e.what()).find(bad) != std::string::npos, e.what());
+    }
+    fs::remove_all(dir);
   }
 
   // A recording scores like the live exam: the scripted strips as the workstation's steps,

@@ -9,6 +9,9 @@
 //     difference is printed), play / scrub / speed move the displayed time, the view's
 //     frame and the plots' cursor; markers are on the timeline; CSV and PNG frames export;
 //     in Japanese its buttons and title are translated;
+//   - the review scores the exam as `palpation score` does (the same hits and coverage),
+//     its coverage overlay colours the pressed skin faces, Save report writes score.json
+//     and report.html; a recording cut short is not scored and the review says why;
 //   - a corrupted recording gives an error naming the file, the chunk and the reason, and
 //     leaves the recording and the patient library byte for byte as they were;
 //   - the chooser lists the built-in patients, and choosing one reaches the simulation.
