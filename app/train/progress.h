@@ -12,7 +12,7 @@
 
 namespace palpation::app::train {
 
-/// One series per figure, one point per exam (session 1, 2, ... in the results' order).
+/// One series per figure, one point per exam (exam 1, 2, ... in the results' order).
 /// A case without tumours has no sensitivity nor deep-over-tumour fraction: those series
 /// skip it (their `session` lists which exams they have).
 struct ProgressSeries {
