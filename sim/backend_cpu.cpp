@@ -75,7 +75,7 @@ constexpr unsigned kParallelMinCores = 4;
 // block that is ~sqrt(65536) x 6e-8 = 1.5e-5 relative in float (2.9e-14 in double), far
 // below the CG tolerance. The re-assembly costs one step at the full price (~once a
 // minute at 1 kHz).
-constexpr long kReassembleSteps = 65536;
+constexpr long kReassembleSteps = kCpuReassembleSteps;
 
 // Elements per stage of the element pass (CpuBackend::elements).
 constexpr int kChunk = 64;
@@ -118,7 +118,17 @@ class CpuBackend final : public Backend {
     return std::is_same_v<T, double> ? Precision::Double : Precision::Float;
   }
   const SimParams& params() const override { return p_; }
-  void set_params(const SimParams& p) override { p_ = p; }
+  void set_params(const SimParams& p) override {
+    // The kept K and b0 belong to the tolerance they were built under: at 0 b0 is not
+    // kept at all, so a switch to above 0 would lose every still element's rotation term
+    // until the next full assembly. Any change of tolerance assembles afresh.
+    if (p.solver.corotation_tolerance != p_.solver.corotation_tolerance) assembled_ = false;
+    // A body at rest is at rest under the parameters it settled with: a new gravity (or
+    // anything else but dt and threads) is solved for.
+    if (differ_beyond_step(p, p_)) rested_ = false;
+    p_ = p;
+  }
+  const CpuWorkCounters& counters() const { return counters_; }
 
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
@@ -191,8 +201,10 @@ class CpuBackend final : public Backend {
     contact::detect<T>(fingers, m_.surface, x_.data(), bounds_, contacts_);
     st.contacts = static_cast<int>(contacts_.size());
 
+    ++counters_.steps;
     // Skip what the scene does not need: no contact and at rest -> no solve.
     if (contacts_.empty() && rested_) {
+      ++counters_.skipped_at_rest;
       finger_outputs(fingers, out);
       return st;
     }
@@ -292,6 +304,7 @@ class CpuBackend final : public Backend {
       std::fill(blocks_.begin(), blocks_.end(), T(0));
       std::fill(b0_.begin(), b0_.end(), T(0));
       steps_since_assembly_ = 0;
+      ++counters_.full_assemblies;
     }
     ++steps_since_assembly_;
     if (!kept) std::fill(b_.begin(), b_.end(), T(0));
@@ -633,11 +646,18 @@ class CpuBackend final : public Backend {
   bool last_converged_ = false;               // the last CG solve met its tolerance
   bool assembled_ = false;                   // blocks_ holds K for the current rotations
   long steps_since_assembly_ = 0;
+  CpuWorkCounters counters_;
   int threads_ = 1;                          // trash slots (OpenMP threads)
   unsigned cores_ = std::thread::hardware_concurrency();
 };
 
 }  // namespace
+
+CpuWorkCounters cpu_work_counters(const Backend& b) {
+  if (const auto* d = dynamic_cast<const CpuBackend<double>*>(&b)) return d->counters();
+  if (const auto* f = dynamic_cast<const CpuBackend<float>*>(&b)) return f->counters();
+  return {};
+}
 
 std::unique_ptr<Backend> make_cpu_backend(const Model& model, const SimParams& params) {
   if (params.solver.precision == Precision::Float) return std::make_unique<CpuBackend<float>>(model, params);

@@ -7,6 +7,22 @@
 
 namespace palpation::sim {
 
+/// Full re-assemblies of the kept stiffness: one after this many assembling steps.
+inline constexpr long kCpuReassembleSteps = 65536;
+
+/// What the CPU backend's work skipping did since it was made (read-only, for tests and
+/// reports): steps taken, steps skipped because the body rested untouched, and full
+/// assemblies of K (the first, after a reset, material or tolerance change, at tolerance
+/// 0 every step, and every kCpuReassembleSteps assembling steps).
+struct CpuWorkCounters {
+  long steps = 0;
+  long skipped_at_rest = 0;
+  long full_assemblies = 0;
+};
+
+/// The counters of a CPU backend; zeros for any other backend.
+CpuWorkCounters cpu_work_counters(const Backend& b);
+
 /// Makes the CPU backend in the precision of params.solver.precision.
 std::unique_ptr<Backend> make_cpu_backend(const Model& model, const SimParams& params);
 

@@ -9,6 +9,21 @@
 
 namespace palpation::sim {
 
+double ray_triangle(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
+                    const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d e1 = b - a, e2 = c - a, p = d.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-18) return -1;
+  const double inv = 1.0 / det;
+  const Eigen::Vector3d s = o - a;
+  const double u = s.dot(p) * inv;
+  if (u < -1e-9 || u > 1 + 1e-9) return -1;
+  const Eigen::Vector3d q = s.cross(e1);
+  const double v = d.dot(q) * inv;
+  if (v < -1e-9 || u + v > 1 + 1e-9) return -1;
+  return e2.dot(q) * inv;
+}
+
 double tet_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                   const Eigen::Vector3d& d) {
   return (b - a).dot((c - a).cross(d - a)) / 6.0;

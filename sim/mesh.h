@@ -33,6 +33,12 @@ struct TetMesh {
   std::uint64_t hash() const;
 };
 
+/// Distance along the ray o + t d to triangle (a, b, c) (Moller-Trumbore; t in units of
+/// |d|), or a negative number when the ray misses it. Hits on an edge (within 1e-9 of the
+/// barycentric range) count, so a ray through a shared edge finds one of its triangles.
+double ray_triangle(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
+                    const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 /// Signed volume of a tetrahedron (positive when positively oriented).
 double tet_volume(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
                   const Eigen::Vector3d& d);

@@ -38,6 +38,13 @@ inline void lame(double E, double nu, double& lambda, double& mu) {
 /// instead of a 12 x 12 matrix. Corotation replaces g_a by R g_a.
 /// Per-element materials: what painting a tumour changes. A Model holds those it was built
 /// with; a running Simulation holds the current ones and hands them to its backend.
+/// The tumour rule: an element is tumour tissue when its Young's modulus is above 1.2 x
+/// the bulk tissue's (a patient's inclusions are 2x to 25x stiffer than fat; the factor
+/// keeps a tissue modulus edited by a few percent from reading as a tumour). The tumour
+/// editor, the 3-D view and the exam scorer all read it here.
+inline constexpr double kTumourFactor = 1.2;
+inline bool is_tumour_modulus(double young, double tissue_young) { return young > kTumourFactor * tissue_young; }
+
 struct Materials {
   std::vector<double> young;                // (ntet) Pa
   std::vector<double> poisson;              // (ntet)

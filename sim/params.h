@@ -45,6 +45,18 @@ struct SimParams {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // m/s^2
 };
 
+/// True when a and b differ in more than the time step and the CPU thread count. Those
+/// two the real-time loop changes between steps, and a body at rest stays at rest under
+/// them; any other change (gravity above all) must wake a resting body.
+inline bool differ_beyond_step(const SimParams& a, const SimParams& b) {
+  const SolverParams &s = a.solver, &t = b.solver;
+  return s.cg_tolerance != t.cg_tolerance || s.cg_max_iterations != t.cg_max_iterations ||
+         s.precision != t.precision || s.corotation_tolerance != t.corotation_tolerance ||
+         a.damping.mass != b.damping.mass || a.damping.stiffness != b.damping.stiffness ||
+         a.contact.stiffness != b.contact.stiffness || a.contact.damping != b.contact.damping ||
+         a.contact.force_filter_hz != b.contact.force_filter_hz || a.gravity != b.gravity;
+}
+
 /// One fingertip as the simulation sees it: a rigid sphere.
 struct FingerInput {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // sphere centre, m, world

@@ -24,7 +24,7 @@ namespace {
 std::string breast_key(const BreastShape& b, double edge, const std::vector<Inclusion>& incs) {
   std::ostringstream k;
   k.precision(9);
-  k << "breast/v1 c=" << b.center_x << " a=" << b.base_radius << " h=" << b.height << " edge=" << edge;
+  k << "breast/v2-delaunay c=" << b.center_x << " a=" << b.base_radius << " h=" << b.height << " edge=" << edge;
   for (const auto& i : incs)
     k << " inc(" << i.shape << ' ' << i.center.transpose() << ' ' << i.radii.transpose() << ')';
   return k.str();
@@ -82,7 +82,7 @@ TetMesh patient_mesh(const Scenario& s, const LogFn& log) {
   }
   if (why != "missing") say("meshing: cache " + path + " rejected (" + why + "), meshing again");
   if (!gmsh_available())
-    throw ScenarioError(s.source + ": patient.phantom: the breast mesh is not in the cache (" + path +
+    throw MeshUnavailable(s.source + ": patient.phantom: the breast mesh is not in the cache (" + path +
                         ") and this build has no Gmsh: generate it on a machine with Gmsh and carry the "
                         "cache folder (PALPATION_CACHE_DIR)");
   const auto t0 = clock::now();

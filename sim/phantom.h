@@ -25,13 +25,20 @@ struct BreastShape {
   bool contains(const Eigen::Vector3d& p) const;
 };
 
+/// The breast mesh cannot be had on this machine: not in the model cache and no Gmsh in
+/// this build. Not a fault of the scenario nor of the simulation: callers may skip.
+class MeshUnavailable : public ScenarioError {
+ public:
+  using ScenarioError::ScenarioError;
+};
+
 /// Progress/log sink for long steps (meshing): one line per call.
 using LogFn = std::function<void(const std::string&)>;
 
 /// Builds the mesh of a scenario's patient: box phantoms by the structured mesher
 /// (graded toward the top centre when `grading` > 1), the breast by Gmsh, mesh files by
 /// their reader; all through the model cache. Throws ScenarioError on failure, naming
-/// the file and the reason.
+/// the file and the reason (MeshUnavailable when the breast needs Gmsh and has none).
 TetMesh patient_mesh(const Scenario& s, const LogFn& log = {});
 
 }  // namespace palpation::sim

@@ -10,28 +10,6 @@
 
 namespace palpation::sim {
 
-namespace {
-
-/// Distance along the ray o + t d (d unit) to triangle (a, b, c), Moller-Trumbore;
-/// negative when the ray misses it.
-double ray_triangle(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
-                    const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e1 = b - a, e2 = c - a;
-  const Eigen::Vector3d p = d.cross(e2);
-  const double det = e1.dot(p);
-  if (std::fabs(det) < 1e-18) return -1.0;
-  const double inv = 1.0 / det;
-  const Eigen::Vector3d s = o - a;
-  const double u = s.dot(p) * inv;
-  if (u < 0.0 || u > 1.0) return -1.0;
-  const Eigen::Vector3d q = s.cross(e1);
-  const double v = d.dot(q) * inv;
-  if (v < 0.0 || u + v > 1.0) return -1.0;
-  return e2.dot(q) * inv;
-}
-
-}  // namespace
-
 std::optional<PressSite> skin_site_above(const Model& m, const Eigen::Vector3d& p, double footprint) {
   // The highest boundary triangle on the vertical line through p.
   double best_z = -std::numeric_limits<double>::infinity();

@@ -20,16 +20,13 @@
 #include <Eigen/Core>
 
 #include "live/event.h"
+#include "model.h"
 
 namespace palpation::app::live {
 
 struct PatientGeometry;
 
-/// THE tumour rule: an element is tumour tissue when its Young's modulus is above 1.2 x
-/// the bulk tissue's (a patient's inclusions are 2x to 25x stiffer than fat; the factor
-/// keeps a tissue modulus edited by a few percent from reading as a tumour).
-inline constexpr double kTumourFactor = 1.2;
-inline bool is_tumour_modulus(double young, double tissue_young) { return young > kTumourFactor * tissue_young; }
+using sim::is_tumour_modulus;  // the tumour rule (sim/model.h)
 
 /// Element -> Young's modulus (Pa).
 using Moduli = std::map<int, double>;

@@ -272,7 +272,12 @@ class CudaBackend final : public Backend {
   std::string device_name() const override { return device_info().name; }
   Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
   const SimParams& params() const override { return p_; }
-  void set_params(const SimParams& p) override { p_ = p; }
+  void set_params(const SimParams& p) override {
+    // A body at rest is at rest under the parameters it settled with: a new gravity (or
+    // anything else but dt and threads) is solved for.
+    if (differ_beyond_step(p, p_)) rested_ = false;
+    p_ = p;
+  }
 
   void set_materials(const Materials& mat) override {
     std::vector<T> l(ne_), mu(ne_);

@@ -2,9 +2,10 @@
 // over the stiffest part of the patient maps to 90 % of the device's limit, so the
 // tumour's extra force reaches the trainee instead of being cut off by the safety clamp.
 //
-// The contrast of a press over the paper's tumour against one beside it (same depth below
-// the skin, scripted fingertip, default patient: coarse breast, 19 kPa tissue, 107 kPa
-// tumour), C = (F_over - F_beside) / F_beside, simulated and as sent to the device through
+// The contrast of a press over the paper's tumour against the same press on the same mesh
+// without it (same depth below the skin, scripted fingertip, default patient: coarse
+// breast, 19 kPa tissue, 107 kPa tumour), C = (F_tumour - F_none) / F_none, simulated and
+// as sent to the device through
 // the real chain: the simulation stepped in lockstep with the haptic loop (every 5 ticks,
 // dt 5 ms), fingertips from the loop's poses through the virtual coupling
 // (live/sim_fingers.h), contact models built with the scale (live/device_bridge.h),
@@ -36,12 +37,6 @@ constexpr std::int64_t kTick = 1000000;  // ns
 constexpr int kEvery = 5;                // ticks per simulation step
 constexpr double kDepth = 0.018;         // m below the skin: the paper sweep's deep push
 const Eigen::Vector3d kTumour(0.125, 0.0, 0.045);   // the paper's tumour centre (skin above it: the apex)
-// Beside: 2.5 cm from the tumour's axis, the fingertip's rim 2 mm outside the tumour's.
-// Closer, the press still feels the tumour; further down the coarse dome's flank its facets
-// alone change the force as much as the tumour does (quasi-static 18 mm presses, sim/
-// press_probe.h, tumour / same mesh without it: apex 5.12 / 3.73 N, 2.5 cm off 4.28 /
-// 4.13 N, 3 cm off 4.86 / 4.87 N, 3.5 cm off 6.16 / 6.09 N).
-const Eigen::Vector3d kBeside(0.100, 0.0, 0.03);
 
 struct Press {
   double sim = 0;        // N, simulated force at the end of the hold (mean over its last 0.2 s)
@@ -53,8 +48,10 @@ struct Press {
 
 // One scripted press of the index fingertip, straight down above `where` from 3 mm above
 // the skin to kDepth below it in 1 s, held 0.8 s; the patient's simulation stepped in
-// lockstep with the haptic loop.
-Press press(const sim::Scenario& sc, const sim::Model& model, const Eigen::Vector3d& where, double scale) {
+// lockstep with the haptic loop. `tumour` false: the same mesh with every element at the
+// tissue's modulus (the patient without its tumour), so that the contrast is the tumour's
+// alone, not that of two sites of different thickness and facets.
+Press press(const sim::Scenario& sc, const sim::Model& model, const Eigen::Vector3d& where, double scale, bool tumour = true) {
   const lv::DeviceConfig cfg = lv::default_device_config();
   const auto& reg = cfg.hand.registration;
   const std::optional<sim::PressSite> site = sim::skin_site_above(model, where);
@@ -75,6 +72,11 @@ Press press(const sim::Scenario& sc, const sim::Model& model, const Eigen::Vecto
   const double kc = loop.params().virtual_coupling ? loop.params().coupling_stiffness : 0.0;
 
   sim::Simulation simulation(sc, model);
+  if (!tumour) {
+    std::vector<std::pair<int, double>> tissue;
+    for (int e = 0; e < model.num_tets(); ++e) tissue.emplace_back(e, sc.young_modulus);
+    simulation.set_element_young(tissue);
+  }
   simulation.reset();
   std::vector<sim::FingerInput> in(1);
   std::vector<sim::FingerOutput> out(1);
@@ -168,9 +170,10 @@ class TestForceMapping : public QObject {
   }
 
   // The tumour's contrast reaches the device with the scale; without it the clamp eats it.
-  // Measured (2-core VM): s = 0.624: over 4.85 N simulated / 3.03 N sent, beside 3.99 /
-  // 2.49 N, C 0.215 simulated, 0.216 sent, no tick clamped; s = 1: over 4.65 / 4.00 N
-  // (882 of 1,800 ticks clamped), beside 3.88 / 3.88 N, C 0.197 simulated, 0.030 sent.
+  // Measured (2-core VM): s = 0.605: with the tumour 4.72 N simulated / 2.85 N sent,
+  // without 4.10 / 2.48 N, C 0.149 simulated, 0.149 sent, no tick clamped; s = 1: with
+  // 4.54 / 4.00 N (824 of 1,800 ticks clamped), without 4.00 / 4.00 N, C 0.133 simulated,
+  // 0.000 sent.
   void tumourContrastReachesTheDevice() {
     QVERIFY(mapping_.scale < 1.0);
     const lv::DeviceConfig cfg = lv::default_device_config();
@@ -179,10 +182,10 @@ class TestForceMapping : public QObject {
     const double scales[2] = {mapping_.scale, 1.0};
     for (int i = 0; i < 2; ++i) {
       const Press over = press(sc_, sim_->model(), kTumour, scales[i]);
-      const Press beside = press(sc_, sim_->model(), kBeside, scales[i]);
+      const Press beside = press(sc_, sim_->model(), kTumour, scales[i], /*tumour=*/false);
       c_sim[i] = contrast(over.sim, beside.sim);
       c_sent[i] = contrast(over.sent, beside.sent);
-      qInfo("scale %.3f: over the tumour %.2f N simulated, %.2f N sent (clamped %llu finger-ticks); beside %.2f N simulated, "
+      qInfo("scale %.3f: over the tumour %.2f N simulated, %.2f N sent (clamped %llu finger-ticks); without it %.2f N simulated, "
             "%.2f N sent (clamped %llu); contrast simulated %.3f, sent %.3f",
             scales[i], over.sim, over.sent, (unsigned long long)over.clamped, beside.sim, beside.sent,
             (unsigned long long)beside.clamped, c_sim[i], c_sent[i]);
@@ -194,10 +197,9 @@ class TestForceMapping : public QObject {
       QVERIFY2(over.sim > beside.sim, "the tumour is stiffer");
     }
     // With the scale: at least 80 % of the simulated contrast is sent.
-    // How much contrast the model gives at these two sites depends on Gmsh's coarse mesh,
-    // which differs between machines and runs (0.215 on one, 0.046 on another): the test
-    // needs some contrast to measure what survives, not a particular amount.
-    QVERIFY2(c_sim[0] > 0.02, qPrintable(QString::number(c_sim[0])));
+    // The tumour must show in the simulation for the test to measure what survives: the
+    // coarse mesh gives 0.149 (above); 0.05 asks for a third of it.
+    QVERIFY2(c_sim[0] > 0.05, qPrintable(QString::number(c_sim[0])));
     QVERIFY2(c_sent[0] >= 0.8 * c_sim[0], qPrintable(QString("sent %1 simulated %2").arg(c_sent[0]).arg(c_sim[0])));
     // Unscaled (s = 1) both presses reach the clamp: most of the contrast is lost.
     QVERIFY2(c_sent[1] < 0.5 * c_sim[1], qPrintable(QString("sent %1 simulated %2").arg(c_sent[1]).arg(c_sim[1])));

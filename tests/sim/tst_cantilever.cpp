@@ -68,7 +68,11 @@ class TestCantilever : public QObject {
       QVERIFY2(err < previous_error, "error must shrink with refinement");
       previous_error = err;
     }
-    if (!light) QVERIFY2(previous_error < 0.03, qPrintable(QString("finest error %1").arg(previous_error)));
+    if (light)
+      QSKIP(qPrintable(QString("PALPATION_LIGHT_TESTS: convergence checked up to 16 across; the 3% bound against "
+                               "beam theory is NOT checked (it needs 24 across; the finest here is %1% off)")
+                           .arg(100 * previous_error, 0, 'f', 2)));
+    QVERIFY2(previous_error < 0.03, qPrintable(QString("finest error %1").arg(previous_error)));
   }
 
   // The implicit integrator with gravity settles to the linear static answer on the same

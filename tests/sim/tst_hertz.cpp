@@ -99,7 +99,11 @@ class TestHertz : public QObject {
       QVERIFY2(err < prev, "error must shrink with refinement");
       prev = err;
     }
-    if (!light) QVERIFY2(prev < 0.10, qPrintable(QString::number(prev)));
+    if (light)
+      QSKIP(qPrintable(QString("PALPATION_LIGHT_TESTS: convergence checked on 12-28 across; the 10% bound against "
+                               "Hertz is NOT checked (it needs the 44-across mesh; the finest here is %1% off)")
+                           .arg(100 * prev, 0, 'f', 1)));
+    QVERIFY2(prev < 0.10, qPrintable(QString::number(prev)));
   }
 };
 
