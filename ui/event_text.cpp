@@ -93,7 +93,7 @@ QString EventText::patient_description(const app::store::BuiltinDescription& d) 
       return d.paper_size ? tr("Healthy breast, %1 (%2 mL), the paper's size, no tumour").arg(what, ml)
                           : tr("Healthy breast, %1 (%2 mL), no tumour").arg(what, ml);
     }
-    case D::Kind::PaperCase: return tr("The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin");
+    case D::Kind::PaperCase: return tr("The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, centre 2.0 cm below the skin");
     case D::Kind::Tumour: {
       const QString hard = d.hardness == D::Hardness::Soft ? tr("soft") : d.hardness == D::Hardness::Hard ? tr("hard") : tr("firm");
       return tr("Medium breast, %1 tumour %2 cm diameter (%3 kPa), centre %4 cm below the skin")

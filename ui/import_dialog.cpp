@@ -230,7 +230,10 @@ void ImportDialog::poll() {
   progress->setValue(1000);
   stage->setText(tr("Done in %1 s (meshing %2 s).").arg(r->seconds, 0, 'f', 1).arg(r->mesh_seconds, 0, 'f', 1));
   const std::string rep = r->report.repairs();
-  report->setText(tr("%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².")
+  // The chest wall that will be fixed, shown before saving: its area, its share of the
+  // body's outline and its tilt in the scan's frame.
+  report->setText(tr("%1 nodes, %2 tetrahedra. Repairs: %3. Chest wall (fixed) %4: n = (%5, %6, %7), %8 cm², "
+                     "%9 % of the body's outline, tilted %10° from the scan's z axis.")
                       .arg(r->mesh.num_nodes())
                       .arg(r->mesh.num_tets())
                       .arg(rep.empty() ? tr("none") : QString::fromStdString(rep))
@@ -238,7 +241,9 @@ void ImportDialog::poll() {
                       .arg(r->base.normal.x(), 0, 'f', 3)
                       .arg(r->base.normal.y(), 0, 'f', 3)
                       .arg(r->base.normal.z(), 0, 'f', 3)
-                      .arg(r->base.area * 1e4, 0, 'f', 1));
+                      .arg(r->base.area * 1e4, 0, 'f', 1)
+                      .arg(100.0 * r->base.footprint_fraction(), 0, 'f', 0)
+                      .arg(r->base.tilt_deg(), 0, 'f', 0));
   preview->set_patient(app::scan::preview_geometry(r->mesh, ++generation_));
   preview->set_camera(VtkView::CameraPreset::Oblique);
   preview->update();

@@ -132,11 +132,12 @@ CommandAction add_patient_command(CLI::App& app) {
         const PatientRecord p = imported_patient_record(r, o->name, o->file, io.edge);
         PatientLibrary lib(lo);
         lib.add(p);
-        std::printf("imported %s as \"%s\": %s; %s; base plane n = (%.3f, %.3f, %.3f) %s, %.1f cm^2; %d nodes, %d "
-                    "tetrahedra; %.2f s (meshing %.2f s) -> %s\n",
+        std::printf("imported %s as \"%s\": %s; %s; base plane n = (%.3f, %.3f, %.3f) %s, %.1f cm^2 (%.0f %% of the body's "
+                    "outline, tilted %.0f degrees); %d nodes, %d tetrahedra; %.2f s (meshing %.2f s) -> %s\n",
                     o->file.c_str(), o->name.c_str(), r.report.repairs().c_str(), "closed and manifold", r.base.normal.x(),
                     r.base.normal.y(), r.base.normal.z(), r.base.automatic ? "found" : "given", r.base.area * 1e4,
-                    r.mesh.num_nodes(), r.mesh.num_tets(), r.seconds, r.mesh_seconds, lib.location().c_str());
+                    100.0 * r.base.footprint_fraction(), r.base.tilt_deg(), r.mesh.num_nodes(), r.mesh.num_tets(), r.seconds,
+                    r.mesh_seconds, lib.location().c_str());
         return kExitOk;
       }
       PatientLibrary lib(lo);

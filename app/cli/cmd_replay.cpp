@@ -53,14 +53,30 @@ CommandAction add_replay_command(CLI::App& app) {
       if (!js) throw std::runtime_error(out.path("summary.json") + ": write failed");
     }
     out.commit();
-    std::printf("replay: largest force difference %.3g N (finger %d at t = %.3f s; largest recorded force %.3g N) "
-                "over %zu finger ticks, backend %s -> %s\n",
-                r.max_force_diff, r.max_diff_finger, r.max_diff_t, r.max_recorded_force, r.compared,
-                r.run.summary["backend"].get<std::string>().c_str(), o->out.c_str());
-    const std::string mode = rec.header.contains("session") ? rec.header["session"].value("sim_dt", "") : "";
-    if (mode == "realtime" || rec.header.contains("session"))
-      std::printf("replay: note: a real-time session's forces came through the haptic loop (wall-clock dt, virtual "
-                  "coupling, safety filter); the headless re-simulation differs by that (docs/recording.md)\n");
+    const std::string backend = r.run.summary["backend"].get<std::string>();
+    if (r.compared_force == review::ReplayForce::Simulated) {
+      // A workstation recording: its steps re-run exactly; simulated against simulated.
+      std::printf("replay: simulated force, every recorded step re-simulated (its dt, fingertip inputs and changes): "
+                  "largest difference %.3g N (finger %d at t = %.3f s; largest recorded step force %.3g N) over %zu finger "
+                  "steps, backend %s -> %s\n",
+                  r.max_force_diff, r.max_diff_finger, r.max_diff_t, r.max_recorded_force, r.compared, backend.c_str(),
+                  o->out.c_str());
+      std::printf("replay: force sent to the device, the re-simulated steps through the device's force path (force scale "
+                  "%.3f %s, local contact model, haptic loop: coupling, fades, safety filter): largest difference %.3g N "
+                  "(finger %d at t = %.3f s; largest recorded %.3g N) over %zu finger ticks\n",
+                  r.force_scale, r.force_scale_source.c_str(), r.sent.max_diff, r.sent.finger, r.sent.at_t,
+                  r.sent.max_recorded_force, r.sent.compared);
+    } else {
+      std::printf("replay: force sent, re-simulated at the scenario's dt from the recorded fingertip positions, times the "
+                  "recorded force scale %.3f: largest difference %.3g N (finger %d at t = %.3f s; largest recorded force "
+                  "%.3g N) over %zu finger ticks, backend %s -> %s\n",
+                  r.force_scale, r.max_force_diff, r.max_diff_finger, r.max_diff_t, r.max_recorded_force, r.compared,
+                  backend.c_str(), o->out.c_str());
+      if (rec.header.contains("session"))
+        std::printf("replay: note: this session's forces came through the haptic loop (wall-clock dt, virtual coupling, "
+                    "safety filter) and it recorded no simulation steps; the headless re-simulation differs by that "
+                    "(docs/recording.md)\n");
+    }
     return r.run.summary["finite"].get<bool>() ? kExitOk : kExitFailure;
   };
 }

@@ -1,9 +1,24 @@
 // Replay of a session recording (docs/recording.md): the recorded patient and settings
-// re-simulated from the recorded device input (fingertip positions at 1 kHz), headless
-// and deterministic, compared with the forces recorded.
+// re-simulated headless and deterministic, compared with the forces recorded.
+//
+// Two kinds of recording, two comparisons, each saying which force it compares:
+//  - with steps (the workstation's, version 2): the simulation thread's steps re-run with
+//    their recorded dt, fingertip inputs and changes; the re-simulated force of every step
+//    against the simulated force the recording kept for it (simulated vs simulated: zero up
+//    to rounding on the same backend and thread count). The forces sent at 1 kHz are
+//    compared separately: the re-simulated steps through the device's force path as the
+//    workstation ran it (the force scale, live/force_mapping.h; the spike guard and the
+//    local contact model, live/; the haptic loop with its virtual coupling, fades and
+//    safety filter, device/HapticLoop) against the recorded ticks.
+//  - without steps (`palpation session`, version 1): the recorded device input (fingertip
+//    positions at 1 kHz) as finger paths at the scenario's dt; the forces times the
+//    recorded force scale against the forces recorded (sent).
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -22,18 +37,56 @@ struct ReplayOptions {
   sim::LogFn log;
 };
 
+/// What a replay compares (ReplayResult::compared_force).
+enum class ReplayForce {
+  Simulated,  // recorded step forces against re-simulated ones (recordings with steps)
+  Sent,       // recorded 1 kHz forces against re-simulated ones times the recorded scale (without steps)
+};
+/// "simulated", "sent".
+const char* replay_force_name(ReplayForce f);
+
+/// The largest difference of one comparison.
+struct ForceDiff {
+  double max_diff = 0;            // N, largest |f_replay - f_recorded| over samples and fingers
+  double at_t = 0;                // s, where
+  int finger = 0;
+  double max_recorded_force = 0;  // N, for scale
+  std::size_t compared = 0;       // finger samples compared
+  void add(double t, int k, const Eigen::Vector3d& replayed, const Eigen::Vector3d& recorded);
+};
+
 struct ReplayResult {
   RunResult run;              // samples in fingers.csv order, summary
-  double max_force_diff = 0;  // N, largest |f_replay - f_recorded| over ticks and fingers
+  ReplayForce compared_force = ReplayForce::Sent;
+  /// The comparison of `compared_force` (the headline, `palpation replay` prints it first).
+  double max_force_diff = 0;  // N
   double max_diff_t = 0;      // s, where
   int max_diff_finger = 0;
   double max_recorded_force = 0;  // N, for scale
-  std::size_t compared = 0;       // finger ticks compared
+  std::size_t compared = 0;       // finger steps (Simulated) or finger ticks (Sent) compared
+  /// Recordings with steps: the forces sent at 1 kHz, recorded against the re-simulated
+  /// steps through the device's force path (see above); `sent.compared` is 0 otherwise.
+  ForceDiff sent;
+  double force_scale = 1.0;          // device force per simulated force (the first patient's)
+  std::string force_scale_source;    // "recorded" (the header or the session's events), "re-measured" (the
+                                     // patient's deep press again, as the workstation chose it), "none" (1)
 };
 
 /// The scenario a recording was made with, its finger paths replaced by the recorded
 /// device input. Throws sim::ScenarioError naming the recording's header field.
 sim::Scenario replay_scenario(const Recording& rec);
+
+/// A change the workstation's simulation thread applied between steps, from a recording's
+/// "parameter" events: `index` is its place in the command queue (a step applied those
+/// with index < RecordedStep::commands_applied).
+struct RecordedCommand {
+  std::uint64_t index = 0;
+  std::string kind;                           // "young", "params", "patient"
+  std::vector<std::pair<int, double>> young;  // element, Pa
+  nlohmann::json scenario;                    // params / patient
+};
+/// The recording's commands in queue order.
+std::vector<RecordedCommand> recorded_commands(const Recording& rec);
 
 /// Re-simulates and compares. Throws sim::ScenarioError / std::runtime_error.
 ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt);

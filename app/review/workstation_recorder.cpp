@@ -80,6 +80,17 @@ WorkstationRecorder::WorkstationRecorder(Workstation& ws, const std::string& pat
       if (!fi.f.allFinite()) fi.f.setZero();
     }
     writer_->add_step(st);
+    // The force scale the step's contact models went to the device with (chosen when the
+    // patient loaded, live/force_mapping.h), recorded when it changes: replay sends the
+    // re-simulated forces through the same scale.
+    if (s.mapping.scale != force_scale_) {
+      force_scale_ = s.mapping.scale;
+      writer_->add_event(s.t, "session", {{"event", "force_scale"},
+                                          {"scale", s.mapping.scale},
+                                          {"rule", live::force_scale_rule_name(s.mapping.rule)},
+                                          {"deep_press_n", s.mapping.deep_press_n},
+                                          {"device_limit_n", s.mapping.device_limit_n}});
+    }
   });
   ws_.add_event_listener([this, alive](const Event& e) {
     if (!alive.lock()) return;

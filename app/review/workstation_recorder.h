@@ -66,6 +66,7 @@ class WorkstationRecorder {
   double tick_t_ = -1, last_t_ = 0;
   bool pending_ = false;
   int marks_ = 0;
+  double force_scale_ = 0;  // the last force scale recorded (a "session" event when it changes)
   int lock_fd_ = -1;  // flock held while recording: recovery leaves a live file alone
   std::shared_ptr<bool> alive_;
 };

@@ -243,6 +243,50 @@ BasePlane find_base_plane(const SurfaceMesh& s) {
   return best;
 }
 
+double BasePlane::tilt_deg() const {
+  const double c = normal.norm() > 0 ? -normal.normalized().z() : 1.0;
+  return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / kPi;
+}
+
+double projected_footprint(const SurfaceMesh& s, const Eigen::Vector3d& normal) {
+  if (s.vertices.empty() || !(normal.norm() > 0)) return 0;
+  // Two axes in the plane; every vertex projected onto them.
+  const Eigen::Vector3d n = normal.normalized();
+  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  std::vector<Eigen::Vector2d> p(s.vertices.size());
+  Eigen::Vector2d lo(HUGE_VAL, HUGE_VAL), hi(-HUGE_VAL, -HUGE_VAL);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p[i] = Eigen::Vector2d(u.dot(s.vertices[i]), v.dot(s.vertices[i]));
+    lo = lo.cwiseMin(p[i]);
+    hi = hi.cwiseMax(p[i]);
+  }
+  // The union of the projected triangles on a grid of square cells (a cell counts when its
+  // centre lies in a triangle): overlapping layers of the surface count once.
+  constexpr int kCells = 512;
+  const double cell = std::max(hi.x() - lo.x(), hi.y() - lo.y()) / kCells;
+  if (!(cell > 0)) return 0;
+  const int nx = std::max(1, int(std::ceil((hi.x() - lo.x()) / cell))), ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / cell)));
+  std::vector<char> covered(std::size_t(nx) * std::size_t(ny), 0);
+  for (const auto& t : s.triangles) {
+    const Eigen::Vector2d &a = p[std::size_t(t[0])], &b = p[std::size_t(t[1])], &c = p[std::size_t(t[2])];
+    const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+    if (std::abs(det) <= 0) continue;  // edge-on: its neighbours cover its outline
+    const Eigen::Vector2d tlo = a.cwiseMin(b).cwiseMin(c), thi = a.cwiseMax(b).cwiseMax(c);
+    const int i0 = std::max(0, int(std::floor((tlo.x() - lo.x()) / cell - 0.5))), i1 = std::min(nx - 1, int(std::ceil((thi.x() - lo.x()) / cell - 0.5)));
+    const int j0 = std::max(0, int(std::floor((tlo.y() - lo.y()) / cell - 0.5))), j1 = std::min(ny - 1, int(std::ceil((thi.y() - lo.y()) / cell - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Eigen::Vector2d q(lo.x() + (i + 0.5) * cell, lo.y() + (j + 0.5) * cell);
+        const double l1 = ((q.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (q.y() - a.y())) / det;
+        const double l2 = ((b.x() - a.x()) * (q.y() - a.y()) - (q.x() - a.x()) * (b.y() - a.y())) / det;
+        if (l1 >= 0 && l2 >= 0 && l1 + l2 <= 1) covered[std::size_t(j) * std::size_t(nx) + std::size_t(i)] = 1;
+      }
+  }
+  std::size_t n_cov = 0;
+  for (char x : covered) n_cov += std::size_t(x);
+  return double(n_cov) * cell * cell;
+}
+
 ImportResult import_scan(const std::string& path, const ImportOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto step = [&](double f, const std::string& stage) {
@@ -281,7 +325,7 @@ ImportResult import_scan(const std::string& path, const ImportOptions& opt) {
       if (all_on) on += 0.5 * tri_normal(s, t).norm();
     }
     for (const auto& v : s.vertices) below = std::max(below, base.normal.dot(v) - base.offset);
-    if (!opt.base) base.area = on;
+    base.area = on;  // a given plane too: what it touches
     if (on <= 0) throw ImportError(path + ": base plane: no part of the surface lies on it (give a plane through a flat face)");
     if (below > tol) {
       std::ostringstream o;
@@ -289,7 +333,28 @@ ImportResult import_scan(const std::string& path, const ImportOptions& opt) {
       o << path << ": base plane: the surface reaches " << below * 1000 << " mm beyond it into the chest (not a cut at the chest wall)";
       throw ImportError(o.str());
     }
-    if (!opt.base) base.area = on;
+    // A chest wall carries the body: a base that is a small part of the body's outline on
+    // its plane is a flat patch of a closed body (a sphere's facet), not a cut at the chest.
+    base.footprint = projected_footprint(s, base.normal);
+    if (base.footprint_fraction() < kMinBaseFootprintFraction) {
+      char buf[640];
+      if (opt.base)
+        std::snprintf(buf, sizeof buf,
+                      "no chest wall: the plane given touches %.1f cm^2 of the surface, %.1f %% of the body's outline on "
+                      "it (a chest wall needs at least %.0f %%); give the plane of the scan's flat cut at the chest wall "
+                      "(--base-plane nx,ny,nz,d: n out of the body into the chest, d in m)",
+                      base.area * 1e4, 100.0 * base.footprint_fraction(), 100.0 * kMinBaseFootprintFraction);
+      else
+        std::snprintf(buf, sizeof buf,
+                      "no chest wall: the largest flat region is %.1f cm^2 (tilted %.0f degrees from the scan's z axis), "
+                      "%.1f %% of the body's outline on its plane (a chest wall needs at least %.0f %%): the scan must be cut "
+                      "flat at the chest wall. Cut it there in a mesh editor, or, if it has a flat base that was not found "
+                      "whole (a rough cut), give that plane with --base-plane nx,ny,nz,d (n out of the body into the chest, "
+                      "d in m)",
+                      base.area * 1e4, base.tilt_deg(), 100.0 * base.footprint_fraction(),
+                      100.0 * kMinBaseFootprintFraction);
+      throw ImportError(path + ": " + buf);
+    }
   }
   res.base = base;
   // Rotate the base normal onto -z, the plane onto z = 0.

@@ -66,8 +66,29 @@ struct BasePlane {
   Eigen::Vector3d normal = -Eigen::Vector3d::UnitZ();  // unit, pointing out of the body (into the chest)
   double offset = 0;                                   // plane: normal . x = offset
   double area = 0;                                     // of the surface lying on it
+  double footprint = 0;  // m^2, the body's outline projected along the normal onto the plane (import_scan fills it)
   bool automatic = true;
+  /// The base's share of the body's footprint: about 1 for a scan cut flat at the chest
+  /// wall, a few per cent for a closed body touching the plane at one flat patch.
+  double footprint_fraction() const { return footprint > 0 ? area / footprint : 0.0; }
+  /// Degrees between the normal and the scan's own -z (how far the base is tilted in the file).
+  double tilt_deg() const;
 };
+
+/// A base must cover at least this share of the body's footprint to be a chest wall
+/// (import_scan refuses less). The scans of tests/data (domes cut flat at the base) have
+/// 1.00; the largest flat patch of a closed 20 cm sphere (32 x 16 facets) 0.012, of an
+/// octahedron subdivided three times onto a 20 cm sphere 0.015 (tst_scan_import). A breast
+/// scanned lying on its back and cut at the chest wall has its base under it, most of its
+/// outline; a pendulous one, scanned upright, can overhang its base: with an outline
+/// reaching twice the base's radius all round, the base is a quarter of it. Below that the
+/// body hangs from a patch, not from a chest wall.
+inline constexpr double kMinBaseFootprintFraction = 0.25;
+
+/// The area (m^2) of the surface's outline projected along `normal` onto a plane
+/// perpendicular to it (rasterised on a 512 x 512 grid over its extent: within 1 % for a
+/// disc).
+double projected_footprint(const SurfaceMesh& s, const Eigen::Vector3d& normal);
 
 /// The largest planar region of the surface (triangles within 5 degrees and 0.5% of the
 /// size of one plane, connected): the cut of the scan at the chest wall.

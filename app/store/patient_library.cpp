@@ -1,13 +1,20 @@
 #include "store/patient_library.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <ctime>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <QCoreApplication>
 #include <QDir>
@@ -70,9 +77,10 @@ std::vector<std::vector<std::string>> schema_steps(bool pg) {
   };
 }
 
-// A QSqlError as a one-line reason, with the common SQLite cases made plain.
+// A QSqlError as a one-line reason, with the common SQLite cases made plain (libpq's
+// messages come on several lines: joined).
 std::string reason(const QSqlError& e) {
-  const std::string t = e.text().toStdString();
+  const std::string t = e.text().simplified().toStdString();
   const std::string lower = e.text().toLower().toStdString();
   if (lower.find("locked") != std::string::npos || lower.find("busy") != std::string::npos)
     return "the library is locked by another program writing to it (" + t + "); try again when it has finished";
@@ -105,7 +113,7 @@ std::string english_description(const BuiltinDescription& d) {
       return std::string("Healthy breast, ") + size + " (" + ml + " mL)" + (d.paper_size ? ", the paper's size" : "") +
              ", no tumour";
     }
-    case D::Kind::PaperCase: return "The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin";
+    case D::Kind::PaperCase: return "The paper's case: medium breast, tumour 3 cm diameter, 107 kPa, centre 2.0 cm below the skin";
     case D::Kind::Tumour: {
       const char* hard = d.hardness == D::Hardness::Soft ? "soft" : d.hardness == D::Hardness::Hard ? "hard" : "firm";
       std::snprintf(buf, sizeof buf, "Medium breast, %s tumour %.1f cm diameter (%.0f kPa), centre %.1f cm below the skin", hard,
@@ -175,13 +183,15 @@ std::vector<Builtin> make_builtins() {
     d.paper_size = s.paper;
     add(s.name, "breast", d, fragment(p));
   }
-  // The paper's case: tumour radius 1.5 cm, E 107 kPa, on the axis at x = 0.125 m.
+  // The paper's case: tumour radius 1.5 cm, E 107 kPa, on the axis at x = 0.125 m, its
+  // centre 2 cm below the skin as in the paper-sweep scenario (sim/scenario_builtin.cpp;
+  // 3 cm below, the sweep's tumour/no-tumour force ratio was only 1.02-1.04).
   const json medium = {{"phantom", "breast"}, {"resolution", "paper"}};
   D paper_case;
   paper_case.kind = D::Kind::PaperCase;
   add("paper-case", "tumour", paper_case,
       fragment(medium, 19000.0,
-               json::array({{{"shape", "sphere"}, {"center", {0.125, 0.0, 0.035}}, {"radius", 0.015}, {"young_modulus", 107000}}})));
+               json::array({{{"shape", "sphere"}, {"center", {0.125, 0.0, 0.045}}, {"radius", 0.015}, {"young_modulus", 107000}}})));
   // Graded cases on the medium breast (skin at z = 0.065 m on the axis, chest wall z = 0).
   // Hardness (Krouskop 1998, 5% / 20% precompression; Samani 2007 ratios to fat):
   //   soft 38 kPa (2x fat, fibroadenoma-like), firm 107 kPa (fibrous / IDC at 5%, the
@@ -246,48 +256,101 @@ std::string PatientLibrary::default_location() {
   return (dir + "/patients.sqlite").toStdString();
 }
 
+namespace {
+
+// A PostgreSQL URL as messages show it: without the password.
+std::string hide_password(const std::string& url) {
+  QUrl u(q(url));
+  u.setPassword({});
+  return u.toString().toStdString();
+}
+
+// Sets up (does not open) a connection to `where`, SQLite file or PostgreSQL URL; returns
+// the location as shown in messages (the password hidden).
+std::string configure(QSqlDatabase& db, const std::string& where, bool pg, int busy_timeout_ms, int connect_timeout_s) {
+  if (!pg) {
+    db.setDatabaseName(q(where));
+    db.setConnectOptions(q("QSQLITE_BUSY_TIMEOUT=" + std::to_string(busy_timeout_ms)));
+    return where;
+  }
+  const QUrl u(q(where));
+  db.setHostName(u.host());
+  if (u.port() > 0) db.setPort(u.port());
+  db.setUserName(u.userName());
+  db.setPassword(u.password());
+  db.setDatabaseName(u.path().mid(1));
+  if (connect_timeout_s > 0) db.setConnectOptions(q("connect_timeout=" + std::to_string(connect_timeout_s)));
+  return hide_password(where);
+}
+
+bool is_postgres_url(const std::string& s) { return s.rfind("postgresql://", 0) == 0 || s.rfind("postgres://", 0) == 0; }
+
+// A unique-key violation: two stations adding the same name at once.
+bool is_duplicate(const QSqlError& e) {
+  const QString t = e.text().toLower();
+  return t.contains("duplicate key") || t.contains("unique constraint");
+}
+
+// Every station opening a library takes this lock while it migrates and seeds it
+// (pg_advisory_xact_lock: PostgreSQL's transaction-scoped lock on a number of the
+// program's choosing), so that the first ones to connect at once do not both create it.
+constexpr const char* kPgMigrationLock = "SELECT pg_advisory_xact_lock(7207150)";
+
+// Counts the library's operations under way (PatientLibrary::with_server).
+struct Nested {
+  int& depth;
+  explicit Nested(int& d) : depth(d) { ++depth; }
+  ~Nested() { --depth; }
+};
+
+}  // namespace
+
 PatientLibrary::PatientLibrary(const Options& opt) {
   where_ = opt.db.empty() ? default_location() : opt.db;
   conn_ = "palpation-library-" + std::to_string(++g_connections);
-  pg_ = where_.rfind("postgresql://", 0) == 0 || where_.rfind("postgres://", 0) == 0;
+  pg_ = is_postgres_url(where_);
   const char* driver = pg_ ? "QPSQL" : "QSQLITE";
   if (!QSqlDatabase::isDriverAvailable(driver))
-    throw LibraryError(where_ + ": the Qt SQL driver " + driver + " is not installed (Debian: " +
+    throw LibraryError((pg_ ? hide_password(where_) : where_) + ": the Qt SQL driver " + driver + " is not installed (Debian: " +
                        (pg_ ? "libqt6sql6-psql" : "libqt6sql6-sqlite") + ")");
   {
     QSqlDatabase db = QSqlDatabase::addDatabase(driver, q(conn_));
-    if (pg_) {
-      const QUrl u(q(where_));
-      db.setHostName(u.host());
-      if (u.port() > 0) db.setPort(u.port());
-      db.setUserName(u.userName());
-      db.setPassword(u.password());
-      db.setDatabaseName(u.path().mid(1));
-      // Hide the password in messages.
-      QUrl shown = u;
-      shown.setPassword({});
-      where_ = shown.toString().toStdString();
-    } else {
+    if (!pg_) {
       const QFileInfo fi(q(where_));
       if (fi.exists() && !fi.isFile()) throw LibraryError(where_ + ": not a file");
       if (!QDir().mkpath(fi.absolutePath()))
         throw LibraryError(where_ + ": cannot create the folder " + fi.absolutePath().toStdString());
-      db.setDatabaseName(q(where_));
-      db.setConnectOptions(q("QSQLITE_BUSY_TIMEOUT=" + std::to_string(opt.busy_timeout_ms)));
     }
+    where_ = configure(db, where_, pg_, opt.busy_timeout_ms, opt.connect_timeout_s);
     if (!db.open()) {
       const std::string why = reason(db.lastError());
       db = QSqlDatabase();
       QSqlDatabase::removeDatabase(q(conn_));
+      if (pg_) throw ServerUnavailable(where_ + ": cannot reach the PostgreSQL server: " + why);
       throw LibraryError(where_ + ": cannot open the patient library: " + why);
     }
   }
+  if (pg_) {
+    pending_dir_ = opt.pending_dir;
+    if (pending_dir_.empty()) {
+      if (QCoreApplication::applicationName().isEmpty()) QCoreApplication::setApplicationName("palpation");
+      QString dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
+      if (dir.isEmpty()) dir = QDir::homePath() + "/.local/share/palpation";
+      pending_dir_ = (dir + "/pending-results").toStdString();
+    }
+  }
   try {
-    migrate();
-    if (opt.seed && opened_as_ != "opened") {
-      // A new library gets the built-in patients; a migrated one those it lacks.
-      for (const auto& p : builtin_patients())
-        if (!find(p.name)) add(p);
+    {
+      Nested n(depth_);  // lookups while migrating are part of its transactions
+      migrate(opt.seed);
+    }
+    // Results kept on this station while the server was away go now; a server that went
+    // away again meanwhile leaves them kept.
+    if (pg_ && !pending().empty()) {
+      try {
+        send_pending();
+      } catch (const ServerUnavailable&) {
+      }
     }
   } catch (...) {
     QSqlDatabase::database(q(conn_), false).close();
@@ -309,56 +372,175 @@ void PatientLibrary::exec(const std::string& sql, const char* what) const {
   if (!query.exec(q(sql))) throw LibraryError(where_ + ": " + what + ": " + reason(query.lastError()));
 }
 
-int PatientLibrary::schema_version() const {
-  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
-  if (!query.exec("SELECT value FROM meta WHERE key = 'schema_version'") || !query.next())
-    throw LibraryError(where_ + ": reading the schema version: " + reason(query.lastError()));
-  bool ok = false;
-  const int v = query.value(0).toString().toInt(&ok);
-  if (!ok || v < 1) throw LibraryError(where_ + ": schema version \"" + query.value(0).toString().toStdString() + "\" is not a number");
-  return v;
+bool PatientLibrary::connection_alive() const {
+  const QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  if (!db.isOpen()) return false;  // the driver closed it when it saw the connection gone
+  QSqlQuery t(db);
+  if (t.exec("SELECT 1")) return true;
+  // A failed statement inside a transaction is no lost connection.
+  return t.lastError().text().contains("transaction is aborted");
 }
 
-void PatientLibrary::migrate() {
+void PatientLibrary::reconnect() const {
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
-  QSqlQuery query(db);
-  const QString probe = pg_ ? "SELECT count(*) FROM information_schema.tables WHERE table_name = 'meta'"
-                            : "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'meta'";
-  if (!query.exec(probe) || !query.next()) throw LibraryError(where_ + ": " + reason(query.lastError()));
-  int version = 0;
-  if (query.value(0).toInt() > 0) {
-    version = schema_version();
-  } else {
+  db.close();
+  if (!db.open()) {
+    lost_ = true;
+    throw ServerUnavailable(where_ + ": cannot reach the PostgreSQL server: " + reason(db.lastError()));
+  }
+  lost_ = false;
+}
+
+template <class F>
+auto PatientLibrary::with_server(F&& op) const -> decltype(op()) {
+  // Only the outermost operation runs again: an inner one (a lookup inside a change) on a
+  // new connection would be outside the change's transaction.
+  if (!pg_ || depth_ > 0) {
+    Nested n(depth_);
+    return op();
+  }
+  if (lost_ || !QSqlDatabase::database(q(conn_), false).isOpen()) reconnect();
+  try {
+    Nested n(depth_);
+    return op();
+  } catch (const ServerUnavailable&) {
+    throw;
+  } catch (const LibraryError&) {
+    if (connection_alive()) throw;  // an ordinary failure: a taken name, a bad value
+    // The server restarted or the network dropped: once more on a new connection. A change
+    // cut off before its commit was rolled back by the server, so running it again is safe.
+    lost_ = true;
+    reconnect();
+    Nested n(depth_);
+    return op();
+  }
+}
+
+int PatientLibrary::schema_version() const {
+  return with_server([&] {
+    QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+    if (!query.exec("SELECT value FROM meta WHERE key = 'schema_version'") || !query.next())
+      throw LibraryError(where_ + ": reading the schema version: " + reason(query.lastError()));
+    bool ok = false;
+    const int v = query.value(0).toString().toInt(&ok);
+    if (!ok || v < 1) throw LibraryError(where_ + ": schema version \"" + query.value(0).toString().toStdString() + "\" is not a number");
+    return v;
+  });
+}
+
+void PatientLibrary::migrate(bool seed) {
+  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+  // Each step in one transaction that holds the library's write lock (SQLite: BEGIN
+  // IMMEDIATE, waiting as long as the busy timeout; PostgreSQL: the migration lock) and
+  // reads the version again: stations opening a new or older library at once migrate it
+  // once, a failed step leaves the previous version intact.
+  auto begin = [&](const std::string& doing) {
+    QSqlQuery b(db);
+    if (!b.exec(pg_ ? "BEGIN" : "BEGIN IMMEDIATE")) throw LibraryError(where_ + ": " + doing + ": " + reason(b.lastError()));
+    if (pg_) {
+      QSqlQuery l(db);
+      if (!l.exec(kPgMigrationLock)) {
+        const std::string why = reason(l.lastError());
+        QSqlQuery(db).exec("ROLLBACK");
+        throw LibraryError(where_ + ": " + doing + ": " + why);
+      }
+    }
+  };
+  auto rollback = [&] { QSqlQuery(db).exec("ROLLBACK"); };
+  auto commit = [&](const std::string& doing) {
+    QSqlQuery c(db);
+    if (!c.exec("COMMIT")) {
+      const std::string why = reason(c.lastError());
+      rollback();
+      throw LibraryError(where_ + ": " + doing + ": " + why);
+    }
+  };
+  auto current_version = [&]() {
+    QSqlQuery query(db);
+    const QString probe = pg_ ? "SELECT count(*) FROM information_schema.tables WHERE table_name = 'meta' AND table_schema = current_schema()"
+                              : "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'meta'";
+    if (!query.exec(probe) || !query.next()) throw LibraryError(where_ + ": " + reason(query.lastError()));
+    if (query.value(0).toInt() > 0) {
+      QSqlQuery v(db);
+      if (!v.exec("SELECT value FROM meta WHERE key = 'schema_version'") || !v.next())
+        throw LibraryError(where_ + ": reading the schema version: " + reason(v.lastError()));
+      bool ok = false;
+      const int n = v.value(0).toString().toInt(&ok);
+      if (!ok || n < 1) throw LibraryError(where_ + ": schema version \"" + v.value(0).toString().toStdString() + "\" is not a number");
+      return n;
+    }
     QSqlQuery other(db);
     const QString any = pg_ ? "SELECT count(*) FROM information_schema.tables WHERE table_schema = current_schema()"
                             : "SELECT count(*) FROM sqlite_master WHERE type = 'table'";
     if (other.exec(any) && other.next() && other.value(0).toInt() > 0)
       throw LibraryError(where_ + ": not a patient library (it holds other tables and no schema version); the file was left as it is");
-  }
-  if (version > kSchemaVersion)
-    throw LibraryError(where_ + ": the patient library has schema version " + std::to_string(version) +
-                       ", newer than this program's (" + std::to_string(kSchemaVersion) +
-                       "): use a newer palpation, or another library (--db / PALPATION_DB); nothing was changed");
-  opened_as_ = version == 0 ? "created" : version == kSchemaVersion ? "opened" : "migrated from " + std::to_string(version);
+    return 0;
+  };
   const auto steps = schema_steps(pg_);
-  for (int v = version; v < kSchemaVersion; ++v) {
-    // Each step in one transaction: a failed migration leaves the previous version intact.
-    if (!db.transaction()) throw LibraryError(where_ + ": migrating to schema " + std::to_string(v + 1) + ": " + reason(db.lastError()));
+  int first = -1;
+  for (;;) {
+    begin("opening");
+    int version = 0;
     try {
-      for (const auto& sql : steps[std::size_t(v)]) exec(sql, ("migrating to schema " + std::to_string(v + 1)).c_str());
+      version = current_version();
     } catch (...) {
-      db.rollback();
+      rollback();
       throw;
     }
-    if (!db.commit()) {
-      const std::string why = reason(db.lastError());
-      db.rollback();
-      throw LibraryError(where_ + ": migrating to schema " + std::to_string(v + 1) + ": " + why);
+    if (first < 0) first = version;
+    if (version > kSchemaVersion) {
+      rollback();
+      throw LibraryError(where_ + ": the patient library has schema version " + std::to_string(version) +
+                         ", newer than this program's (" + std::to_string(kSchemaVersion) +
+                         "): use a newer palpation, or another library (--db / PALPATION_DB); nothing was changed");
     }
+    if (version == kSchemaVersion) {
+      // A new or migrated library gets the built-in patients it lacks, in the same locked
+      // transaction (another station seeding at once waits, then finds them).
+      // A built-in patient stored as an older program defined it (a corrected case: the
+      // paper case's tumour moved to the paper sweep's depth) takes this program's
+      // definition; one the user removed stays removed.
+      if (seed) {
+        try {
+          for (const auto& p : builtin_patients()) {
+            const auto have = find(p.name);
+            if (!have) {
+              if (first != kSchemaVersion) insert_patient(p);
+            } else if (have->builtin && (have->body != p.body || have->description != p.description)) {
+              QSqlQuery up(QSqlDatabase::database(q(conn_), false));
+              up.prepare("UPDATE patients SET scenario = ?, description = ? WHERE name = ? AND builtin = 1");
+              up.addBindValue(q(p.body.dump()));
+              up.addBindValue(q(p.description));
+              up.addBindValue(q(p.name));
+              if (!up.exec()) throw LibraryError(where_ + ": updating the built-in patient \"" + p.name + "\": " + reason(up.lastError()));
+            }
+          }
+        } catch (...) {
+          rollback();
+          throw;
+        }
+      }
+      commit("adding the built-in patients");
+      break;
+    }
+    const std::string doing = "migrating to schema " + std::to_string(version + 1);
+    try {
+      for (const auto& sql : steps[std::size_t(version)]) exec(sql, doing.c_str());
+      // The built-ins come with the last step: a station that sees the current version sees them.
+      if (seed && version + 1 == kSchemaVersion)
+        for (const auto& p : builtin_patients())
+          if (!find(p.name)) insert_patient(p);
+    } catch (...) {
+      rollback();
+      throw;
+    }
+    commit(doing);
   }
+  opened_as_ = first == 0 ? "created" : first == kSchemaVersion ? "opened" : "migrated from " + std::to_string(first);
 }
 
 std::vector<PatientRecord> PatientLibrary::list() const {
+  return with_server([&] {
   QSqlQuery query(QSqlDatabase::database(q(conn_), false));
   if (!query.exec("SELECT name, category, description, scenario, builtin, source, created FROM patients ORDER BY category, name"))
     throw LibraryError(where_ + ": listing patients: " + reason(query.lastError()));
@@ -375,9 +557,11 @@ std::vector<PatientRecord> PatientLibrary::list() const {
     v.push_back(std::move(p));
   }
   return v;
+  });
 }
 
 std::optional<PatientRecord> PatientLibrary::find(const std::string& name) const {
+  return with_server([&]() -> std::optional<PatientRecord> {
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
   QSqlQuery query(db);
   query.prepare("SELECT id, name, category, description, scenario, builtin, source, created FROM patients WHERE name = ?");
@@ -403,19 +587,15 @@ std::optional<PatientRecord> PatientLibrary::find(const std::string& name) const
     p.mesh.assign(b.constData(), std::size_t(b.size()));
   }
   return p;
+  });
 }
 
-void PatientLibrary::add(const PatientRecord& p) {
-  if (p.name.empty() || p.name.size() > 200) throw LibraryError(where_ + ": patient name: must be 1 to 200 characters");
-  if (!p.body.is_object() || !p.body.contains("patient"))
-    throw LibraryError(where_ + ": patient \"" + p.name + "\": scenario: needs a \"patient\" object");
+void PatientLibrary::insert_patient(const PatientRecord& p) {
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
-  if (find(p.name)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
-  if (!db.transaction()) throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(db.lastError()));
   auto fail = [&](const QSqlError& e) {
-    const std::string why = reason(e);
-    db.rollback();
-    throw LibraryError(where_ + ": adding \"" + p.name + "\": " + why + " (nothing was added)");
+    if (is_duplicate(e))  // another station added the name at the same moment
+      throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
+    throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(e) + " (nothing was added)");
   };
   QSqlQuery ins(db);
   ins.prepare("INSERT INTO patients (name, scenario, created, category, description, builtin, source) VALUES (?, ?, ?, ?, ?, ?, ?)");
@@ -439,10 +619,33 @@ void PatientLibrary::add(const PatientRecord& p) {
     mesh.addBindValue(QByteArray(p.mesh.data(), qsizetype(p.mesh.size())));
     if (!mesh.exec()) fail(mesh.lastError());
   }
-  if (!db.commit()) fail(db.lastError());
+}
+
+void PatientLibrary::add(const PatientRecord& p) {
+  if (p.name.empty() || p.name.size() > 200) throw LibraryError(where_ + ": patient name: must be 1 to 200 characters");
+  if (!p.body.is_object() || !p.body.contains("patient"))
+    throw LibraryError(where_ + ": patient \"" + p.name + "\": scenario: needs a \"patient\" object");
+  with_server([&] {
+    QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+    if (find(p.name)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
+    if (!db.transaction()) throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(db.lastError()));
+    try {
+      insert_patient(p);
+    } catch (...) {
+      db.rollback();
+      throw;
+    }
+    if (!db.commit()) {
+      const QSqlError e = db.lastError();
+      db.rollback();
+      if (is_duplicate(e)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
+      throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(e) + " (nothing was added)");
+    }
+  });
 }
 
 bool PatientLibrary::remove(const std::string& name) {
+  return with_server([&] {
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
   if (!db.transaction()) throw LibraryError(where_ + ": removing \"" + name + "\": " + reason(db.lastError()));
   QSqlQuery a(db), b(db);
@@ -462,6 +665,7 @@ bool PatientLibrary::remove(const std::string& name) {
     throw LibraryError(where_ + ": removing \"" + name + "\": " + why);
   }
   return any;
+  });
 }
 
 // ---------------------------------------------------------------- trainees and results
@@ -537,50 +741,62 @@ std::int64_t PatientLibrary::trainee_id(const std::string& name, const char* doi
 void PatientLibrary::add_trainee(const std::string& name) {
   if (const std::string why = trainee_name_problem(name); !why.empty())
     throw LibraryError(where_ + ": trainee name \"" + name + "\": " + why);
-  if (find_trainee(name)) throw LibraryError(where_ + ": trainee \"" + name + "\" already exists");
-  QSqlQuery ins(QSqlDatabase::database(q(conn_), false));
-  ins.prepare("INSERT INTO trainees (name, created) VALUES (?, ?)");
-  ins.addBindValue(q(name));
-  ins.addBindValue(q(utc_now()));
-  if (!ins.exec()) throw LibraryError(where_ + ": adding trainee \"" + name + "\": " + reason(ins.lastError()) + " (nothing was added)");
+  return with_server([&] {
+    if (find_trainee(name)) throw LibraryError(where_ + ": trainee \"" + name + "\" already exists");
+    QSqlQuery ins(QSqlDatabase::database(q(conn_), false));
+    ins.prepare("INSERT INTO trainees (name, created) VALUES (?, ?)");
+    ins.addBindValue(q(name));
+    ins.addBindValue(q(utc_now()));
+    if (!ins.exec()) {
+      if (is_duplicate(ins.lastError()))  // another station added them at the same moment
+        throw LibraryError(where_ + ": trainee \"" + name + "\" already exists");
+      throw LibraryError(where_ + ": adding trainee \"" + name + "\": " + reason(ins.lastError()) + " (nothing was added)");
+    }
+  });
 }
 
 std::vector<TraineeRecord> PatientLibrary::trainees() const {
-  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
-  if (!query.exec("SELECT name, created FROM trainees ORDER BY name"))
-    throw LibraryError(where_ + ": listing trainees: " + reason(query.lastError()));
-  std::vector<TraineeRecord> v;
-  while (query.next()) v.push_back({query.value(0).toString().toStdString(), query.value(1).toString().toStdString()});
-  return v;
+  return with_server([&] {
+    QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+    if (!query.exec("SELECT name, created FROM trainees ORDER BY name"))
+      throw LibraryError(where_ + ": listing trainees: " + reason(query.lastError()));
+    std::vector<TraineeRecord> v;
+    while (query.next()) v.push_back({query.value(0).toString().toStdString(), query.value(1).toString().toStdString()});
+    return v;
+  });
 }
 
 std::optional<TraineeRecord> PatientLibrary::find_trainee(const std::string& name) const {
-  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
-  query.prepare("SELECT name, created FROM trainees WHERE name = ?");
-  query.addBindValue(q(name));
-  if (!query.exec()) throw LibraryError(where_ + ": reading trainee \"" + name + "\": " + reason(query.lastError()));
-  if (!query.next()) return std::nullopt;
-  return TraineeRecord{query.value(0).toString().toStdString(), query.value(1).toString().toStdString()};
+  return with_server([&]() -> std::optional<TraineeRecord> {
+    QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+    query.prepare("SELECT name, created FROM trainees WHERE name = ?");
+    query.addBindValue(q(name));
+    if (!query.exec()) throw LibraryError(where_ + ": reading trainee \"" + name + "\": " + reason(query.lastError()));
+    if (!query.next()) return std::nullopt;
+    return TraineeRecord{query.value(0).toString().toStdString(), query.value(1).toString().toStdString()};
+  });
 }
 
 bool PatientLibrary::remove_trainee(const std::string& name) {
-  if (!find_trainee(name)) return false;
-  QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
-  if (!db.transaction()) throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(db.lastError()));
-  QSqlQuery a(db), b(db);
-  a.prepare("DELETE FROM exam_results WHERE trainee_id IN (SELECT id FROM trainees WHERE name = ?)");
-  a.addBindValue(q(name));
-  b.prepare("DELETE FROM trainees WHERE name = ?");
-  b.addBindValue(q(name));
-  if (!a.exec() || !b.exec() || !db.commit()) {
-    const QSqlError e = a.lastError().isValid() ? a.lastError() : b.lastError().isValid() ? b.lastError() : db.lastError();
-    db.rollback();
-    throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(e) + " (nothing was removed)");
-  }
-  return true;
+  return with_server([&] {
+    if (!find_trainee(name)) return false;
+    QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
+    if (!db.transaction()) throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(db.lastError()));
+    QSqlQuery a(db), b(db);
+    a.prepare("DELETE FROM exam_results WHERE trainee_id IN (SELECT id FROM trainees WHERE name = ?)");
+    a.addBindValue(q(name));
+    b.prepare("DELETE FROM trainees WHERE name = ?");
+    b.addBindValue(q(name));
+    if (!a.exec() || !b.exec() || !db.commit()) {
+      const QSqlError e = a.lastError().isValid() ? a.lastError() : b.lastError().isValid() ? b.lastError() : db.lastError();
+      db.rollback();
+      throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(e) + " (nothing was removed)");
+    }
+    return true;
+  });
 }
 
-std::int64_t PatientLibrary::record_result(const ExamResult& r) {
+void PatientLibrary::check_result(const ExamResult& r) const {
   const std::string what = where_ + ": exam result of \"" + r.trainee + "\"";
   auto bad = [&](const std::string& field, const std::string& why) { throw LibraryError(what + ": " + field + ": " + why); };
   auto number = [&](const char* field, double v, double lo, double hi) {
@@ -602,7 +818,17 @@ std::int64_t PatientLibrary::record_result(const ExamResult& r) {
   if (r.deep_reached) number("deep_reached", *r.deep_reached, 0, 1);
   number("exam_time", r.exam_time, 0, 1e6);
   if (!r.score.is_object()) bad("score", "must be a JSON object (the exam's score)");
+}
+
+std::int64_t PatientLibrary::record_result(const ExamResult& r) {
+  check_result(r);
+  return with_server([&] { return insert_result(r, false); });
+}
+
+std::int64_t PatientLibrary::insert_result(const ExamResult& r, bool once) {
+  const std::string what = where_ + ": exam result of \"" + r.trainee + "\"";
   const std::int64_t trainee = trainee_id(r.trainee, "recording a result of");
+  const QString started = q(r.started.empty() ? utc_now() : r.started);
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
   if (!db.transaction()) throw LibraryError(what + ": " + reason(db.lastError()));
   auto fail = [&](const QSqlError& e) {
@@ -610,6 +836,25 @@ std::int64_t PatientLibrary::record_result(const ExamResult& r) {
     db.rollback();
     throw LibraryError(what + ": " + why + " (nothing was recorded)");
   };
+  if (once) {
+    // A kept result sent again (by a program that stopped before it deleted its file, or
+    // by two at once): the same row is there already.
+    QSqlQuery same(db);
+    same.prepare("SELECT MIN(id) FROM exam_results WHERE trainee_id = ? AND started = ? AND case_name = ? AND curriculum = ? "
+                 "AND recording = ? AND score = ?");
+    same.addBindValue(QVariant::fromValue<qlonglong>(trainee));
+    same.addBindValue(started);
+    same.addBindValue(q(r.case_name));
+    same.addBindValue(q(r.curriculum));
+    same.addBindValue(q(r.recording));
+    same.addBindValue(q(r.score.dump()));
+    if (!same.exec() || !same.next()) fail(same.lastError());
+    if (!same.value(0).isNull()) {
+      const std::int64_t id = same.value(0).toLongLong();
+      if (!db.commit()) fail(db.lastError());
+      return id;
+    }
+  }
   QSqlQuery ins(db);
   ins.prepare("INSERT INTO exam_results (trainee_id, case_name, curriculum, started, duration, sensitivity, false_positives, "
               "coverage_light, coverage_medium, coverage_deep, deep_reached, exam_time, passed, score, recording) "
@@ -617,7 +862,7 @@ std::int64_t PatientLibrary::record_result(const ExamResult& r) {
   ins.addBindValue(QVariant::fromValue<qlonglong>(trainee));
   ins.addBindValue(q(r.case_name));
   ins.addBindValue(q(r.curriculum));
-  ins.addBindValue(q(r.started.empty() ? utc_now() : r.started));
+  ins.addBindValue(started);
   ins.addBindValue(r.duration);
   ins.addBindValue(nullable(r.sensitivity));
   ins.addBindValue(r.false_positives);
@@ -640,16 +885,179 @@ std::int64_t PatientLibrary::record_result(const ExamResult& r) {
   return rid;
 }
 
-std::vector<ExamResult> PatientLibrary::results(const std::string& trainee) const {
-  const std::int64_t tid = trainee_id(trainee, "reading the results of");
-  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
-  query.prepare(QString("SELECT ") + kResultColumns +
-                " FROM exam_results r JOIN trainees t ON t.id = r.trainee_id WHERE r.trainee_id = ? ORDER BY r.started, r.id");
-  query.addBindValue(QVariant::fromValue<qlonglong>(tid));
-  if (!query.exec()) throw LibraryError(where_ + ": reading the results of \"" + trainee + "\": " + reason(query.lastError()));
-  std::vector<ExamResult> v;
-  while (query.next()) v.push_back(read_result(query));
+// ---------------------------------------------------------------- results kept on this station
+
+namespace {
+
+json result_to_json(const ExamResult& r) {
+  json j = {{"trainee", r.trainee}, {"case_name", r.case_name}, {"curriculum", r.curriculum}, {"started", r.started},
+            {"duration", r.duration}, {"false_positives", r.false_positives}, {"coverage_light", r.coverage_light},
+            {"coverage_medium", r.coverage_medium}, {"coverage_deep", r.coverage_deep}, {"exam_time", r.exam_time},
+            {"passed", r.passed}, {"score", r.score}, {"recording", r.recording}};
+  j["sensitivity"] = r.sensitivity ? json(*r.sensitivity) : json(nullptr);
+  j["deep_reached"] = r.deep_reached ? json(*r.deep_reached) : json(nullptr);
+  return j;
+}
+
+ExamResult result_from_json(const json& j) {
+  ExamResult r;
+  r.trainee = j.at("trainee").get<std::string>();
+  r.case_name = j.at("case_name").get<std::string>();
+  r.curriculum = j.at("curriculum").get<std::string>();
+  r.started = j.at("started").get<std::string>();
+  r.duration = j.at("duration").get<double>();
+  if (!j.at("sensitivity").is_null()) r.sensitivity = j.at("sensitivity").get<double>();
+  r.false_positives = j.at("false_positives").get<int>();
+  r.coverage_light = j.at("coverage_light").get<double>();
+  r.coverage_medium = j.at("coverage_medium").get<double>();
+  r.coverage_deep = j.at("coverage_deep").get<double>();
+  if (!j.at("deep_reached").is_null()) r.deep_reached = j.at("deep_reached").get<double>();
+  r.exam_time = j.at("exam_time").get<double>();
+  r.passed = j.at("passed").get<bool>();
+  r.score = j.at("score");
+  r.recording = j.at("recording").get<std::string>();
+  return r;
+}
+
+constexpr const char* kPendingFormat = "palpation-pending-result";
+
+}  // namespace
+
+std::string PatientLibrary::keep(const ExamResult& r, bool add_missing_trainee) const {
+  namespace fs = std::filesystem;
+  const json doc = {{"format", kPendingFormat}, {"version", 1}, {"server", where_}, {"add_trainee", add_missing_trainee},
+                    {"result", result_to_json(r)}};
+  std::error_code ec;
+  fs::create_directories(pending_dir_, ec);
+  // Named by the time kept, so that they are sent in the order they were taken.
+  static std::atomic<int> counter{0};
+  char name[96];
+  std::snprintf(name, sizeof name, "%s-%d-%d.json", utc_now().c_str(), int(::getpid()), ++counter);
+  const std::string file = pending_dir_ + "/" + name;
+  const std::string tmp = file + ".part";
+  const std::string text = doc.dump(1) + "\n";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  bool ok = fd >= 0 && ::write(fd, text.data(), text.size()) == ssize_t(text.size()) && ::fsync(fd) == 0;
+  if (fd >= 0) ok = (::close(fd) == 0) && ok;
+  ok = ok && ::rename(tmp.c_str(), file.c_str()) == 0;
+  if (!ok) {
+    const std::string why = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    throw LibraryError(where_ + ": the server cannot be reached, and the exam result of \"" + r.trainee +
+                       "\" could not be kept on this station either (" + pending_dir_ + ": " + why + ")" +
+                       (r.recording.empty() ? "" : "; the recording is " + r.recording));
+  }
+  return file;
+}
+
+std::vector<std::string> PatientLibrary::pending() const {
+  namespace fs = std::filesystem;
+  std::vector<std::string> v;
+  if (!pg_) return v;
+  std::error_code ec;
+  for (fs::directory_iterator it(pending_dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const fs::path& p = it->path();
+    if (p.extension() != ".json") continue;
+    std::ifstream in(p);
+    const json doc = json::parse(in, nullptr, false);
+    if (doc.is_object() && doc.value("format", "") == kPendingFormat && doc.value("server", "") == where_) v.push_back(p.string());
+  }
+  std::sort(v.begin(), v.end());
   return v;
+}
+
+int PatientLibrary::send_pending() {
+  int sent = 0;
+  for (const std::string& file : pending()) {
+    // Locked while it is sent: another program sending at the same time skips it; one that
+    // opened it before it was removed finds its result there already (insert_result once).
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) continue;  // sent by another program meanwhile
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd);
+      continue;
+    }
+    struct Close {
+      int fd;
+      ~Close() { ::close(fd); }
+    } closer{fd};
+    std::ifstream in(file);
+    const json doc = json::parse(in, nullptr, false);
+    if (!doc.is_object() || !doc.contains("result")) continue;
+    ExamResult r;
+    try {
+      r = result_from_json(doc["result"]);
+    } catch (const json::exception&) {
+      continue;  // a damaged file stays where it is, for a person to look at
+    }
+    try {
+      with_server([&] {
+        if (doc.value("add_trainee", false) && !find_trainee(r.trainee)) {
+          try {
+            add_trainee(r.trainee);
+          } catch (const ServerUnavailable&) {
+            throw;
+          } catch (const LibraryError&) {
+            if (!find_trainee(r.trainee)) throw;  // not another station adding them at once
+          }
+        }
+        insert_result(r, true);
+      });
+    } catch (const ServerUnavailable&) {
+      throw;
+    } catch (const LibraryError& e) {
+      // The server refuses it (its trainee removed meanwhile, say): set aside, with the
+      // reason, for a person to look at; never sent again, never deleted.
+      std::ofstream(file + ".refused.txt") << e.what() << "\n";
+      ::rename(file.c_str(), (file + ".refused").c_str());
+      continue;
+    }
+    ::unlink(file.c_str());
+    ++sent;
+  }
+  return sent;
+}
+
+StoreOutcome PatientLibrary::store_result(const ExamResult& r, bool add_missing_trainee) {
+  check_result(r);
+  ExamResult x = r;
+  if (x.started.empty()) x.started = utc_now();  // the exam's time, also when it is sent later
+  StoreOutcome out;
+  try {
+    if (pg_ && !pending().empty()) send_pending();  // the older results first
+    with_server([&] {
+      if (add_missing_trainee && !find_trainee(x.trainee)) {
+        try {
+          add_trainee(x.trainee);
+        } catch (const ServerUnavailable&) {
+          throw;
+        } catch (const LibraryError&) {
+          if (!find_trainee(x.trainee)) throw;  // not another station adding them at once
+        }
+      }
+      out.id = insert_result(x, false);
+    });
+  } catch (const ServerUnavailable& e) {
+    out.id = 0;
+    out.kept = keep(x, add_missing_trainee);
+    out.message = std::string(e.what()) + "; the exam result of \"" + x.trainee + "\" is kept on this station (" + out.kept +
+                  ") and sent when the server is back" + (x.recording.empty() ? "" : "; the recording is " + x.recording);
+  }
+  return out;
+}
+
+std::vector<ExamResult> PatientLibrary::results(const std::string& trainee) const {
+  return with_server([&] {
+    const std::int64_t tid = trainee_id(trainee, "reading the results of");
+    QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+    query.prepare(QString("SELECT ") + kResultColumns +
+                  " FROM exam_results r JOIN trainees t ON t.id = r.trainee_id WHERE r.trainee_id = ? ORDER BY r.started, r.id");
+    query.addBindValue(QVariant::fromValue<qlonglong>(tid));
+    if (!query.exec()) throw LibraryError(where_ + ": reading the results of \"" + trainee + "\": " + reason(query.lastError()));
+    std::vector<ExamResult> v;
+    while (query.next()) v.push_back(read_result(query));
+    return v;
+  });
 }
 
 bool PatientLibrary::better_result(const ExamResult& a, const ExamResult& b) {
@@ -663,34 +1071,37 @@ bool PatientLibrary::better_result(const ExamResult& a, const ExamResult& b) {
 }
 
 std::vector<TraineeSummary> PatientLibrary::class_summary() const {
-  std::vector<TraineeSummary> v;
-  for (auto& t : trainees()) v.push_back({std::move(t), 0, 0, std::nullopt, std::nullopt});
-  QSqlQuery query(QSqlDatabase::database(q(conn_), false));
-  if (!query.exec(QString("SELECT ") + kResultColumns +
-                  " FROM exam_results r JOIN trainees t ON t.id = r.trainee_id ORDER BY t.name, r.started, r.id"))
-    throw LibraryError(where_ + ": reading the class's results: " + reason(query.lastError()));
-  std::map<std::string, std::size_t> index;
-  for (std::size_t k = 0; k < v.size(); ++k) index[v[k].trainee.name] = k;
-  while (query.next()) {
-    ExamResult r = read_result(query);
-    const auto it = index.find(r.trainee);
-    if (it == index.end()) continue;  // a trainee added since the list was read
-    TraineeSummary& s = v[it->second];
-    ++s.exams;
-    if (r.passed) ++s.passed;
-    if (!s.best || better_result(r, *s.best)) s.best = r;
-    s.latest = std::move(r);
-  }
-  return v;
+  return with_server([&] {
+    std::vector<TraineeSummary> v;
+    for (auto& t : trainees()) v.push_back({std::move(t), 0, 0, std::nullopt, std::nullopt});
+    QSqlQuery query(QSqlDatabase::database(q(conn_), false));
+    if (!query.exec(QString("SELECT ") + kResultColumns +
+                    " FROM exam_results r JOIN trainees t ON t.id = r.trainee_id ORDER BY t.name, r.started, r.id"))
+      throw LibraryError(where_ + ": reading the class's results: " + reason(query.lastError()));
+    std::map<std::string, std::size_t> index;
+    for (std::size_t k = 0; k < v.size(); ++k) index[v[k].trainee.name] = k;
+    while (query.next()) {
+      ExamResult r = read_result(query);
+      const auto it = index.find(r.trainee);
+      if (it == index.end()) continue;  // a trainee added since the list was read
+      TraineeSummary& s = v[it->second];
+      ++s.exams;
+      if (r.passed) ++s.passed;
+      if (!s.best || better_result(r, *s.best)) s.best = r;
+      s.latest = std::move(r);
+    }
+    return v;
+  });
 }
 
-void PatientLibrary::create_old_schema_for_test(const std::string& path, int version) {
+void PatientLibrary::create_old_schema_for_test(const std::string& location, int version) {
   const QString conn = q("palpation-old-schema-" + std::to_string(++g_connections));
+  const bool pg = is_postgres_url(location);
   {
-    QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", conn);
-    db.setDatabaseName(q(path));
+    QSqlDatabase db = QSqlDatabase::addDatabase(pg ? "QPSQL" : "QSQLITE", conn);
+    const std::string path = configure(db, location, pg, 3000, 10);
     if (!db.open()) throw LibraryError(path + ": " + reason(db.lastError()));
-    const auto steps = schema_steps(false);
+    const auto steps = schema_steps(pg);
     for (int v = 0; v < version; ++v)
       for (const auto& sql : steps[std::size_t(v)]) {
         QSqlQuery query(db);
@@ -715,9 +1126,8 @@ void PatientLibrary::create_old_schema_for_test(const std::string& path, int ver
                   "FROM trainees WHERE name = 'old-trainee'"))
         throw LibraryError(path + ": " + reason(r.lastError()));
     }
-    db.close();
   }
-  QSqlDatabase::removeDatabase(conn);
+  QSqlDatabase::removeDatabase(conn);  // closes it, after its queries are gone
 }
 
 }  // namespace palpation::app::store

@@ -21,6 +21,13 @@ class LibraryError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The PostgreSQL server cannot be reached (stopped, restarting, the network gone): what()
+/// names the server and says why. The library reconnects at its next use.
+class ServerUnavailable : public LibraryError {
+ public:
+  using LibraryError::LibraryError;
+};
+
 struct PatientRecord {
   std::string name;          // unique
   std::string category;      // "breast" (built-in shapes), "tumour" (graded cases), "imported", ...
@@ -77,6 +84,13 @@ struct ExamResult {
   std::string recording;     // the session recording's path, or empty
 };
 
+/// What PatientLibrary::store_result did with a result.
+struct StoreOutcome {
+  std::int64_t id = 0;       // the stored result's id; 0 when it was kept on this station
+  std::string kept;          // the file on this station holding it while the server is away
+  std::string message;       // when kept: one line naming the server, the reason and the file
+};
+
 /// The instructor's view of one trainee.
 struct TraineeSummary {
   TraineeRecord trainee;
@@ -97,6 +111,10 @@ class PatientLibrary {
     std::string db;
     int busy_timeout_ms = 3000;  // SQLite: how long to wait for another writer's lock
     bool seed = true;            // add the built-in patients to a new library
+    /// PostgreSQL: where results are kept while the server cannot be reached (one file
+    /// each). Empty: QStandardPaths::AppDataLocation/pending-results.
+    std::string pending_dir = {};
+    int connect_timeout_s = 10;  // PostgreSQL: how long to wait for the server to answer a connection
   };
 
   /// $PALPATION_DB, else QStandardPaths::AppDataLocation/patients.sqlite.
@@ -138,6 +156,21 @@ class PatientLibrary {
   std::vector<ExamResult> results(const std::string& trainee) const;
   /// Every trainee's exams, passes, latest and best result, by name.
   std::vector<TraineeSummary> class_summary() const;
+  /// A station's exam result at the exam's end: adds the trainee when missing (and
+  /// `add_missing_trainee`), stores the result. When a PostgreSQL server cannot be reached
+  /// (stopped, restarting, the network gone) the result is kept on this station
+  /// (Options::pending_dir) and the outcome says so; results kept earlier are sent first,
+  /// here and when the library is opened, once the server is back. Throws LibraryError for
+  /// anything else (a bad value, an unknown trainee), nothing written or kept then.
+  StoreOutcome store_result(const ExamResult& r, bool add_missing_trainee = true);
+  /// Sends the results kept on this station for this server (oldest first; each once, even
+  /// when two programs send at the same time); returns how many. Throws ServerUnavailable
+  /// when the server cannot be reached (those not sent stay kept). SQLite: 0.
+  int send_pending();
+  /// The results kept on this station for this server, not yet sent (their files).
+  std::vector<std::string> pending() const;
+  const std::string& pending_dir() const { return pending_dir_; }
+
   /// The better of two results by TraineeSummary::best's order.
   static bool better_result(const ExamResult& a, const ExamResult& b);
 
@@ -148,11 +181,31 @@ class PatientLibrary {
   /// Tests: creates the tables of an earlier schema version (1 .. kSchemaVersion) in an
   /// empty SQLite file, as that version of the program did, with one patient in it (and,
   /// from version 4, one trainee "old-trainee" with one result).
-  static void create_old_schema_for_test(const std::string& sqlite_path, int version);
+  /// `location` may also be a PostgreSQL URL naming an empty database.
+  static void create_old_schema_for_test(const std::string& location, int version);
 
  private:
   void exec(const std::string& sql, const char* what) const;
-  void migrate();
+  void migrate(bool seed);
+  /// Runs one operation; on PostgreSQL, when it failed because the connection was lost (the
+  /// server restarted, the network dropped), reconnects and runs it once more. Throws
+  /// ServerUnavailable when the server cannot be reached.
+  template <class F>
+  auto with_server(F&& op) const -> decltype(op());
+  void reconnect() const;
+  bool connection_alive() const;
+  /// One patient's rows, inside the caller's transaction.
+  void insert_patient(const PatientRecord& p);
+  /// Checks a result's values; LibraryError naming the field.
+  void check_result(const ExamResult& r) const;
+  /// Inserts a result in one transaction; with `once`, not when the same result (trainee,
+  /// start, case, curriculum, recording, score) is there already (returns its id).
+  std::int64_t insert_result(const ExamResult& r, bool once);
+  /// Writes a result to pending_dir_; returns the file.
+  std::string keep(const ExamResult& r, bool add_missing_trainee) const;
+  std::string pending_dir_;
+  mutable bool lost_ = false;
+  mutable int depth_ = 0;  // operations under way (with_server)
   /// The trainee's row id; LibraryError naming the trainee when there is none.
   std::int64_t trainee_id(const std::string& name, const char* doing) const;
   std::string conn_, where_, opened_as_;

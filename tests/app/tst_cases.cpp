@@ -19,6 +19,7 @@
 #include "store/patient_library.h"
 #include "train/case_generator.h"
 #include "train/curriculum.h"
+#include "test_databases.h"
 
 using namespace palpation;
 using namespace palpation::app;
@@ -423,7 +424,13 @@ class TestCases : public QObject {
     QVERIFY(!train::next_case(c, {"a", "b", "Generated case 9"}));
   }
 
+  void cleanupTestCase() { test_db::drop_all(); }
+
+  // The commands on SQLite and, with PALPATION_TEST_PG, on a PostgreSQL server.
+  void commandLine_data() { test_db::add_rows(); }
   void commandLine() {
+    QFETCH(QString, backend);
+    PALPATION_SKIP_WITHOUT_SERVER(backend);
     QTemporaryDir dir;
     const QString d = dir.path();
     // case generate: the same file twice, a scenario `palpation run` accepts.
@@ -439,7 +446,8 @@ class TestCases : public QObject {
     QCOMPARE(r.rc, 2);
     QVERIFY(!QFile::exists(d + "/c.json"));
     // curriculum check: the default one against a new library; a bad one exits 2 naming the field.
-    const QString db = d + "/lib.sqlite";
+    const QString db = backend == "sqlite" ? d + "/lib.sqlite" : QString::fromStdString(test_db::new_library(backend, "cli"));
+    QVERIFY(!db.isEmpty());
     r = run_cli({"curriculum", "check", PALPATION_SOURCE_DIR "/resources/curricula/cbe-basics.json", "--db", db});
     QVERIFY2(r.rc == 0, qPrintable(r.err));
     QVERIFY2(r.out.contains("valid") && r.out.contains("Generated case 1") && r.out.contains("breast-medium"), qPrintable(r.out));
@@ -491,9 +499,50 @@ class TestCases : public QObject {
     QCOMPARE(j["results"][1]["passed"].get<bool>(), false);
     r = run_cli({"trainee", "list", "--db", db});
     QVERIFY2(r.rc == 0 && r.out.contains("Ada Lovelace") && r.out.contains(": 1 trainee\n"), qPrintable(r.out + r.err));
+    QVERIFY2(r.err.isEmpty(), qPrintable(r.err));  // nothing from Qt or the database driver either
     r = run_cli({"trainee", "progress", "Nobody", "--db", db});
     QCOMPARE(r.rc, 2);
     QVERIFY2(r.err.contains("no trainee named \"Nobody\""), qPrintable(r.err));
+  }
+
+  // Without a desktop session (no XDG_RUNTIME_DIR: ssh, a service, CI) the command line's
+  // stderr carries its own messages only, not Qt's warning about the runtime folder: a run
+  // that draws its force plot (Qt's GUI part, which looks the folder up) and a trainee list.
+  void stderrWithoutADesktopSession() {
+    QTemporaryDir dir;
+    const QString d = dir.path();
+    {
+      std::ofstream(d.toStdString() + "/box.json") << R"({
+        "patient": {"phantom": "box", "size": [0.04, 0.04, 0.02], "resolution": 0.01},
+        "tissue": {"young_modulus": 19000, "poisson_ratio": 0.45},
+        "fingers": [{"radius": 0.008, "path": [[0, 0.0, 0.0, 0.029], [0.02, 0.0, 0.0, 0.027]]}],
+        "duration": 0.02})";
+    }
+    QDir().mkpath(d + "/tmp");
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.remove("XDG_RUNTIME_DIR");
+    env.remove("QT_QPA_PLATFORM");
+    env.insert("TMPDIR", d + "/tmp");  // where Qt makes the folder it falls back to
+    auto run = [&](const QStringList& args) {
+      QProcess p;
+      p.setProcessEnvironment(env);
+      p.start(PALPATION_EXE, args);
+      p.waitForFinished(120000);
+      return Run{p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
+                 QString::fromUtf8(p.readAllStandardError())};
+    };
+    Run r = run({"run", d + "/box.json", "--out", d + "/out"});
+    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    QVERIFY(QFile::exists(d + "/out/forces.png"));
+    QVERIFY2(!r.err.contains("QStandardPaths") && !r.err.contains("XDG_RUNTIME_DIR"), qPrintable(r.err));
+    r = run({"trainee", "list", "--db", d + "/lib.sqlite"});
+    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    QVERIFY2(r.err.isEmpty(), qPrintable(r.err));
+    // The folder it used is the user's own and private, as Qt wants it.
+    const QStringList made = QDir(d + "/tmp").entryList({"runtime-*"}, QDir::Dirs);
+    QCOMPARE(made.size(), 1);
+    QCOMPARE(QFile(d + "/tmp/" + made[0]).permissions() & (QFile::ReadGroup | QFile::ReadOther | QFile::WriteOther),
+             QFileDevice::Permissions());
   }
 };
 

@@ -91,6 +91,11 @@ class TestPaperSweep : public QObject {
     qInfo("mean push peak within 1.2 cm of the tumour: %.3f N with it, %.3f N without: ratio %.3f", ft, fn, ft / fn);
     QVERIFY(fn > 1.0);
     QVERIFY2(ft / fn > 1.15, qPrintable(QString::number(ft / fn)));
+    if (light)
+      QSKIP(qPrintable(QString("PALPATION_LIGHT_TESTS: the first pass on the coarse mesh only; the count of 4 passes "
+                               "and all 4 peaking within 1 cm of the tumour are NOT checked (%1 of %2 here)")
+                           .arg(within)
+                           .arg(int(at.passes.size()))));
   }
 };
 

@@ -1,7 +1,8 @@
 // The patient library: created with the built-in patients, migrations from every earlier
 // schema, a newer schema refused, a locked and a corrupt database give clear errors and
-// lose nothing, trainees and their exam results, PostgreSQL when a server is given
-// (PALPATION_TEST_PG).
+// lose nothing, trainees and their exam results. The cases that are not about SQLite's
+// file run on SQLite and, when PALPATION_TEST_PG names a PostgreSQL server (tools/test.sh
+// starts a private one), on a new database on that server too.
 #include <QtTest>
 
 #include <QSqlDatabase>
@@ -13,6 +14,7 @@
 
 #include "store/patient_library.h"
 #include "scenario.h"
+#include "test_databases.h"
 
 using namespace palpation;
 using namespace palpation::app::store;
@@ -47,8 +49,18 @@ QString error_opening(const PatientLibrary::Options& o) {
 class TestPatientLibrary : public QObject {
   Q_OBJECT
  private slots:
+  void cleanupTestCase() {
+    test_db::drop_all();
+    std::error_code ec;
+    fs::remove_all(fs::temp_directory_path() / ("palpation-tst-library-" + std::to_string(::getpid())), ec);
+  }
+
+  void createdWithBuiltins_data() { test_db::add_rows(); }
   void createdWithBuiltins() {
-    const std::string p = tmpdb("new/sub/lib.sqlite");
+    QFETCH(QString, backend);
+    PALPATION_SKIP_WITHOUT_SERVER(backend);
+    const std::string p = backend == "sqlite" ? tmpdb("new/sub/lib.sqlite") : test_db::new_library(backend, "created");
+    QVERIFY2(!p.empty(), "no database made on the test server");
     PatientLibrary lib({p});
     QCOMPARE(QString::fromStdString(lib.opened_as()), QString("created"));
     QCOMPARE(lib.schema_version(), PatientLibrary::kSchemaVersion);
@@ -85,8 +97,12 @@ class TestPatientLibrary : public QObject {
     QCOMPARE(again.list().size(), v.size());
   }
 
+  void addFindRemoveAndDuplicates_data() { test_db::add_rows(); }
   void addFindRemoveAndDuplicates() {
-    const std::string p = tmpdb("crud.sqlite");
+    QFETCH(QString, backend);
+    PALPATION_SKIP_WITHOUT_SERVER(backend);
+    const std::string p = backend == "sqlite" ? tmpdb("crud.sqlite") : test_db::new_library(backend, "crud");
+    QVERIFY2(!p.empty(), "no database made on the test server");
     PatientLibrary lib({p, 3000, false});
     QCOMPARE(lib.list().size(), std::size_t(0));
     PatientRecord r;
@@ -105,12 +121,18 @@ class TestPatientLibrary : public QObject {
   }
 
   void migratesFromEveryEarlierSchema_data() {
+    QTest::addColumn<QString>("backend");
     QTest::addColumn<int>("version");
-    for (int v = 1; v < PatientLibrary::kSchemaVersion; ++v) QTest::newRow(qPrintable(QString("from %1").arg(v))) << v;
+    for (const char* b : {"sqlite", "postgresql"})
+      for (int v = 1; v < PatientLibrary::kSchemaVersion; ++v) QTest::newRow(qPrintable(QString("%1 from %2").arg(b).arg(v))) << QString(b) << v;
   }
   void migratesFromEveryEarlierSchema() {
+    QFETCH(QString, backend);
     QFETCH(int, version);
-    const std::string p = tmpdb(qPrintable(QString("v%1.sqlite").arg(version)));
+    PALPATION_SKIP_WITHOUT_SERVER(backend);
+    const std::string p = backend == "sqlite" ? tmpdb(qPrintable(QString("v%1.sqlite").arg(version)))
+                                              : test_db::new_library(backend, "v" + std::to_string(version));
+    QVERIFY2(!p.empty(), "no database made on the test server");
     PatientLibrary::create_old_schema_for_test(p, version);
     PatientLibrary lib({p});
     QCOMPARE(QString::fromStdString(lib.opened_as()), QString("migrated from %1").arg(version));
@@ -172,8 +194,12 @@ class TestPatientLibrary : public QObject {
     QCOMPARE(again.trainees().size(), std::size_t(1));
   }
 
+  void traineesAndResults_data() { test_db::add_rows(); }
   void traineesAndResults() {
-    const std::string p = tmpdb("trainees.sqlite");
+    QFETCH(QString, backend);
+    PALPATION_SKIP_WITHOUT_SERVER(backend);
+    const std::string p = backend == "sqlite" ? tmpdb("trainees.sqlite") : test_db::new_library(backend, "trainees");
+    QVERIFY2(!p.empty(), "no database made on the test server");
     PatientLibrary lib({p, 3000, false});
     lib.add_trainee("Bea");
     lib.add_trainee("Al");
@@ -265,7 +291,7 @@ class TestPatientLibrary : public QObject {
     ExamResult ghost = r;
     ghost.trainee = "Ghost";
     QString e = result_error(ghost);
-    QVERIFY2(e.contains(QString::fromStdString(p)) && e.contains("no trainee named \"Ghost\""), qPrintable(e));
+    QVERIFY2(e.contains(test_db::shown(p)) && e.contains("no trainee named \"Ghost\""), qPrintable(e));
     e.clear();
     try {
       lib.results("Ghost");
@@ -317,22 +343,41 @@ class TestPatientLibrary : public QObject {
     QCOMPARE(lib.trainees().size(), std::size_t(1));
   }
 
+  void newerSchemaIsRefused_data() { test_db::add_rows(); }
   void newerSchemaIsRefused() {
-    const std::string p = tmpdb("newer.sqlite");
-    { PatientLibrary lib({p}); }
+    QFETCH(QString, backend);
+    PALPATION_SKIP_WITHOUT_SERVER(backend);
+    const std::string p = backend == "sqlite" ? tmpdb("newer.sqlite") : test_db::new_library(backend, "newer");
+    QVERIFY2(!p.empty(), "no database made on the test server");
+    std::size_t patients = 0;
     {
-      QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", "bump");
-      db.setDatabaseName(QString::fromStdString(p));
-      QVERIFY(db.open());
+      PatientLibrary lib({p});
+      patients = lib.list().size();
+    }
+    {
+      QSqlDatabase db = test_db::raw(p, "bump");
+      QVERIFY(db.isOpen());
       QSqlQuery q(db);
       QVERIFY(q.exec("UPDATE meta SET value = '99' WHERE key = 'schema_version'"));
-      db.close();
     }
     QSqlDatabase::removeDatabase("bump");
-    const std::string before = bytes_of(p);
+    const std::string before = backend == "sqlite" ? bytes_of(p) : std::string();
     const QString e = error_opening({p});
-    QVERIFY2(e.contains(QString::fromStdString(p)) && e.contains(QString("schema version 99, newer than this program's (%1)").arg(PatientLibrary::kSchemaVersion)), qPrintable(e));
-    QCOMPARE(bytes_of(p), before);
+    QVERIFY2(e.contains(test_db::shown(p)) && e.contains(QString("schema version 99, newer than this program's (%1)").arg(PatientLibrary::kSchemaVersion)), qPrintable(e));
+    if (backend == "sqlite") {
+      QCOMPARE(bytes_of(p), before);
+    } else {
+      // Nothing changed: the version and the patients as they were.
+      {
+        QSqlDatabase db = test_db::raw(p, "check");
+        QSqlQuery v(db), n(db);
+        QVERIFY(v.exec("SELECT value FROM meta WHERE key = 'schema_version'") && v.next());
+        QCOMPARE(v.value(0).toString(), QString("99"));
+        QVERIFY(n.exec("SELECT count(*) FROM patients") && n.next());
+        QCOMPARE(std::size_t(n.value(0).toInt()), patients);
+      }
+      QSqlDatabase::removeDatabase("check");
+    }
   }
 
   void lockedDatabaseGivesAClearErrorAndLosesNothing() {
@@ -356,9 +401,10 @@ class TestPatientLibrary : public QObject {
         e = QString::fromStdString(ex.what());
       }
       QVERIFY2(e.contains(QString::fromStdString(p)) && e.contains("locked by another program"), qPrintable(e));
-      // Opening a second library while locked: the same clear message.
+      // Opening a second library while locked: the same clear message (opening reads the
+      // schema, which the exclusive lock forbids).
       const QString e2 = error_opening({p, 200, true});
-      QVERIFY2(e2.isEmpty() || e2.contains("locked"), qPrintable(e2));
+      QVERIFY2(e2.contains(QString::fromStdString(p)) && e2.contains("locked by another program"), qPrintable(e2));
       QVERIFY(q.exec("ROLLBACK"));
       other.close();
     }
@@ -417,7 +463,9 @@ class TestPatientLibrary : public QObject {
     const QByteArray url = qgetenv("PALPATION_TEST_PG");
     if (url.isEmpty()) QSKIP("PALPATION_TEST_PG not set: no PostgreSQL server to test against (docs/patient-library.md)");
     if (!QSqlDatabase::isDriverAvailable("QPSQL")) QSKIP("the QPSQL driver is not installed (libqt6sql6-psql)");
-    {
+    // A server named but unreachable (or failing mid-test) is a failure with its message,
+    // not an exception out of the test function (QtTest rethrows it: the suite aborts).
+    try {
       PatientLibrary lib({url.toStdString()});
       QVERIFY(lib.is_postgres());
       QCOMPARE(lib.schema_version(), PatientLibrary::kSchemaVersion);
@@ -450,6 +498,8 @@ class TestPatientLibrary : public QObject {
       QCOMPARE(v[1].coverage_deep, 0.123456789);
       QVERIFY(!lib.class_summary().empty());
       QVERIFY(lib.remove_trainee("pg-trainee"));
+    } catch (const std::exception& e) {
+      QFAIL(qPrintable(QString("PALPATION_TEST_PG: ") + e.what()));
     }
   }
 };

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "fault_backend.h"
+#include "mesh_gmsh.h"
 #include "simulation.h"
 #include "cli/stress.h"
 
@@ -145,6 +146,62 @@ class TestStress : public QObject {
     QVERIFY(sim.outputs()[0].force.norm() > 0.01);  // still pressing, now on the CPU
     // The CPU backend failing has nothing to fall back to: the error propagates.
     QVERIFY(!sim.fall_back_to_cpu("again"));
+  }
+
+  // An error in a case is that case's failure with its message, never a skip or a pass
+  // (a CUDA error must not count as passed): an injected backend error that cannot fall
+  // back (the backend is named "cpu") on a box case and on a breast case. The breast case
+  // may be skipped only where its mesh is unavailable (no Gmsh, nothing cached), saying so.
+  void errorInACaseIsAFailure_data() {
+    QTest::addColumn<QString>("only");
+    QTest::newRow("box") << "dt-1ms";
+    QTest::newRow("breast") << "breast-tumour-10x";
+  }
+  void errorInACaseIsAFailure() {
+    QFETCH(QString, only);
+    app::cli::StressOptions opt;
+    opt.quick = true;
+    opt.only = only.toStdString();
+    opt.backends = {"cpu"};
+    opt.make_backend = [](const std::string&, const sim::Model& m, const sim::SimParams& p) -> std::unique_ptr<sim::Backend> {
+      return std::make_unique<test::FaultBackend>(sim::make_backend(sim::BackendKind::Cpu, m, p),
+                                                  test::FaultBackend::Fault::Throw, 5, "cpu");
+    };
+    const auto rs = app::cli::run_stress(opt);
+    QCOMPARE(rs.size(), std::size_t(1));
+    const auto& r = rs.front();
+    if (r.skipped) {
+      QVERIFY2(r.skip_reason.rfind("mesh unavailable: ", 0) == 0, r.skip_reason.c_str());
+      QVERIFY(!sim::gmsh_available());
+      QSKIP(qPrintable(QString::fromStdString("the breast case is skipped here: " + r.skip_reason)));
+    }
+    QVERIFY(!r.pass);
+    QCOMPARE(r.failures.size(), std::size_t(1));
+    QVERIFY2(r.failures[0].find("error: ") == 0 && r.failures[0].find("injected CUDA error") != std::string::npos,
+             r.failures[0].c_str());
+    const auto j = app::cli::stress_json(rs, opt, 0);
+    QCOMPARE(j["failed"].get<int>(), 1);
+    QCOMPARE(j["skipped"].get<int>(), 0);
+    QCOMPARE(j["all_pass"].get<bool>(), false);
+    QVERIFY(app::cli::stress_markdown(rs, opt, 0).find("**FAIL**") != std::string::npos);
+  }
+
+  // A backend error the simulation survives by falling back to the CPU: the case ran,
+  // but not on the backend under test: a failure naming the error.
+  void fallbackToCpuIsAFailure() {
+    const auto cases = app::cli::stress_cases(true);
+    const app::cli::StressResult r = app::cli::run_stress_case(
+        find_case(cases, "dt-1ms"), "cuda", [](const std::string&, const sim::Model& m, const sim::SimParams& p) {
+          return std::make_unique<test::FaultBackend>(sim::make_backend(sim::BackendKind::Cpu, m, p),
+                                                      test::FaultBackend::Fault::Throw, 5, "cuda");
+        });
+    QVERIFY(!r.skipped);
+    QVERIFY(!r.pass);
+    QCOMPARE(r.steps, 600);  // the run went on (on the CPU) to its end
+    bool named = false;
+    for (const auto& f : r.failures)
+      named = named || (f.find("backend: cuda failed") == 0 && f.find("injected CUDA error") != std::string::npos);
+    QVERIFY(named);
   }
 
   // Divergence limits: a stable press stays far inside them.

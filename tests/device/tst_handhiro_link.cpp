@@ -303,10 +303,15 @@ class TestHandHiroLink : public QObject {
     QCOMPARE(c.robot_force(), 0.0);
     QVERIFY(c.emu->watchdog());
     QCOMPARE(c.emu->counters().watchdog_events, std::uint64_t(1));
-    c.ticks(3);
-    QVERIFY(c.loop->state().device_watchdog || !c.emu->watchdog());
+    QVERIFY(!c.loop->state().device_watchdog);  // the PC has not heard of it yet
+    // The PC's next tick reads the robot's states sent meanwhile (with the flag) before the
+    // robot has its command: the PC sees the robot's watchdog.
+    QVERIFY(c.link->wait_readable(kWaitMs));
+    c.tick(true, false);
+    QVERIFY(c.loop->state().device_watchdog);
     c.ticks(100);
     QVERIFY(!c.emu->watchdog());
+    QVERIFY(!c.loop->state().device_watchdog);  // and that it cleared
     QVERIFY(std::fabs(c.robot_force() - 1.0) < 1e-6);
   }
 
