@@ -341,7 +341,7 @@
     </message>
     <message>
         <location filename="../ui/event_text.cpp" line="96"/>
-        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
+        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, centre 2.0 cm below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -622,42 +622,42 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="233"/>
-        <source>%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².</source>
+        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <source>%1 nodes, %2 tetrahedra. Repairs: %3. Chest wall (fixed) %4: n = (%5, %6, %7), %8 cm², %9 % of the body&apos;s outline, tilted %10° from the scan&apos;s z axis.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="236"/>
+        <location filename="../ui/import_dialog.cpp" line="239"/>
         <source>none</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="237"/>
+        <location filename="../ui/import_dialog.cpp" line="240"/>
         <source>found</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="237"/>
+        <location filename="../ui/import_dialog.cpp" line="240"/>
         <source>given</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="246"/>
+        <location filename="../ui/import_dialog.cpp" line="251"/>
         <source>No patient library is open.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="254"/>
+        <location filename="../ui/import_dialog.cpp" line="259"/>
         <source>Give the patient a name.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="259"/>
+        <location filename="../ui/import_dialog.cpp" line="264"/>
         <source>A patient named &quot;%1&quot; exists already in %2: choose another name.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="270"/>
+        <location filename="../ui/import_dialog.cpp" line="275"/>
         <source>Saved as &quot;%1&quot; in the patient library.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -665,534 +665,622 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="145"/>
+        <location filename="../ui/main_window.cpp" line="158"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="155"/>
+        <location filename="../ui/main_window.cpp" line="168"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="234"/>
+        <location filename="../ui/main_window.cpp" line="218"/>
+        <source>Stored pressure levels not used (defaults apply): %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="258"/>
         <source>This session is not recorded: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="236"/>
+        <location filename="../ui/main_window.cpp" line="260"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="238"/>
+        <location filename="../ui/main_window.cpp" line="262"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="278"/>
+        <location filename="../ui/main_window.cpp" line="302"/>
         <source>no patient library is open: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="313"/>
+        <location filename="../ui/main_window.cpp" line="338"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="313"/>
+        <location filename="../ui/main_window.cpp" line="338"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="355"/>
+        <location filename="../ui/main_window.cpp" line="380"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="368"/>
+        <location filename="../ui/main_window.cpp" line="393"/>
         <source>Open a session recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="369"/>
+        <location filename="../ui/main_window.cpp" line="394"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="372"/>
+        <location filename="../ui/main_window.cpp" line="397"/>
         <source>Cannot open the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="376"/>
+        <location filename="../ui/main_window.cpp" line="401"/>
         <source>Save screenshot</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="376"/>
+        <location filename="../ui/main_window.cpp" line="401"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="406"/>
-        <location filename="../ui/main_window.cpp" line="566"/>
+        <location filename="../ui/main_window.cpp" line="431"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Stereo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="416"/>
+        <location filename="../ui/main_window.cpp" line="441"/>
         <source>Eye separation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="416"/>
+        <location filename="../ui/main_window.cpp" line="441"/>
         <source>Eye angle (degrees):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="495"/>
+        <location filename="../ui/main_window.cpp" line="520"/>
         <source>End the exam now? No more marks can be made after it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="552"/>
-        <source>Palpation Trainer</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
+        <location filename="../ui/main_window.cpp" line="539"/>
+        <location filename="../ui/main_window.cpp" line="548"/>
         <location filename="../ui/main_window.cpp" line="553"/>
-        <source>&amp;File</source>
+        <location filename="../ui/main_window.cpp" line="648"/>
+        <source>Curriculum</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="554"/>
-        <source>&amp;Open recording...</source>
+        <location filename="../ui/main_window.cpp" line="545"/>
+        <source>Open a curriculum</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="555"/>
-        <source>Mark lump here (M)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="556"/>
-        <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="557"/>
-        <source>Save &amp;screenshot...</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="558"/>
-        <source>&amp;Quit</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="559"/>
-        <source>&amp;Edit</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="560"/>
-        <source>Undo</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="561"/>
-        <source>Redo</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="562"/>
-        <source>&amp;View</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="563"/>
-        <source>Camera</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
-        <source>Oblique</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
-        <source>Top</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
-        <source>Side</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
-        <source>Front</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
-        <source>Mono</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
-        <source>Anaglyph (red/cyan)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
-        <source>Side by side</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
-        <source>Interlaced</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
-        <source>Quad-buffer (shutter glasses)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="569"/>
-        <source>Eye separation...</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="570"/>
-        <source>Mirrored (half-mirror display)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="571"/>
-        <source>Fast rendering (software OpenGL)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="572"/>
-        <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="574"/>
-        <source>Displacement colour map</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="575"/>
-        <source>Stress colour map (von Mises)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="576"/>
-        <source>Show tumours</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="577"/>
-        <source>Panels</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="578"/>
-        <source>&amp;Mode</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="579"/>
-        <source>Instructor mode</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="588"/>
-        <source>Coverage overlay</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="589"/>
-        <source>Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. Not shown in an exam.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="591"/>
-        <source>Clear coverage</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="592"/>
-        <source>Trainee progress...</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="593"/>
-        <source>Each trainee&apos;s exams over time and the class&apos;s results</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="597"/>
-        <source>Tools</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="598"/>
-        <source>Coverage</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="599"/>
-        <source>Camera / scripted hand</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="600"/>
-        <source>Palpate with the mouse</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="674"/>
-        <source>Trainee</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="675"/>
-        <source>Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored).</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="693"/>
-        <source>Trainee not added to the library: %1</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="704"/>
-        <source>Patient library not available: %1</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="737"/>
-        <source>The exam&apos;s result is not stored: %1</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="763"/>
-        <source>Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="845"/>
-        <source>, trainee %1</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="916"/>
-        <source>Not recording</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="917"/>
-        <source>Recording stopped: %1</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="918"/>
-        <source>Recording (%1 marks)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="130"/>
-        <location filename="../ui/main_window.cpp" line="601"/>
-        <source>Patient</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="307"/>
-        <source>The exam has ended: nothing marked.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="322"/>
-        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="580"/>
-        <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="582"/>
-        <source>Guided practice</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="583"/>
-        <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="584"/>
-        <source>Exam</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="585"/>
-        <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="586"/>
-        <source>End exam</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="587"/>
-        <source>Stops the exam: no more marks.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
-        <source>Possible (25 %)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
-        <source>Likely (50 %)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
-        <source>Probable (75 %)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
-        <source>Certain (100 %)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="596"/>
-        <source>How sure you are of the next mark</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
-        <source>Tumours</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/main_window.cpp" line="603"/>
-        <source>Forces</source>
+        <location filename="../ui/main_window.cpp" line="545"/>
+        <source>Curricula (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="604"/>
-        <source>Simulation</source>
+        <source>Palpation Trainer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="605"/>
-        <source>Device</source>
+        <source>&amp;File</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="606"/>
+        <source>&amp;Open recording...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="607"/>
+        <source>Mark lump here (M)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="608"/>
+        <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="609"/>
+        <source>Save &amp;screenshot...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="610"/>
+        <source>&amp;Quit</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="611"/>
+        <source>&amp;Edit</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="612"/>
+        <source>Undo</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="613"/>
+        <source>Redo</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="614"/>
+        <source>&amp;View</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="615"/>
+        <source>Camera</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="616"/>
+        <source>Oblique</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="616"/>
+        <source>Top</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="616"/>
+        <source>Side</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="616"/>
+        <source>Front</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="619"/>
+        <source>Mono</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="619"/>
+        <source>Anaglyph (red/cyan)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="619"/>
+        <source>Side by side</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="619"/>
+        <source>Interlaced</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="619"/>
+        <source>Quad-buffer (shutter glasses)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="621"/>
+        <source>Eye separation...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="622"/>
+        <source>Mirrored (half-mirror display)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="623"/>
+        <source>Fast rendering (software OpenGL)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="624"/>
+        <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="626"/>
+        <source>Displacement colour map</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="627"/>
+        <source>Stress colour map (von Mises)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="628"/>
+        <source>Show tumours</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="629"/>
+        <source>Panels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="630"/>
+        <source>&amp;Mode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="631"/>
+        <source>Instructor mode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="640"/>
+        <source>Coverage overlay</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="641"/>
+        <source>Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. Not shown in an exam.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="643"/>
+        <source>Clear coverage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="644"/>
-        <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
+        <source>Trainee progress...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="645"/>
+        <source>Each trainee&apos;s exams over time and the class&apos;s results</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="646"/>
-        <source>Leave the exam? This ends it: no more marks can be made in it.</source>
+        <source>Pressure levels...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/main_window.cpp" line="647"/>
+        <source>What counts as light, medium and deep pressure in the coverage and the score</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="649"/>
+        <source>Open curriculum file...</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="650"/>
+        <source>No curriculum (free exams)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="651"/>
+        <source>Next curriculum case</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="652"/>
+        <source>Loads the trainee&apos;s first case of the curriculum not yet passed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="656"/>
+        <source>Tools</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="657"/>
+        <source>Coverage</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="658"/>
+        <source>Camera / scripted hand</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="659"/>
+        <source>Palpate with the mouse</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="733"/>
+        <source>Trainee</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="734"/>
+        <source>Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="752"/>
+        <source>Trainee not added to the library: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="763"/>
+        <source>Patient library not available: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="800"/>
+        <source>The exam&apos;s result is kept on this station: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="803"/>
+        <source>The exam&apos;s result is not stored: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="835"/>
+        <source>Pressure levels set: they apply to the exams that start from now on.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="867"/>
+        <source>No curriculum is chosen (Mode &gt; Curriculum).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="875"/>
+        <source>The trainee&apos;s results could not be read: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="880"/>
+        <source>%1 has passed every case of %2.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="921"/>
+        <source>Curriculum %1: case %2 of %3</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="922"/>
+        <source>Curriculum %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="940"/>
+        <source>Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="1028"/>
+        <source>, trainee %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="1103"/>
+        <source>Not recording</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="1104"/>
+        <source>Recording stopped: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="1105"/>
+        <source>Recording (%1 marks)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="143"/>
+        <location filename="../ui/main_window.cpp" line="660"/>
+        <source>Patient</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="332"/>
+        <source>The exam has ended: nothing marked.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="347"/>
+        <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="632"/>
+        <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="634"/>
+        <source>Guided practice</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="635"/>
+        <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="636"/>
+        <source>Exam</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="637"/>
+        <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="638"/>
+        <source>End exam</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="639"/>
+        <source>Stops the exam: no more marks.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="653"/>
+        <source>Possible (25 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="653"/>
+        <source>Likely (50 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="653"/>
+        <source>Probable (75 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="653"/>
+        <source>Certain (100 %)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="655"/>
+        <source>How sure you are of the next mark</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="661"/>
+        <source>Tumours</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="662"/>
+        <source>Forces</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="663"/>
+        <source>Simulation</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="664"/>
+        <source>Device</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="703"/>
+        <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="705"/>
+        <source>Leave the exam? This ends it: no more marks can be made in it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="706"/>
         <source>Change of mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="847"/>
+        <location filename="../ui/main_window.cpp" line="1030"/>
         <source>Instructor: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="849"/>
+        <location filename="../ui/main_window.cpp" line="1032"/>
         <source>Guided practice: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="849"/>
+        <location filename="../ui/main_window.cpp" line="1032"/>
         <source>Guided practice ended: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="850"/>
+        <location filename="../ui/main_window.cpp" line="1033"/>
         <source>Exam: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="850"/>
+        <location filename="../ui/main_window.cpp" line="1033"/>
         <source>Exam ended: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="864"/>
+        <location filename="../ui/main_window.cpp" line="1047"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="906"/>
+        <location filename="../ui/main_window.cpp" line="1093"/>
         <source>Backend: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="906"/>
+        <location filename="../ui/main_window.cpp" line="1093"/>
         <source>Backend: %1 (fallback)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="908"/>
+        <location filename="../ui/main_window.cpp" line="1095"/>
         <source>Simulation: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="909"/>
+        <location filename="../ui/main_window.cpp" line="1096"/>
         <source>Haptic: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="911"/>
+        <location filename="../ui/main_window.cpp" line="1098"/>
         <source>mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="912"/>
+        <location filename="../ui/main_window.cpp" line="1099"/>
         <source>simulated HandHIRO</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="913"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>Device: %1, %2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="913"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="913"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>not connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="914"/>
+        <location filename="../ui/main_window.cpp" line="1101"/>
         <source>View: %1 fps</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1272,6 +1360,64 @@
     <message>
         <location filename="../ui/panels.cpp" line="140"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::PressureDialog</name>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="16"/>
+        <source>Pressure levels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="17"/>
+        <source>A touch counts at a level when the fingertip pad presses the skin in by this share of the tissue&apos;s thickness under it, or presses with this force, whichever comes first. They apply to the exams that start from now on.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="22"/>
+        <source>Indentation (% of thickness)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="23"/>
+        <source>Force (N)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="24"/>
+        <source>Light</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="24"/>
+        <source>Medium</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="24"/>
+        <source>Deep</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="46"/>
+        <source>OK</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="47"/>
+        <source>Cancel</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="48"/>
+        <source>Restore defaults</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="86"/>
+        <source>Each level must be above the one before it, in indentation and in force, and deep indentation below 100 %.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1428,42 +1574,42 @@
 <context>
     <name>palpation::ui::ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="215"/>
+        <location filename="../ui/review_window.cpp" line="220"/>
         <source>Export the session as CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="215"/>
+        <location filename="../ui/review_window.cpp" line="220"/>
         <source>CSV files (*.csv)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="217"/>
+        <location filename="../ui/review_window.cpp" line="222"/>
         <source>Export CSV</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="221"/>
+        <location filename="../ui/review_window.cpp" line="226"/>
         <source>Folder for the exam report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="225"/>
+        <location filename="../ui/review_window.cpp" line="230"/>
         <source>Save report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="226"/>
+        <location filename="../ui/review_window.cpp" line="231"/>
         <source>Report written to %1 (%2)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="229"/>
+        <location filename="../ui/review_window.cpp" line="234"/>
         <source>Folder for the PNG frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/review_window.cpp" line="232"/>
+        <location filename="../ui/review_window.cpp" line="237"/>
         <source>%n frame(s) written to %1</source>
         <translation>
             <numerusform>%n frame written to %1</numerusform>
@@ -1471,171 +1617,176 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="277"/>
+        <location filename="../ui/review_window.cpp" line="282"/>
         <source>Review: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="278"/>
-        <location filename="../ui/review_window.cpp" line="336"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
+        <location filename="../ui/review_window.cpp" line="341"/>
         <source>Pause</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="278"/>
-        <location filename="../ui/review_window.cpp" line="336"/>
-        <location filename="../ui/review_window.cpp" line="345"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
+        <location filename="../ui/review_window.cpp" line="341"/>
+        <location filename="../ui/review_window.cpp" line="350"/>
         <source>Play</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="279"/>
+        <location filename="../ui/review_window.cpp" line="284"/>
         <source>Speed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="280"/>
+        <location filename="../ui/review_window.cpp" line="285"/>
         <source>Export CSV...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="281"/>
+        <location filename="../ui/review_window.cpp" line="286"/>
         <source>Export PNG frames...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="282"/>
+        <location filename="../ui/review_window.cpp" line="287"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="283"/>
+        <location filename="../ui/review_window.cpp" line="288"/>
         <source>&lt;b&gt;Exam score&lt;/b&gt;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="284"/>
+        <location filename="../ui/review_window.cpp" line="289"/>
         <source>Coverage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="285"/>
+        <location filename="../ui/review_window.cpp" line="290"/>
         <source>The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="286"/>
+        <location filename="../ui/review_window.cpp" line="291"/>
         <source>Save report...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="288"/>
+        <location filename="../ui/review_window.cpp" line="293"/>
         <source>Scoring the exam...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="297"/>
+        <location filename="../ui/review_window.cpp" line="302"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="298"/>
+        <location filename="../ui/review_window.cpp" line="303"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="302"/>
+        <location filename="../ui/review_window.cpp" line="307"/>
         <source>%1 (re-sim.)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="304"/>
+        <location filename="../ui/review_window.cpp" line="309"/>
         <source>now</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="305"/>
+        <location filename="../ui/review_window.cpp" line="310"/>
         <source>Events</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="366"/>
-        <location filename="../ui/review_window.cpp" line="398"/>
+        <location filename="../ui/review_window.cpp" line="371"/>
+        <location filename="../ui/review_window.cpp" line="410"/>
         <source>No score: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="371"/>
+        <location filename="../ui/review_window.cpp" line="376"/>
         <source>Tumours found: %1 of %2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="372"/>
+        <location filename="../ui/review_window.cpp" line="377"/>
         <source>False positives: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="373"/>
+        <location filename="../ui/review_window.cpp" line="378"/>
         <source>Coverage: light %1, medium %2, deep %3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="375"/>
+        <location filename="../ui/review_window.cpp" line="380"/>
         <source>Vertical strips: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="399"/>
+        <location filename="../ui/review_window.cpp" line="400"/>
+        <source>Coverage up to %1: light %2, medium %3, deep %4</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="411"/>
         <source>The exam is still being scored.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="461"/>
+        <location filename="../ui/review_window.cpp" line="474"/>
         <source>Re-simulation stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="464"/>
+        <location filename="../ui/review_window.cpp" line="477"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="473"/>
+        <location filename="../ui/review_window.cpp" line="486"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="480"/>
+        <location filename="../ui/review_window.cpp" line="493"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="481"/>
+        <location filename="../ui/review_window.cpp" line="494"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="483"/>
+        <location filename="../ui/review_window.cpp" line="496"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="487"/>
+        <location filename="../ui/review_window.cpp" line="500"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="496"/>
+        <location filename="../ui/review_window.cpp" line="509"/>
         <source>The recording was interrupted: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="497"/>
+        <location filename="../ui/review_window.cpp" line="510"/>
         <source>The recording was recovered after an interruption.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="504"/>
+        <location filename="../ui/review_window.cpp" line="517"/>
         <source>Written: %1</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1643,117 +1794,207 @@
 <context>
     <name>palpation::ui::ScoreDialog</name>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="25"/>
-        <source>Exam score</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../ui/score_dialog.cpp" line="29"/>
-        <source>Tumours found:</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="29"/>
-        <source>%1 of %2</source>
+        <source>Cover the whole breast at light pressure: %1% of the skin was reached at that level.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/score_dialog.cpp" line="30"/>
-        <source>False positives:</source>
+        <source>Cover the whole breast at medium pressure: %1% of the skin was reached at that level.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/score_dialog.cpp" line="31"/>
-        <source>Sensitivity:</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="32"/>
-        <source>Positive predictive value:</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="33"/>
-        <source>Position error:</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="34"/>
-        <source>%1 mm (mean over the tumours found)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="35"/>
-        <source>Exam time:</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="35"/>
-        <source>%1 s</source>
+        <source>Cover the whole breast at deep pressure: %1% of the skin was reached at that level.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/score_dialog.cpp" line="36"/>
-        <source>Coverage:</source>
+        <source>Search in vertical strips, head to foot, overlapping each by about a third of a finger pad: %1 strips covered %2% of the path.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="37"/>
-        <source>light %1, medium %2, deep %3</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/score_dialog.cpp" line="39"/>
-        <source>Vertical strips:</source>
+        <location filename="../ui/score_dialog.cpp" line="40"/>
+        <source>Overlap neighbouring strips: they left gaps between them.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/score_dialog.cpp" line="42"/>
-        <source>tumour %1: %2</source>
+        <source>Press deep at every spot: a lump %1 mm below the skin was missed where deep pressure was not reached.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="42"/>
-        <source>yes</source>
+        <location filename="../ui/score_dialog.cpp" line="44"/>
+        <source>Check a suspected lump at all three pressure levels before marking it: %1 mark(s) found no lump.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="42"/>
-        <source>no</source>
+        <location filename="../ui/score_dialog.cpp" line="45"/>
+        <source>A complete examination: keep this pattern and pressure.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="43"/>
-        <source>Deep pressure over each tumour:</source>
+        <location filename="../ui/score_dialog.cpp" line="51"/>
+        <source>tumours found</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="46"/>
-        <source>Advice:</source>
+        <location filename="../ui/score_dialog.cpp" line="52"/>
+        <source>false positives</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="53"/>
+        <source>light coverage</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="54"/>
+        <source>medium coverage</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="55"/>
+        <source>deep coverage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/score_dialog.cpp" line="56"/>
+        <source>deep pressure over each tumour</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="57"/>
+        <source>exam time</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="65"/>
+        <source>Exam score</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="72"/>
+        <source>Curriculum case:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="73"/>
+        <source>passed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="73"/>
+        <source>not passed: %1</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="79"/>
+        <source>Tumours found:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="79"/>
+        <source>%1 of %2</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="80"/>
+        <source>False positives:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="81"/>
+        <source>Sensitivity:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="82"/>
+        <source>Positive predictive value:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="83"/>
+        <source>Position error:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="84"/>
+        <source>%1 mm (mean over the tumours found)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="85"/>
+        <source>Exam time:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="85"/>
+        <source>%1 s</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="86"/>
+        <source>Coverage:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="87"/>
+        <source>light %1, medium %2, deep %3</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="89"/>
+        <source>Vertical strips:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="92"/>
+        <source>tumour %1: %2</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="92"/>
+        <source>yes</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="92"/>
+        <source>no</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="93"/>
+        <source>Deep pressure over each tumour:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="96"/>
+        <source>Advice:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="106"/>
         <source>Skin from above: grey not pressed, yellow light, orange medium, red deep; circles: the tumours (green: found); marks: green correct, red false</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="60"/>
+        <location filename="../ui/score_dialog.cpp" line="110"/>
         <source>Save report...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="63"/>
+        <location filename="../ui/score_dialog.cpp" line="113"/>
         <source>Close</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="67"/>
+        <location filename="../ui/score_dialog.cpp" line="117"/>
         <source>Save the exam report into</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="71"/>
+        <location filename="../ui/score_dialog.cpp" line="121"/>
         <source>Save report</source>
         <translation type="unfinished"></translation>
     </message>

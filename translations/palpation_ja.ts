@@ -338,8 +338,12 @@
     </message>
     <message>
         <location filename="../ui/event_text.cpp" line="96"/>
+        <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, centre 2.0 cm below the skin</source>
+        <translation>論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、中心は皮膚の下 2.0 cm</translation>
+    </message>
+    <message>
         <source>The paper&apos;s case: medium breast, tumour 3 cm diameter, 107 kPa, 1.5 cm below the skin</source>
-        <translation>論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、皮膚の下 1.5 cm</translation>
+        <translation type="vanished">論文の症例: 中くらいの乳房、直径 3 cm・107 kPa の腫瘍、皮膚の下 1.5 cm</translation>
     </message>
     <message>
         <location filename="../ui/event_text.cpp" line="98"/>
@@ -619,42 +623,46 @@
         <translation>完了: %1 秒（メッシュ生成 %2 秒）。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="233"/>
-        <source>%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².</source>
-        <translation>節点 %1、四面体 %2。修復: %3。胸壁平面（%4）: n = (%5, %6, %7)、%8 cm²。</translation>
+        <location filename="../ui/import_dialog.cpp" line="235"/>
+        <source>%1 nodes, %2 tetrahedra. Repairs: %3. Chest wall (fixed) %4: n = (%5, %6, %7), %8 cm², %9 % of the body&apos;s outline, tilted %10° from the scan&apos;s z axis.</source>
+        <translation>節点 %1、四面体 %2。修復: %3。胸壁（固定）%4: n = (%5, %6, %7)、%8 cm²、体の輪郭の %9 %、スキャンの z 軸から %10° 傾斜。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="236"/>
+        <source>%1 nodes, %2 tetrahedra. Repairs: %3. Base plane %4: n = (%5, %6, %7), %8 cm².</source>
+        <translation type="vanished">節点 %1、四面体 %2。修復: %3。胸壁平面（%4）: n = (%5, %6, %7)、%8 cm²。</translation>
+    </message>
+    <message>
+        <location filename="../ui/import_dialog.cpp" line="239"/>
         <source>none</source>
         <translation>なし</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="237"/>
+        <location filename="../ui/import_dialog.cpp" line="240"/>
         <source>found</source>
         <translation>自動検出</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="237"/>
+        <location filename="../ui/import_dialog.cpp" line="240"/>
         <source>given</source>
         <translation>手動指定</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="246"/>
+        <location filename="../ui/import_dialog.cpp" line="251"/>
         <source>No patient library is open.</source>
         <translation>患者ライブラリが開かれていません。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="254"/>
+        <location filename="../ui/import_dialog.cpp" line="259"/>
         <source>Give the patient a name.</source>
         <translation>患者名を入力してください。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="259"/>
+        <location filename="../ui/import_dialog.cpp" line="264"/>
         <source>A patient named &quot;%1&quot; exists already in %2: choose another name.</source>
         <translation>患者「%1」は %2 にすでにあります。別の名前を選んでください。</translation>
     </message>
     <message>
-        <location filename="../ui/import_dialog.cpp" line="270"/>
+        <location filename="../ui/import_dialog.cpp" line="275"/>
         <source>Saved as &quot;%1&quot; in the patient library.</source>
         <translation>患者ライブラリに「%1」として保存しました。</translation>
     </message>
@@ -662,534 +670,622 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="145"/>
+        <location filename="../ui/main_window.cpp" line="158"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation>マウス触診: 乳房の上で動かします。ホイールまたは下向きのドラッグで指先を押し込みます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="155"/>
+        <location filename="../ui/main_window.cpp" line="168"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation>その形状の中に要素がありません。追加されませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="234"/>
+        <location filename="../ui/main_window.cpp" line="218"/>
+        <source>Stored pressure levels not used (defaults apply): %1</source>
+        <translation>保存された圧の段階は使われません（既定値を使用）: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="258"/>
         <source>This session is not recorded: %1</source>
         <translation>このセッションは記録されていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="236"/>
+        <location filename="../ui/main_window.cpp" line="260"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation>中断された記録を復元しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="238"/>
+        <location filename="../ui/main_window.cpp" line="262"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation>患者ライブラリを使えません（内蔵ファントムのみ）: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="278"/>
+        <location filename="../ui/main_window.cpp" line="302"/>
         <source>no patient library is open: %1</source>
         <translation>患者ライブラリが開かれていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="313"/>
+        <location filename="../ui/main_window.cpp" line="338"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation>乳房に触れている指先がありません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="313"/>
+        <location filename="../ui/main_window.cpp" line="338"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation>このセッションは記録されていません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="355"/>
+        <location filename="../ui/main_window.cpp" line="380"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation>患者「%1」を保存しました。選んで「患者を読み込む」を押すと触診できます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="368"/>
+        <location filename="../ui/main_window.cpp" line="393"/>
         <source>Open a session recording</source>
         <translation>セッションの記録を開く</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="369"/>
+        <location filename="../ui/main_window.cpp" line="394"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation>セッションの記録 (*.palrec *.prec);;すべてのファイル (*)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="372"/>
+        <location filename="../ui/main_window.cpp" line="397"/>
         <source>Cannot open the recording</source>
         <translation>記録を開けません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="376"/>
+        <location filename="../ui/main_window.cpp" line="401"/>
         <source>Save screenshot</source>
         <translation>スクリーンショットを保存</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="376"/>
+        <location filename="../ui/main_window.cpp" line="401"/>
         <source>PNG images (*.png)</source>
         <translation>PNG 画像 (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="406"/>
-        <location filename="../ui/main_window.cpp" line="566"/>
+        <location filename="../ui/main_window.cpp" line="431"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Stereo</source>
         <translation>立体視</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="416"/>
+        <location filename="../ui/main_window.cpp" line="441"/>
         <source>Eye separation</source>
         <translation>眼間距離</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="416"/>
+        <location filename="../ui/main_window.cpp" line="441"/>
         <source>Eye angle (degrees):</source>
         <translation>視差角（度）:</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="495"/>
+        <location filename="../ui/main_window.cpp" line="520"/>
         <source>End the exam now? No more marks can be made after it.</source>
         <translation>試験を今終了しますか？終了後はマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="552"/>
+        <location filename="../ui/main_window.cpp" line="539"/>
+        <location filename="../ui/main_window.cpp" line="548"/>
+        <location filename="../ui/main_window.cpp" line="553"/>
+        <location filename="../ui/main_window.cpp" line="648"/>
+        <source>Curriculum</source>
+        <translation>カリキュラム</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="545"/>
+        <source>Open a curriculum</source>
+        <translation>カリキュラムを開く</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="545"/>
+        <source>Curricula (*.json)</source>
+        <translation>カリキュラム (*.json)</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="604"/>
         <source>Palpation Trainer</source>
         <translation>触診トレーナー</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="553"/>
+        <location filename="../ui/main_window.cpp" line="605"/>
         <source>&amp;File</source>
         <translation>ファイル(&amp;F)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="554"/>
+        <location filename="../ui/main_window.cpp" line="606"/>
         <source>&amp;Open recording...</source>
         <translation>記録を開く(&amp;O)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="555"/>
+        <location filename="../ui/main_window.cpp" line="607"/>
         <source>Mark lump here (M)</source>
         <translation>しこりをマーク (M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="556"/>
+        <location filename="../ui/main_window.cpp" line="608"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation>研修生:「ここにしこりがある」― 人差し指の指先の位置を記録にマークします</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="557"/>
+        <location filename="../ui/main_window.cpp" line="609"/>
         <source>Save &amp;screenshot...</source>
         <translation>スクリーンショットを保存(&amp;S)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="558"/>
+        <location filename="../ui/main_window.cpp" line="610"/>
         <source>&amp;Quit</source>
         <translation>終了(&amp;Q)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="559"/>
+        <location filename="../ui/main_window.cpp" line="611"/>
         <source>&amp;Edit</source>
         <translation>編集(&amp;E)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="560"/>
+        <location filename="../ui/main_window.cpp" line="612"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="561"/>
+        <location filename="../ui/main_window.cpp" line="613"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="562"/>
+        <location filename="../ui/main_window.cpp" line="614"/>
         <source>&amp;View</source>
         <translation>表示(&amp;V)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="563"/>
+        <location filename="../ui/main_window.cpp" line="615"/>
         <source>Camera</source>
         <translation>カメラ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>Oblique</source>
         <translation>斜め</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>Top</source>
         <translation>上</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>Side</source>
         <translation>側面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="564"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>Front</source>
         <translation>正面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
+        <location filename="../ui/main_window.cpp" line="619"/>
         <source>Mono</source>
         <translation>モノ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
+        <location filename="../ui/main_window.cpp" line="619"/>
         <source>Anaglyph (red/cyan)</source>
         <translation>アナグリフ（赤/シアン）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
+        <location filename="../ui/main_window.cpp" line="619"/>
         <source>Side by side</source>
         <translation>サイドバイサイド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
+        <location filename="../ui/main_window.cpp" line="619"/>
         <source>Interlaced</source>
         <translation>インターレース</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="567"/>
+        <location filename="../ui/main_window.cpp" line="619"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation>クアッドバッファ（シャッターメガネ）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="569"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Eye separation...</source>
         <translation>眼間距離...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="570"/>
+        <location filename="../ui/main_window.cpp" line="622"/>
         <source>Mirrored (half-mirror display)</source>
         <translation>鏡像（ハーフミラー表示）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="571"/>
+        <location filename="../ui/main_window.cpp" line="623"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation>高速描画（ソフトウェア OpenGL）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="572"/>
+        <location filename="../ui/main_window.cpp" line="624"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation>軽い 3D 表示：単色の背景、皮膚のハイライトなし、陰影なしの胸壁。コンピューターが OpenGL をソフトウェアで描画するときは自動でオンになります。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="574"/>
+        <location filename="../ui/main_window.cpp" line="626"/>
         <source>Displacement colour map</source>
         <translation>変位カラーマップ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="575"/>
+        <location filename="../ui/main_window.cpp" line="627"/>
         <source>Stress colour map (von Mises)</source>
         <translation>応力カラーマップ（ミーゼス）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="576"/>
+        <location filename="../ui/main_window.cpp" line="628"/>
         <source>Show tumours</source>
         <translation>腫瘍を表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="577"/>
+        <location filename="../ui/main_window.cpp" line="629"/>
         <source>Panels</source>
         <translation>パネル</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="578"/>
+        <location filename="../ui/main_window.cpp" line="630"/>
         <source>&amp;Mode</source>
         <translation>モード(&amp;M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="579"/>
+        <location filename="../ui/main_window.cpp" line="631"/>
         <source>Instructor mode</source>
         <translation>指導者モード</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="588"/>
+        <location filename="../ui/main_window.cpp" line="640"/>
         <source>Coverage overlay</source>
         <translation>触診範囲の表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="589"/>
+        <location filename="../ui/main_window.cpp" line="641"/>
         <source>Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. Not shown in an exam.</source>
         <translation>皮膚を到達した最大の圧で色分けします：黄は軽い圧、橙は中程度の圧、赤は深い圧。試験中は表示しません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="591"/>
+        <location filename="../ui/main_window.cpp" line="643"/>
         <source>Clear coverage</source>
         <translation>触診範囲を消去</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="592"/>
+        <location filename="../ui/main_window.cpp" line="644"/>
         <source>Trainee progress...</source>
         <translation>研修生の進捗...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="593"/>
+        <location filename="../ui/main_window.cpp" line="645"/>
         <source>Each trainee&apos;s exams over time and the class&apos;s results</source>
         <translation>各研修生の試験の推移とクラスの成績</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="597"/>
+        <location filename="../ui/main_window.cpp" line="646"/>
+        <source>Pressure levels...</source>
+        <translation>圧の段階...</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="647"/>
+        <source>What counts as light, medium and deep pressure in the coverage and the score</source>
+        <translation>触診範囲と採点で軽い圧・中程度・深い圧とみなす基準</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="649"/>
+        <source>Open curriculum file...</source>
+        <translation>カリキュラムファイルを開く...</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="650"/>
+        <source>No curriculum (free exams)</source>
+        <translation>カリキュラムなし（自由試験）</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="651"/>
+        <source>Next curriculum case</source>
+        <translation>カリキュラムの次の症例</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="652"/>
+        <source>Loads the trainee&apos;s first case of the curriculum not yet passed</source>
+        <translation>研修生がまだ合格していないカリキュラムの最初の症例を読み込みます</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="656"/>
         <source>Tools</source>
         <translation>ツール</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="598"/>
+        <location filename="../ui/main_window.cpp" line="657"/>
         <source>Coverage</source>
         <translation>触診範囲</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="599"/>
+        <location filename="../ui/main_window.cpp" line="658"/>
         <source>Camera / scripted hand</source>
         <translation>カメラ / 自動触診ハンド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="600"/>
+        <location filename="../ui/main_window.cpp" line="659"/>
         <source>Palpate with the mouse</source>
         <translation>マウスで触診</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="674"/>
+        <location filename="../ui/main_window.cpp" line="733"/>
         <source>Trainee</source>
         <translation>研修生</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="675"/>
+        <location filename="../ui/main_window.cpp" line="734"/>
         <source>Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored).</source>
         <translation>研修生は誰ですか？名前を選ぶか新しい名前を入力してください（空欄：匿名、結果は保存されません）。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="693"/>
+        <location filename="../ui/main_window.cpp" line="752"/>
         <source>Trainee not added to the library: %1</source>
         <translation>研修生をライブラリに追加できませんでした：%1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="704"/>
+        <location filename="../ui/main_window.cpp" line="763"/>
         <source>Patient library not available: %1</source>
         <translation>患者ライブラリを使用できません：%1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="737"/>
+        <location filename="../ui/main_window.cpp" line="800"/>
+        <source>The exam&apos;s result is kept on this station: %1</source>
+        <translation>試験結果はこの端末に保管されています: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="803"/>
         <source>The exam&apos;s result is not stored: %1</source>
         <translation>試験の結果は保存されていません：%1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="763"/>
+        <location filename="../ui/main_window.cpp" line="835"/>
+        <source>Pressure levels set: they apply to the exams that start from now on.</source>
+        <translation>圧の段階を設定しました: これから始まる試験に適用されます。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="867"/>
+        <source>No curriculum is chosen (Mode &gt; Curriculum).</source>
+        <translation>カリキュラムが選ばれていません（モード &gt; カリキュラム）。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="875"/>
+        <source>The trainee&apos;s results could not be read: %1</source>
+        <translation>研修生の結果を読み込めませんでした: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="880"/>
+        <source>%1 has passed every case of %2.</source>
+        <translation>%1 は %2 のすべての症例に合格しました。</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="921"/>
+        <source>Curriculum %1: case %2 of %3</source>
+        <translation>カリキュラム %1: 症例 %2 / %3</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="922"/>
+        <source>Curriculum %1</source>
+        <translation>カリキュラム %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/main_window.cpp" line="940"/>
         <source>Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7</source>
         <translation>触診範囲：%1 なし %2 軽い圧 %3 %4 中程度 %5 %6 深い圧 %7</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="845"/>
+        <location filename="../ui/main_window.cpp" line="1028"/>
         <source>, trainee %1</source>
         <translation>、研修生 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="916"/>
+        <location filename="../ui/main_window.cpp" line="1103"/>
         <source>Not recording</source>
         <translation>記録していません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="917"/>
+        <location filename="../ui/main_window.cpp" line="1104"/>
         <source>Recording stopped: %1</source>
         <translation>記録が停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="918"/>
+        <location filename="../ui/main_window.cpp" line="1105"/>
         <source>Recording (%1 marks)</source>
         <translation>記録中（マーク %1 件）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="130"/>
-        <location filename="../ui/main_window.cpp" line="601"/>
+        <location filename="../ui/main_window.cpp" line="143"/>
+        <location filename="../ui/main_window.cpp" line="660"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="307"/>
+        <location filename="../ui/main_window.cpp" line="332"/>
         <source>The exam has ended: nothing marked.</source>
         <translation>試験は終了しています。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="322"/>
+        <location filename="../ui/main_window.cpp" line="347"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
         <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm、確信度 %5 % を記録しました。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="580"/>
+        <location filename="../ui/main_window.cpp" line="632"/>
         <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
         <translation>指導者の表示: 答えを含むすべてのパネル。研修生のモードから戻るときは確認を求めます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="582"/>
+        <location filename="../ui/main_window.cpp" line="634"/>
         <source>Guided practice</source>
         <translation>ガイド付き練習</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="583"/>
+        <location filename="../ui/main_window.cpp" line="635"/>
         <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
         <translation>研修生: 触診してマークします。指導者のパネルは表示されません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="584"/>
+        <location filename="../ui/main_window.cpp" line="636"/>
         <source>Exam</source>
         <translation>試験</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="585"/>
+        <location filename="../ui/main_window.cpp" line="637"/>
         <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
         <translation>研修生の試験: 触診してマークします。試験が終わるまで答えは表示されません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="586"/>
+        <location filename="../ui/main_window.cpp" line="638"/>
         <source>End exam</source>
         <translation>試験を終了</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="587"/>
+        <location filename="../ui/main_window.cpp" line="639"/>
         <source>Stops the exam: no more marks.</source>
         <translation>試験を終了します。以後はマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
+        <location filename="../ui/main_window.cpp" line="653"/>
         <source>Possible (25 %)</source>
         <translation>可能性あり (25 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
+        <location filename="../ui/main_window.cpp" line="653"/>
         <source>Likely (50 %)</source>
         <translation>たぶん (50 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
+        <location filename="../ui/main_window.cpp" line="653"/>
         <source>Probable (75 %)</source>
         <translation>おそらく (75 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="594"/>
+        <location filename="../ui/main_window.cpp" line="653"/>
         <source>Certain (100 %)</source>
         <translation>確実 (100 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="596"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>How sure you are of the next mark</source>
         <translation>次のマークの確信度</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="602"/>
+        <location filename="../ui/main_window.cpp" line="661"/>
         <source>Tumours</source>
         <translation>腫瘍</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="603"/>
+        <location filename="../ui/main_window.cpp" line="662"/>
         <source>Forces</source>
         <translation>力</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="604"/>
+        <location filename="../ui/main_window.cpp" line="663"/>
         <source>Simulation</source>
         <translation>シミュレーション</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="605"/>
+        <location filename="../ui/main_window.cpp" line="664"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="644"/>
+        <location filename="../ui/main_window.cpp" line="703"/>
         <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
         <translation>指導者モードに戻りますか？研修生のセッションを終了し、答え、患者の詳細、すべてのパネルを表示します。指導者専用の操作です。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="646"/>
+        <location filename="../ui/main_window.cpp" line="705"/>
         <source>Leave the exam? This ends it: no more marks can be made in it.</source>
         <translation>試験を抜けますか？試験は終了し、この試験ではもうマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="647"/>
+        <location filename="../ui/main_window.cpp" line="706"/>
         <source>Change of mode</source>
         <translation>モードの切り替え</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="847"/>
+        <location filename="../ui/main_window.cpp" line="1030"/>
         <source>Instructor: %1</source>
         <translation>指導者: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="849"/>
+        <location filename="../ui/main_window.cpp" line="1032"/>
         <source>Guided practice: case %1</source>
         <translation>ガイド付き練習: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="849"/>
+        <location filename="../ui/main_window.cpp" line="1032"/>
         <source>Guided practice ended: case %1</source>
         <translation>ガイド付き練習終了: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="850"/>
+        <location filename="../ui/main_window.cpp" line="1033"/>
         <source>Exam: case %1</source>
         <translation>試験: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="850"/>
+        <location filename="../ui/main_window.cpp" line="1033"/>
         <source>Exam ended: case %1</source>
         <translation>試験終了: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="864"/>
+        <location filename="../ui/main_window.cpp" line="1047"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation>節点 %1、四面体 %2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="906"/>
+        <location filename="../ui/main_window.cpp" line="1093"/>
         <source>Backend: %1</source>
         <translation>バックエンド: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="906"/>
+        <location filename="../ui/main_window.cpp" line="1093"/>
         <source>Backend: %1 (fallback)</source>
         <translation>バックエンド: %1（フォールバック）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="908"/>
+        <location filename="../ui/main_window.cpp" line="1095"/>
         <source>Simulation: %1 Hz</source>
         <translation>シミュレーション: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="909"/>
+        <location filename="../ui/main_window.cpp" line="1096"/>
         <source>Haptic: %1 Hz</source>
         <translation>力覚: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="911"/>
+        <location filename="../ui/main_window.cpp" line="1098"/>
         <source>mouse</source>
         <translation>マウス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="912"/>
+        <location filename="../ui/main_window.cpp" line="1099"/>
         <source>simulated HandHIRO</source>
         <translation>シミュレーションの HandHIRO</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="913"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>Device: %1, %2</source>
         <translation>デバイス: %1、%2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="913"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>connected</source>
         <translation>接続中</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="913"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>not connected</source>
         <translation>未接続</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="914"/>
+        <location filename="../ui/main_window.cpp" line="1101"/>
         <source>View: %1 fps</source>
         <translation>表示: %1 fps</translation>
     </message>
@@ -1270,6 +1366,64 @@
         <location filename="../ui/panels.cpp" line="140"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation>ファントム患者のみ。取り込んだスキャンはメッシュ生成時の解像度のままです。</translation>
+    </message>
+</context>
+<context>
+    <name>palpation::ui::PressureDialog</name>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="16"/>
+        <source>Pressure levels</source>
+        <translation>圧の段階</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="17"/>
+        <source>A touch counts at a level when the fingertip pad presses the skin in by this share of the tissue&apos;s thickness under it, or presses with this force, whichever comes first. They apply to the exams that start from now on.</source>
+        <translation>指先の腹が皮膚をその下の組織の厚さのこの割合だけ押し込むか、この力で押したとき（先に達した方）、その段階の触診とみなします。これから始まる試験に適用されます。</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="22"/>
+        <source>Indentation (% of thickness)</source>
+        <translation>押し込み（厚さの %）</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="23"/>
+        <source>Force (N)</source>
+        <translation>力 (N)</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="24"/>
+        <source>Light</source>
+        <translation>軽い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="24"/>
+        <source>Medium</source>
+        <translation>中程度</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="24"/>
+        <source>Deep</source>
+        <translation>深い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="46"/>
+        <source>OK</source>
+        <translation>OK</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="47"/>
+        <source>Cancel</source>
+        <translation>キャンセル</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="48"/>
+        <source>Restore defaults</source>
+        <translation>既定値に戻す</translation>
+    </message>
+    <message>
+        <location filename="../ui/pressure_dialog.cpp" line="86"/>
+        <source>Each level must be above the one before it, in indentation and in force, and deep indentation below 100 %.</source>
+        <translation>各段階は押し込みでも力でも一つ前の段階より大きく、深い圧の押し込みは 100 % 未満でなければなりません。</translation>
     </message>
 </context>
 <context>
@@ -1425,213 +1579,218 @@
 <context>
     <name>palpation::ui::ReviewWindow</name>
     <message>
-        <location filename="../ui/review_window.cpp" line="215"/>
+        <location filename="../ui/review_window.cpp" line="220"/>
         <source>Export the session as CSV</source>
         <translation>セッションを CSV で出力</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="215"/>
+        <location filename="../ui/review_window.cpp" line="220"/>
         <source>CSV files (*.csv)</source>
         <translation>CSV ファイル (*.csv)</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="217"/>
+        <location filename="../ui/review_window.cpp" line="222"/>
         <source>Export CSV</source>
         <translation>CSV 出力</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="221"/>
+        <location filename="../ui/review_window.cpp" line="226"/>
         <source>Folder for the exam report</source>
         <translation>試験の報告書の保存先フォルダ</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="225"/>
+        <location filename="../ui/review_window.cpp" line="230"/>
         <source>Save report</source>
         <translation>報告書を保存</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="226"/>
+        <location filename="../ui/review_window.cpp" line="231"/>
         <source>Report written to %1 (%2)</source>
         <translation>報告書を %1 に書き出しました（%2）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="229"/>
+        <location filename="../ui/review_window.cpp" line="234"/>
         <source>Folder for the PNG frames</source>
         <translation>PNG フレームの保存先フォルダ</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/review_window.cpp" line="232"/>
+        <location filename="../ui/review_window.cpp" line="237"/>
         <source>%n frame(s) written to %1</source>
         <translation>
             <numerusform>%1 に %n フレームを書き出しました</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="277"/>
+        <location filename="../ui/review_window.cpp" line="282"/>
         <source>Review: %1</source>
         <translation>レビュー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="278"/>
-        <location filename="../ui/review_window.cpp" line="336"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
+        <location filename="../ui/review_window.cpp" line="341"/>
         <source>Pause</source>
         <translation>一時停止</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="278"/>
-        <location filename="../ui/review_window.cpp" line="336"/>
-        <location filename="../ui/review_window.cpp" line="345"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
+        <location filename="../ui/review_window.cpp" line="341"/>
+        <location filename="../ui/review_window.cpp" line="350"/>
         <source>Play</source>
         <translation>再生</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="279"/>
+        <location filename="../ui/review_window.cpp" line="284"/>
         <source>Speed</source>
         <translation>速度</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="280"/>
+        <location filename="../ui/review_window.cpp" line="285"/>
         <source>Export CSV...</source>
         <translation>CSV 出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="281"/>
+        <location filename="../ui/review_window.cpp" line="286"/>
         <source>Export PNG frames...</source>
         <translation>PNG フレーム出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="282"/>
+        <location filename="../ui/review_window.cpp" line="287"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation>指導者のイベントと研修生のマーク（クリックでその時刻へ移動）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="283"/>
+        <location filename="../ui/review_window.cpp" line="288"/>
         <source>&lt;b&gt;Exam score&lt;/b&gt;</source>
         <translation>&lt;b&gt;試験の成績&lt;/b&gt;</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="284"/>
+        <location filename="../ui/review_window.cpp" line="289"/>
         <source>Coverage</source>
         <translation>触診範囲</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="285"/>
+        <location filename="../ui/review_window.cpp" line="290"/>
         <source>The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep</source>
         <translation>到達した最大の圧で色分けした皮膚：灰色はなし、黄は軽い圧、橙は中程度、赤は深い圧</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="286"/>
+        <location filename="../ui/review_window.cpp" line="291"/>
         <source>Save report...</source>
         <translation>報告書を保存...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="288"/>
+        <location filename="../ui/review_window.cpp" line="293"/>
         <source>Scoring the exam...</source>
         <translation>試験を採点しています...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="297"/>
+        <location filename="../ui/review_window.cpp" line="302"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation>各指先の力 (N): デバイスへ送った力（実線）、再シミュレーションの力（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="298"/>
+        <location filename="../ui/review_window.cpp" line="303"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation>各指先の力 (N): 記録（実線）、再シミュレーション（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="302"/>
+        <location filename="../ui/review_window.cpp" line="307"/>
         <source>%1 (re-sim.)</source>
         <translation>%1（再計算）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="304"/>
+        <location filename="../ui/review_window.cpp" line="309"/>
         <source>now</source>
         <translation>現在</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="305"/>
+        <location filename="../ui/review_window.cpp" line="310"/>
         <source>Events</source>
         <translation>イベント</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="366"/>
-        <location filename="../ui/review_window.cpp" line="398"/>
+        <location filename="../ui/review_window.cpp" line="371"/>
+        <location filename="../ui/review_window.cpp" line="410"/>
         <source>No score: %1</source>
         <translation>成績なし：%1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="371"/>
+        <location filename="../ui/review_window.cpp" line="376"/>
         <source>Tumours found: %1 of %2</source>
         <translation>発見した腫瘍：%2 個中 %1 個</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="372"/>
+        <location filename="../ui/review_window.cpp" line="377"/>
         <source>False positives: %1</source>
         <translation>偽陽性：%1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="373"/>
+        <location filename="../ui/review_window.cpp" line="378"/>
         <source>Coverage: light %1, medium %2, deep %3</source>
         <translation>触診範囲：軽い圧 %1、中程度 %2、深い圧 %3</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="375"/>
+        <location filename="../ui/review_window.cpp" line="400"/>
+        <source>Coverage up to %1: light %2, medium %3, deep %4</source>
+        <translation>%1 までの触診範囲：軽い圧 %2、中程度 %3、深い圧 %4</translation>
+    </message>
+    <message>
+        <location filename="../ui/review_window.cpp" line="380"/>
         <source>Vertical strips: %1</source>
         <translation>縦方向の帯：%1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="399"/>
+        <location filename="../ui/review_window.cpp" line="411"/>
         <source>The exam is still being scored.</source>
         <translation>試験はまだ採点中です。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="461"/>
+        <location filename="../ui/review_window.cpp" line="474"/>
         <source>Re-simulation stopped: %1</source>
         <translation>再シミュレーションが停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="464"/>
+        <location filename="../ui/review_window.cpp" line="477"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: %4 N（%6 秒の%5、記録された最大の力 %7 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="473"/>
+        <location filename="../ui/review_window.cpp" line="486"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: 0 N（記録された最大の力 %4 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="480"/>
+        <location filename="../ui/review_window.cpp" line="493"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation>再現しました: 同じバックエンドと設定で同じ力になります。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="481"/>
+        <location filename="../ui/review_window.cpp" line="494"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation>完全には再現されていません（バックエンドまたは設定が異なります）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="483"/>
+        <location filename="../ui/review_window.cpp" line="496"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation>1 kHz で送った力はシミュレーションの力と最大 %1 N 異なります（力覚ループの局所接触モデル、カップリング、安全フィルタによる）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="487"/>
+        <location filename="../ui/review_window.cpp" line="500"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation>記録されたデバイス入力から、シナリオの時間刻みで %2 ティック中 %1 ティックを再シミュレーションしました（バックエンド %3）。記録された力との最大差: %4 N（記録された最大の力 %5 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="496"/>
+        <location filename="../ui/review_window.cpp" line="509"/>
         <source>The recording was interrupted: %1</source>
         <translation>記録は途中で中断されています: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="497"/>
+        <location filename="../ui/review_window.cpp" line="510"/>
         <source>The recording was recovered after an interruption.</source>
         <translation>この記録は中断の後に復元されたものです。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="504"/>
+        <location filename="../ui/review_window.cpp" line="517"/>
         <source>Written: %1</source>
         <translation>書き出しました: %1</translation>
     </message>
@@ -1639,117 +1798,207 @@
 <context>
     <name>palpation::ui::ScoreDialog</name>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="25"/>
+        <location filename="../ui/score_dialog.cpp" line="65"/>
         <source>Exam score</source>
         <translation>試験の成績</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="29"/>
+        <location filename="../ui/score_dialog.cpp" line="79"/>
         <source>Tumours found:</source>
         <translation>発見した腫瘍：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="29"/>
+        <location filename="../ui/score_dialog.cpp" line="79"/>
         <source>%1 of %2</source>
         <translation>%2 個中 %1 個</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="30"/>
+        <location filename="../ui/score_dialog.cpp" line="80"/>
         <source>False positives:</source>
         <translation>偽陽性：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="31"/>
+        <location filename="../ui/score_dialog.cpp" line="81"/>
         <source>Sensitivity:</source>
         <translation>感度：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="32"/>
+        <location filename="../ui/score_dialog.cpp" line="82"/>
         <source>Positive predictive value:</source>
         <translation>陽性適中率：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="33"/>
+        <location filename="../ui/score_dialog.cpp" line="83"/>
         <source>Position error:</source>
         <translation>位置の誤差：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="34"/>
+        <location filename="../ui/score_dialog.cpp" line="84"/>
         <source>%1 mm (mean over the tumours found)</source>
         <translation>%1 mm（発見した腫瘍の平均）</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="35"/>
+        <location filename="../ui/score_dialog.cpp" line="85"/>
         <source>Exam time:</source>
         <translation>試験時間：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="35"/>
+        <location filename="../ui/score_dialog.cpp" line="85"/>
         <source>%1 s</source>
         <translation>%1 秒</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="36"/>
+        <location filename="../ui/score_dialog.cpp" line="86"/>
         <source>Coverage:</source>
         <translation>触診範囲：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="37"/>
+        <location filename="../ui/score_dialog.cpp" line="87"/>
         <source>light %1, medium %2, deep %3</source>
         <translation>軽い圧 %1、中程度 %2、深い圧 %3</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="39"/>
+        <location filename="../ui/score_dialog.cpp" line="89"/>
         <source>Vertical strips:</source>
         <translation>縦方向の帯：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <location filename="../ui/score_dialog.cpp" line="92"/>
         <source>tumour %1: %2</source>
         <translation>腫瘍 %1：%2</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <location filename="../ui/score_dialog.cpp" line="92"/>
         <source>yes</source>
         <translation>はい</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <location filename="../ui/score_dialog.cpp" line="92"/>
         <source>no</source>
         <translation>いいえ</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="43"/>
+        <location filename="../ui/score_dialog.cpp" line="93"/>
         <source>Deep pressure over each tumour:</source>
         <translation>各腫瘍上の深い圧：</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="46"/>
+        <location filename="../ui/score_dialog.cpp" line="96"/>
         <source>Advice:</source>
         <translation>助言：</translation>
     </message>
     <message>
+        <location filename="../ui/score_dialog.cpp" line="29"/>
+        <source>Cover the whole breast at light pressure: %1% of the skin was reached at that level.</source>
+        <translation>乳房全体を軽い圧で触診してください：その圧に達した皮膚は %1% でした。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="30"/>
+        <source>Cover the whole breast at medium pressure: %1% of the skin was reached at that level.</source>
+        <translation>乳房全体を中程度の圧で触診してください：その圧に達した皮膚は %1% でした。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="31"/>
+        <source>Cover the whole breast at deep pressure: %1% of the skin was reached at that level.</source>
+        <translation>乳房全体を深い圧で触診してください：その圧に達した皮膚は %1% でした。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="36"/>
+        <source>Search in vertical strips, head to foot, overlapping each by about a third of a finger pad: %1 strips covered %2% of the path.</source>
+        <translation>頭側から足側へ縦方向の帯に沿って、指腹の約 3 分の 1 ずつ重ねながら探してください：%1 本の帯が経路の %2% を占めました。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="40"/>
+        <source>Overlap neighbouring strips: they left gaps between them.</source>
+        <translation>隣り合う帯を重ねてください：帯の間に隙間が残りました。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="42"/>
+        <source>Press deep at every spot: a lump %1 mm below the skin was missed where deep pressure was not reached.</source>
+        <translation>どの場所でも深い圧で押してください：深い圧が届かなかった所で、皮膚の下 %1 mm のしこりを見逃しました。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="44"/>
+        <source>Check a suspected lump at all three pressure levels before marking it: %1 mark(s) found no lump.</source>
+        <translation>マークする前に、疑わしいしこりを 3 段階すべての圧で確かめてください：%1 個のマークはしこりに当たりませんでした。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="45"/>
+        <source>A complete examination: keep this pattern and pressure.</source>
+        <translation>漏れのない診察でした：このパターンと圧を続けてください。</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="51"/>
+        <source>tumours found</source>
+        <translation>発見した腫瘍</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="52"/>
+        <source>false positives</source>
+        <translation>偽陽性</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="53"/>
+        <source>light coverage</source>
+        <translation>軽い圧の触診範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="54"/>
+        <source>medium coverage</source>
+        <translation>中程度の圧の触診範囲</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="55"/>
+        <source>deep coverage</source>
+        <translation>深い圧の触診範囲</translation>
+    </message>
+    <message>
         <location filename="../ui/score_dialog.cpp" line="56"/>
+        <source>deep pressure over each tumour</source>
+        <translation>各腫瘍上での深い圧</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="57"/>
+        <source>exam time</source>
+        <translation>試験時間</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="72"/>
+        <source>Curriculum case:</source>
+        <translation>カリキュラムの症例：</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="73"/>
+        <source>passed</source>
+        <translation>合格</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="73"/>
+        <source>not passed: %1</source>
+        <translation>不合格: %1</translation>
+    </message>
+    <message>
+        <location filename="../ui/score_dialog.cpp" line="106"/>
         <source>Skin from above: grey not pressed, yellow light, orange medium, red deep; circles: the tumours (green: found); marks: green correct, red false</source>
         <translation>上から見た皮膚：灰色は未触診、黄は軽い圧、橙は中程度、赤は深い圧。円：腫瘍（緑：発見）。マーク：緑は正しい、赤は誤り</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="60"/>
+        <location filename="../ui/score_dialog.cpp" line="110"/>
         <source>Save report...</source>
         <translation>報告書を保存...</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="63"/>
+        <location filename="../ui/score_dialog.cpp" line="113"/>
         <source>Close</source>
         <translation>閉じる</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="67"/>
+        <location filename="../ui/score_dialog.cpp" line="117"/>
         <source>Save the exam report into</source>
         <translation>試験の報告書の保存先</translation>
     </message>
     <message>
-        <location filename="../ui/score_dialog.cpp" line="71"/>
+        <location filename="../ui/score_dialog.cpp" line="121"/>
         <source>Save report</source>
         <translation>報告書を保存</translation>
     </message>

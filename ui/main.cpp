@@ -11,6 +11,7 @@
 #include <QCommandLineParser>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QSettings>
 #include <QTimer>
 #include <QTranslator>
@@ -166,6 +167,7 @@ int main(int argc, char** argv) {
   }
   palpation::ui::MainWindow w(std::move(ws), nullptr, cli.isSet(record) ? cli.value(record) : QString(), training);
   if (cli.isSet(trainee_name)) w.set_trainee_name(cli.value(trainee_name));
+  if (cli.isSet(case_file)) w.set_case_name(QFileInfo(cli.value(case_file)).completeBaseName());
   if (!cli.isSet(resolution) && !cli.isSet(shot) && !cli.isSet(case_file)) {
     // The last patient chosen (QSettings), when the library still has it.
     const QString last = QSettings().value(QStringLiteral("patient/name")).toString();

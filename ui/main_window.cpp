@@ -12,6 +12,8 @@
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDateTime>
+#include <QFile>
+#include <QFileInfo>
 #include <QDir>
 #include <QDockWidget>
 #include <QFileDialog>
@@ -32,8 +34,10 @@
 #include "live/patient_choice.h"
 #include "import_dialog.h"
 #include "panels.h"
+#include "pressure_dialog.h"
 #include "progress_window.h"
 #include "score_dialog.h"
+#include "train/case_generator.h"
 #include "train/curriculum.h"
 #include "store/patient_library.h"
 #include "review_window.h"
@@ -42,11 +46,18 @@
 #include "tumour_editor.h"
 #include "vtk_view.h"
 
+// resources/palpation.qrc (icons, the built-in curricula) is compiled into this static
+// library; an archive member nothing refers to is not linked, so the executables had no
+// icons and no curricula. Q_INIT_RESOURCE refers to it (it must be called outside any
+// namespace).
+static void init_palpation_resources() { Q_INIT_RESOURCE(palpation); }
+
 namespace palpation::ui {
 
 MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* parent, const QString& record_path,
                        app::live::TrainingMode mode)
     : QMainWindow(parent), ws_(std::move(ws)), training_(std::make_unique<app::live::TrainingSession>(*ws_, mode)) {
+  init_palpation_resources();
   setObjectName(QStringLiteral("MainWindow"));
   setWindowIcon(QIcon(QStringLiteral(":/icons/palpation.png")));
   scenario_ = ws_->options().scenario;
@@ -110,10 +121,12 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   st_rec_ = new QLabel;
   st_mode_ = new QLabel;
   st_mode_->setObjectName(QStringLiteral("TrainingModeLabel"));
+  st_curriculum_ = new QLabel;
+  st_curriculum_->setObjectName(QStringLiteral("CurriculumLabel"));
   st_coverage_ = new QLabel;
   st_coverage_->setObjectName(QStringLiteral("CoverageLabel"));
   st_coverage_->setTextFormat(Qt::RichText);
-  for (auto* l : {st_mode_, st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
+  for (auto* l : {st_mode_, st_curriculum_, st_backend_, st_step_, st_haptic_, st_device_, st_fps_, st_rec_}) statusBar()->addPermanentWidget(l);
 
   build_actions();
 
@@ -195,6 +208,16 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   if (stereo > 0 && stereo < 4) a_stereo_[stereo]->trigger();
   a_mirror_->setChecked(settings.value(QStringLiteral("view/mirrored"), false).toBool());
   a_coverage_->setChecked(settings.value(QStringLiteral("view/coverage_overlay"), false).toBool());
+  // The pressure levels the instructor set last (Mode > Pressure levels...); stored ones that
+  // no longer validate are dropped with a message, the defaults apply.
+  const QString stored_levels = settings.value(QStringLiteral("training/thresholds")).toString();
+  if (!stored_levels.isEmpty()) {
+    try {
+      training_->exam().set_thresholds(app::train::thresholds_from_json(nlohmann::json::parse(stored_levels.toStdString())));
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(tr("Stored pressure levels not used (defaults apply): %1").arg(QString::fromStdString(e.what())), 10000);
+    }
+  }
   // PALPATION_FAST_RENDER=0/1 (the view bench, docs/gui.md) overrides the stored choice.
   const QByteArray fast_env = qgetenv("PALPATION_FAST_RENDER");
   if (!fast_env.isEmpty())
@@ -225,8 +248,9 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
                             {"trainee", trainee()},
                             {"mode", app::live::training_mode_name(training_->mode())},
                             {"stereo", int(view_->stereo())},
-                            {"patient", patient_panel_->chosen().toStdString()},
-                            {"library", library_ ? library_->location() : std::string()}};
+                            {"patient", patient_name().toStdString()},
+                            {"library", library_ ? library_->location() : std::string()},
+                            {"thresholds", app::train::to_json(training_->exam().thresholds())}};
     recorder_ = std::make_unique<app::review::WorkstationRecorder>(*ws_, path.toStdString(), recorded_settings);
     // A session started in a trainee mode: its exam starts with the recording.
     if (trainee()) ws_->log_event(app::live::Event::mode_change(app::live::mode_change_of(training_->mode())));
@@ -290,6 +314,7 @@ bool MainWindow::choose_patient(const QString& name, QString* error) {
   // The solver settings are the workstation's (Simulation panel), not the patient's.
   s.params.solver = scenario_.params.solver;
   chosen_ = s;
+  case_name_.clear();
   patient_panel_->select_patient(name);
   patient_panel_->show_scenario(s);
   scenario_ = patient_panel_->scenario(chosen_);
@@ -502,6 +527,33 @@ void MainWindow::build_actions() {
   mode_menu_->addSeparator();
   a_progress_ = mode_menu_->addAction(QString(), this, [this] { open_progress_window(); });
   a_progress_->setObjectName(QStringLiteral("trainee_progress"));
+  a_thresholds_ = mode_menu_->addAction(QString(), this, [this] { open_pressure_dialog(); });
+  a_thresholds_->setObjectName(QStringLiteral("pressure_levels"));
+  // Curricula: the built-in ones (resources/curricula, embedded), a file, or none.
+  curriculum_menu_ = mode_menu_->addMenu(QString());
+  curriculum_menu_->setObjectName(QStringLiteral("curriculum_menu"));
+  for (const QString& f : QDir(QStringLiteral(":/curricula")).entryList({QStringLiteral("*.json")}, QDir::Files, QDir::Name)) {
+    const QString path = QStringLiteral(":/curricula/") + f;
+    QAction* a = curriculum_menu_->addAction(QFileInfo(f).completeBaseName(), this, [this, path] {
+      QString err;
+      if (!set_curriculum(path, &err)) QMessageBox::warning(this, tr("Curriculum"), err);
+    });
+    a->setObjectName(QStringLiteral("curriculum_") + QFileInfo(f).completeBaseName());
+    a_builtin_curricula_ << a;
+  }
+  a_open_curriculum_ = curriculum_menu_->addAction(QString(), this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open a curriculum"), QDir::homePath(), tr("Curricula (*.json)"));
+    if (path.isEmpty()) return;
+    QString err;
+    if (!set_curriculum(path, &err)) QMessageBox::warning(this, tr("Curriculum"), err);
+  });
+  a_no_curriculum_ = curriculum_menu_->addAction(QString(), this, [this] { clear_curriculum(); });
+  a_next_case_ = mode_menu_->addAction(QString(), this, [this] {
+    QString err;
+    if (!next_curriculum_case(&err)) QMessageBox::information(this, tr("Curriculum"), err);
+  });
+  a_next_case_->setObjectName(QStringLiteral("next_case"));
+  a_next_case_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+N")));
   mode_menu_->addSeparator();
 
   lang_menu_ = menuBar()->addMenu(QStringLiteral("Language / 言語"));
@@ -591,6 +643,13 @@ void MainWindow::retranslate() {
   a_clear_coverage_->setText(tr("Clear coverage"));
   a_progress_->setText(tr("Trainee progress..."));
   a_progress_->setToolTip(tr("Each trainee's exams over time and the class's results"));
+  a_thresholds_->setText(tr("Pressure levels..."));
+  a_thresholds_->setToolTip(tr("What counts as light, medium and deep pressure in the coverage and the score"));
+  curriculum_menu_->setTitle(tr("Curriculum"));
+  a_open_curriculum_->setText(tr("Open curriculum file..."));
+  a_no_curriculum_->setText(tr("No curriculum (free exams)"));
+  a_next_case_->setText(tr("Next curriculum case"));
+  a_next_case_->setToolTip(tr("Loads the trainee's first case of the curriculum not yet passed"));
   const QString conf[4] = {tr("Possible (25 %)"), tr("Likely (50 %)"), tr("Probable (75 %)"), tr("Certain (100 %)")};
   for (int i = 0; i < 4; ++i) confidence_->setItemText(i, conf[i]);
   confidence_->setToolTip(tr("How sure you are of the next mark"));
@@ -719,19 +778,26 @@ ProgressWindow* MainWindow::open_progress_window() {
 void MainWindow::exam_scored() {
   const auto& last = training_->last_score();
   if (!last) return;
-  const std::string code = app::live::anonymous_case_code(patient_panel_->chosen().toStdString());
+  const std::string code = app::live::anonymous_case_code(patient_name().toStdString());
   const std::string recording = recorder_ ? recorder_->path() : std::string();
   const QDateTime now = QDateTime::currentDateTimeUtc();
+  // A curriculum case is recorded under the case's name and judged by its pass criteria;
+  // any other exam is a free exam (no curriculum, recorded as not passed).
+  const auto& cur = training_->curriculum();
+  const auto case_index = training_->curriculum_case();
+  const bool in_curriculum = cur && case_index && training_->last_evaluation();
+  const std::string case_name = in_curriculum ? cur->cases[*case_index].name() : patient_name().toStdString();
   if (!trainee_name_.isEmpty() && library_) {
-    // The library's record: the library name of the case (the instructor reads it), the
-    // exam's start, no curriculum (a free exam).
     const QString started =
         now.addMSecs(-qint64(last->score.duration * 1000.0)).toString(QStringLiteral("yyyy-MM-dd'T'HH:mm:ss'Z'"));
     try {
-      if (!library_->find_trainee(trainee_name_.toStdString())) library_->add_trainee(trainee_name_.toStdString());
-      library_->record_result(app::train::exam_result(last->score, std::nullopt, trainee_name_.toStdString(),
-                                                      patient_panel_->chosen().toStdString(), std::string(), started.toStdString(),
-                                                      recording));
+      // Kept on this station when the classroom server is away (sent when it is back).
+      const auto out = library_->store_result(
+          app::train::exam_result(last->score, in_curriculum ? training_->last_evaluation() : std::nullopt, trainee_name_.toStdString(),
+                                  case_name, in_curriculum ? cur->name : std::string(), started.toStdString(), recording),
+          /*add_missing_trainee=*/true);
+      if (out.id == 0)
+        statusBar()->showMessage(tr("The exam's result is kept on this station: %1").arg(QString::fromStdString(out.message)), 15000);
       if (progress_) progress_->refresh();
     } catch (const std::exception& e) {
       statusBar()->showMessage(tr("The exam's result is not stored: %1").arg(QString::fromStdString(e.what())), 10000);
@@ -739,10 +805,121 @@ void MainWindow::exam_scored() {
   }
   app::cli::ReportInfo info{recording, trainee_name_.toStdString(), code, now.toString(Qt::ISODate).toStdString()};
   delete score_.data();
-  score_ = new ScoreDialog(*last, info, this);
+  score_ = new ScoreDialog(*last, info, this, in_curriculum ? training_->last_evaluation() : std::nullopt);
   score_->setAttribute(Qt::WA_DeleteOnClose);
   score_->setModal(false);
   score_->show();
+}
+
+PressureDialog* MainWindow::open_pressure_dialog() {
+  if (trainee()) return nullptr;
+  if (!pressure_) {
+    pressure_ = new PressureDialog(training_->exam().thresholds(), this);
+    pressure_->setAttribute(Qt::WA_DeleteOnClose);
+    connect(pressure_, &QDialog::accepted, this, [this] {
+      if (pressure_) set_pressure_thresholds(pressure_->thresholds());
+    });
+  }
+  pressure_->show();
+  pressure_->raise();
+  return pressure_;
+}
+
+void MainWindow::set_pressure_thresholds(const app::train::PressureThresholds& t) {
+  t.validate();
+  training_->exam().set_thresholds(t);
+  const nlohmann::json j = app::train::to_json(t);
+  QSettings().setValue(QStringLiteral("training/thresholds"), QString::fromStdString(j.dump()));
+  if (recorder_) recorder_->add_event("thresholds", j);
+  update_coverage();
+  statusBar()->showMessage(tr("Pressure levels set: they apply to the exams that start from now on."), 5000);
+}
+
+bool MainWindow::set_curriculum(const QString& path, QString* error) {
+  app::train::Curriculum c;
+  try {
+    // Qt resources (the built-in curricula) are read through QFile; files by the parser.
+    QFile f(path);
+    if (!f.open(QIODevice::ReadOnly)) throw std::runtime_error(path.toStdString() + ": cannot be read: " + f.errorString().toStdString());
+    c = app::train::parse_curriculum(f.readAll().toStdString(), path.toStdString());
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  auto previous = training_->curriculum();
+  training_->set_curriculum(std::move(c));
+  if (!next_curriculum_case(error)) {
+    training_->set_curriculum(std::move(previous));
+    apply_mode();
+    return false;
+  }
+  return true;
+}
+
+void MainWindow::clear_curriculum() {
+  training_->set_curriculum(std::nullopt);
+  apply_mode();
+}
+
+bool MainWindow::next_curriculum_case(QString* error) {
+  const auto& cur = training_->curriculum();
+  if (!cur) {
+    if (error) *error = tr("No curriculum is chosen (Mode > Curriculum).");
+    return false;
+  }
+  std::vector<std::string> passed;
+  if (library_ && !trainee_name_.isEmpty()) {
+    try {
+      passed = app::train::passed_case_names(library_->results(trainee_name_.toStdString()), &*cur);
+    } catch (const std::exception& e) {
+      statusBar()->showMessage(tr("The trainee's results could not be read: %1").arg(QString::fromStdString(e.what())), 10000);
+    }
+  }
+  const auto next = app::train::next_case(*cur, passed);
+  if (!next) {
+    if (error) *error = tr("%1 has passed every case of %2.").arg(trainee_name_, QString::fromStdString(cur->name));
+    return false;
+  }
+  if (!load_curriculum_case(*next, error)) return false;
+  // A trainee whose exam ended goes on with a new one on the new case.
+  if (trainee() && !training_->exam_running()) training_->start_exam();
+  apply_mode();
+  return true;
+}
+
+bool MainWindow::load_curriculum_case(std::size_t i, QString* error) {
+  const auto& cur = *training_->curriculum();
+  const app::train::CurriculumCase& c = cur.cases[i];
+  if (!c.generated()) {
+    if (!choose_patient(QString::fromStdString(c.patient), error)) return false;
+  } else {
+    try {
+      const app::train::GeneratedCase g = app::train::generate_case(*c.seed, c.ranges, cur.source);
+      sim::Scenario s = app::live::case_patient(g.scenario, g.name, patient_panel_->resolution->currentData().toString().toStdString());
+      s.params.solver = scenario_.params.solver;
+      chosen_ = s;
+      case_name_ = QString::fromStdString(g.name);
+      patient_panel_->show_scenario(s);
+      scenario_ = patient_panel_->scenario(chosen_);
+      scenario_.backend = sim_panel_->backend->currentText().toStdString();
+      ws_->load_patient(scenario_);
+    } catch (const std::exception& e) {
+      if (error) *error = QString::fromStdString(e.what());
+      return false;
+    }
+  }
+  training_->set_curriculum_case(i);
+  return true;
+}
+
+QString MainWindow::patient_name() const { return case_name_.isEmpty() ? patient_panel_->chosen() : case_name_; }
+
+QString MainWindow::curriculum_text() const {
+  const auto& cur = training_->curriculum();
+  if (!cur) return {};
+  const auto i = training_->curriculum_case();
+  return i ? tr("Curriculum %1: case %2 of %3").arg(QString::fromStdString(cur->name)).arg(*i + 1).arg(cur->cases.size())
+           : tr("Curriculum %1").arg(QString::fromStdString(cur->name));
 }
 
 void MainWindow::update_coverage() {
@@ -792,6 +969,12 @@ void MainWindow::apply_mode() {
   if (on && training_->exam_running() && score_) score_->close();
   if (on && progress_) progress_->close();
   a_progress_->setVisible(!on);
+  a_thresholds_->setVisible(!on);
+  curriculum_menu_->menuAction()->setVisible(!on);
+  a_next_case_->setVisible(training_->curriculum().has_value());
+  // In a trainee mode, the next case once the exam on this one has ended.
+  a_next_case_->setEnabled(!on || !training_->exam_running());
+  if (on && pressure_) pressure_->close();
   a_clear_coverage_->setVisible(!on);
   a_coverage_->setVisible(training_->overlay_allowed());
   update_coverage();
@@ -840,7 +1023,7 @@ void MainWindow::apply_mode() {
 QString MainWindow::mode_text() const {
   using app::live::TrainingMode;
   // A trainee reads an anonymous case code, never the patient's name (it may name the tumour).
-  const QString code = QString::fromStdString(app::live::anonymous_case_code(patient_panel_->chosen().toStdString()));
+  const QString code = QString::fromStdString(app::live::anonymous_case_code(patient_name().toStdString()));
   const bool running = training_->exam_running();
   const QString who = trainee_name_.isEmpty() ? QString() : tr(", trainee %1").arg(trainee_name_);
   switch (training_->mode()) {
@@ -897,6 +1080,10 @@ void MainWindow::tick() {
 void MainWindow::update_status() {
   if (!st_backend_) return;
   if (st_mode_ && a_exam_) st_mode_->setText(mode_text());
+  if (st_curriculum_) {
+    st_curriculum_->setText(curriculum_text());
+    st_curriculum_->setVisible(!st_curriculum_->text().isEmpty());
+  }
   const auto& s = ws_->stats();
   const auto g = ws_->geometry();
   // The backend stepping now (after a CUDA error: the CPU it fell back to).

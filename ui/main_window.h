@@ -40,6 +40,7 @@ namespace palpation::ui {
 
 class DevicePanel;
 class ImportDialog;
+class PressureDialog;
 class ProgressWindow;
 class ReviewWindow;
 class ScoreDialog;
@@ -130,6 +131,30 @@ class MainWindow : public QMainWindow {
   /// null in a trainee mode or without a library.
   ProgressWindow* open_progress_window();
   ProgressWindow* progress_window() const;
+  /// Mode > Pressure levels... (Instructor mode): the dialog, opened non-modal; null in a
+  /// trainee mode.
+  PressureDialog* open_pressure_dialog();
+  /// The thresholds for the exams from now on: the live exam's, kept in QSettings and, as
+  /// a "thresholds" event, in the recording (palpation score and the review use them).
+  void set_pressure_thresholds(const app::train::PressureThresholds& t);
+  /// Mode > Curriculum: works through a curriculum file (train/curriculum.h; ":/curricula/..."
+  /// for the built-in ones) and loads the trainee's first case not yet passed. False with
+  /// `error` set for a bad file or a case that cannot be loaded (the running patient stays).
+  bool set_curriculum(const QString& path, QString* error = nullptr);
+  /// No curriculum: free exams again.
+  void clear_curriculum();
+  /// Mode > Next curriculum case: the trainee's first case of the curriculum not yet passed
+  /// (by the library's results), loaded as the patient; in a trainee mode whose exam has
+  /// ended a new exam starts on it. False with `error` when there is no curriculum, every
+  /// case is passed, or the case cannot be loaded.
+  bool next_curriculum_case(QString* error = nullptr);
+  /// The patient as results, recordings and the anonymous case code name it: the patient
+  /// panel's choice, or the case's name for a case that is not in the library (a generated
+  /// curriculum case, or `palpation-trainer --case FILE`: set_case_name).
+  QString patient_name() const;
+  void set_case_name(const QString& name) { case_name_ = name; }
+  /// The curriculum status line ("Curriculum cbe-basics: case 2 of 6"), empty without one.
+  QString curriculum_text() const;
 
   /// "en" or "ja". False when the translation is missing.
   bool set_language(const QString& code);
@@ -206,6 +231,14 @@ class MainWindow : public QMainWindow {
   QPointer<ScoreDialog> score_;
   QPointer<ProgressWindow> progress_;
   QAction *a_coverage_ = nullptr, *a_clear_coverage_ = nullptr, *a_progress_ = nullptr;
+  QAction *a_thresholds_ = nullptr, *a_next_case_ = nullptr, *a_no_curriculum_ = nullptr, *a_open_curriculum_ = nullptr;
+  QList<QAction*> a_builtin_curricula_;
+  QMenu* curriculum_menu_ = nullptr;
+  QLabel* st_curriculum_ = nullptr;
+  QPointer<PressureDialog> pressure_;
+  QString case_name_;  // patient_name() of a case outside the library
+  /// Loads curriculum case `i` as the patient (library patient or generated case).
+  bool load_curriculum_case(std::size_t i, QString* error);
   QLabel* st_coverage_ = nullptr;
   QToolBar* coverage_bar_ = nullptr;  // st_coverage_'s row
   QString trainee_name_;

@@ -160,6 +160,10 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, 
   report_ = new QPushButton;
   report_->setObjectName(QStringLiteral("ReviewSaveReport"));
   report_->setEnabled(false);
+  coverage_now_ = new QLabel;
+  coverage_now_->setObjectName(QStringLiteral("ReviewCoverageNow"));
+  coverage_now_->setWordWrap(true);
+  coverage_now_->setVisible(false);  // with the overlay
 
   auto* controls = new QHBoxLayout;
   controls->addWidget(play_);
@@ -194,6 +198,7 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, 
   score_buttons->addWidget(report_);
   score_buttons->addStretch();
   sl->addLayout(score_buttons);
+  sl->addWidget(coverage_now_);
   auto* dock = new QDockWidget(this);
   dock->setObjectName(QStringLiteral("ReviewEventsDock"));
   dock->setWidget(side);
@@ -373,7 +378,7 @@ void ReviewWindow::show_score() {
   lines << tr("Coverage: light %1, medium %2, deep %3")
                .arg(ScoreDialog::percent(s.coverage[0]), ScoreDialog::percent(s.coverage[1]), ScoreDialog::percent(s.coverage[2]));
   lines << tr("Vertical strips: %1").arg(s.pattern.strips);
-  for (const auto& a : s.advice) lines << QStringLiteral("- ") + QString::fromStdString(a);  // the scorer's English lines
+  for (const auto& a : s.advice) lines << QStringLiteral("- ") + ScoreDialog::advice(a);
   score_label_->setText(lines.join(QLatin1Char('\n')));
   if (view_->coverage_visible()) apply_coverage();
 }
@@ -381,14 +386,21 @@ void ReviewWindow::show_score() {
 void ReviewWindow::set_coverage_visible(bool on) {
   if (coverage_->isChecked() != on) coverage_->setChecked(on);  // toggled() comes back here
   if (on) apply_coverage();
+  coverage_now_->setVisible(on);
   view_->set_coverage_visible(on);
   view_->request_render();
 }
 
 void ReviewWindow::apply_coverage() {
-  // The score's levels on the patient the view shows (the scorer's skin is the same model's surface).
-  if (surface_faces_ == 0 || !session_->score_ready()) return;
-  view_->set_coverage(session_->surface_levels(surface_faces_));
+  // The levels reached up to the playback time on the patient the view shows (the scorer's
+  // skin is the same model's surface), and their skin fractions beside the toggle.
+  if (!session_->score_ready()) return;
+  const double t = session_->time();
+  if (const auto c = session_->coverage_at(t))
+    coverage_now_->setText(tr("Coverage up to %1: light %2, medium %3, deep %4")
+                               .arg(clock(t), ScoreDialog::percent((*c)[0]), ScoreDialog::percent((*c)[1]), ScoreDialog::percent((*c)[2])));
+  if (surface_faces_ == 0) return;
+  view_->set_coverage(session_->surface_levels(surface_faces_, t));
 }
 
 QStringList ReviewWindow::save_report(const QString& dir, QString* error) {
@@ -437,6 +449,7 @@ void ReviewWindow::show_time() {
   const double top = f_axis_->max();
   cursor_->replace(QList<QPointF>{QPointF(t, 0), QPointF(t, top)});
   timeline_->update();
+  if (view_->coverage_visible()) apply_coverage();  // the coverage grows with the playback time
   auto fr = session_->frame_at(t);
   if (!fr) return;
   if (fr->geometry && fr->geometry->generation != generation_) {

@@ -72,8 +72,11 @@ class ReviewWindow : public QMainWindow {
   QPushButton* coverage_button() const { return coverage_; }
   QPushButton* report_button() const { return report_; }
   QLabel* score_label() const { return score_label_; }
-  /// Shows or hides the coverage overlay (the "Coverage" toggle).
+  /// Shows or hides the coverage overlay (the "Coverage" toggle). The overlay and the
+  /// figures beside the toggle (coverage_now_label) follow the playback time: the levels
+  /// reached up to it (ReviewSession::surface_levels, coverage_at).
   void set_coverage_visible(bool on);
+  QLabel* coverage_now_label() const { return coverage_now_; }
   /// Writes the report (cli::write_exam_report) into `dir`: the files written, or none with
   /// `error` set (no score, or a file that cannot be written).
   QStringList save_report(const QString& dir, QString* error = nullptr);
@@ -111,7 +114,7 @@ class ReviewWindow : public QMainWindow {
   QPushButton *play_ = nullptr, *csv_ = nullptr, *png_ = nullptr, *coverage_ = nullptr, *report_ = nullptr;
   QComboBox* speed_ = nullptr;
   QLabel *time_label_ = nullptr, *diff_label_ = nullptr, *speed_label_ = nullptr, *markers_title_ = nullptr;
-  QLabel *score_title_ = nullptr, *score_label_ = nullptr;
+  QLabel *score_title_ = nullptr, *score_label_ = nullptr, *coverage_now_ = nullptr;
   QString report_folder_;
   bool score_shown_ = false;            // the summary shows the computed score (or why there is none)
   std::size_t surface_faces_ = 0;       // faces of the patient surface the view shows

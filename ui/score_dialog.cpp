@@ -19,12 +19,62 @@ namespace palpation::ui {
 QString ScoreDialog::percent(double f) { return QStringLiteral("%1 %").arg(f * 100.0, 0, 'f', 0); }
 QString ScoreDialog::percent(const std::optional<double>& f) { return f ? percent(*f) : QStringLiteral("-"); }
 
-ScoreDialog::ScoreDialog(app::train::ScoredExam exam, app::cli::ReportInfo info, QWidget* parent)
+QString ScoreDialog::advice(const app::train::Advice& a) {
+  using K = app::train::Advice::Kind;
+  using app::train::Level;
+  // The source strings are the English lines of Advice::text(), word for word.
+  switch (a.kind) {
+    case K::Coverage:
+      switch (a.level) {
+        case Level::Light: return tr("Cover the whole breast at light pressure: %1% of the skin was reached at that level.").arg(a.percent);
+        case Level::Medium: return tr("Cover the whole breast at medium pressure: %1% of the skin was reached at that level.").arg(a.percent);
+        case Level::Deep: return tr("Cover the whole breast at deep pressure: %1% of the skin was reached at that level.").arg(a.percent);
+        case Level::None: break;
+      }
+      break;
+    case K::Strips:
+      return tr("Search in vertical strips, head to foot, overlapping each by about a third of a finger pad: "
+                "%1 strips covered %2% of the path.")
+          .arg(a.count)
+          .arg(a.percent);
+    case K::Overlap: return tr("Overlap neighbouring strips: they left gaps between them.");
+    case K::PressDeep:
+      return tr("Press deep at every spot: a lump %1 mm below the skin was missed where deep pressure was not reached.").arg(a.depth_mm);
+    case K::FalsePositives:
+      return tr("Check a suspected lump at all three pressure levels before marking it: %1 mark(s) found no lump.").arg(a.count);
+    case K::Complete: return tr("A complete examination: keep this pattern and pressure.");
+  }
+  return QString::fromStdString(a.text());
+}
+
+QString ScoreDialog::criterion_name(const std::string& key) {
+  if (key == "min_sensitivity") return tr("tumours found");
+  if (key == "max_false_positives") return tr("false positives");
+  if (key == "min_coverage.light") return tr("light coverage");
+  if (key == "min_coverage.medium") return tr("medium coverage");
+  if (key == "min_coverage.deep") return tr("deep coverage");
+  if (key == "deep_over_each_tumour") return tr("deep pressure over each tumour");
+  if (key == "max_exam_time") return tr("exam time");
+  return QString::fromStdString(key);
+}
+
+ScoreDialog::ScoreDialog(app::train::ScoredExam exam, app::cli::ReportInfo info, QWidget* parent,
+                         std::optional<app::train::Evaluation> evaluation)
     : QDialog(parent), exam_(std::move(exam)), info_(std::move(info)) {
   setObjectName(QStringLiteral("ScoreDialog"));
   setWindowTitle(tr("Exam score"));
   const auto& s = exam_.score;
   auto* form = new QFormLayout;
+  if (evaluation) {
+    QStringList missed;
+    for (const auto& c : evaluation->criteria)
+      if (!c.passed) missed << criterion_name(c.criterion);
+    auto* r = add_figure(form, QStringLiteral("result"), tr("Curriculum case:"),
+                         evaluation->passed ? tr("passed") : tr("not passed: %1").arg(missed.join(QStringLiteral(", "))));
+    r->setStyleSheet(evaluation->passed ? QStringLiteral("color: #1b5e20; font-weight: bold")
+                                        : QStringLiteral("color: #b00020; font-weight: bold"));
+    r->setWordWrap(true);
+  }
   const int n = int(s.tumours.size());
   add_figure(form, QStringLiteral("found"), tr("Tumours found:"), tr("%1 of %2").arg(s.hits).arg(n));
   add_figure(form, QStringLiteral("false_positives"), tr("False positives:"), QString::number(s.false_positives));
@@ -41,9 +91,9 @@ ScoreDialog::ScoreDialog(app::train::ScoredExam exam, app::cli::ReportInfo info,
   for (int i = 0; i < n; ++i)
     deep << tr("tumour %1: %2").arg(i + 1).arg(s.tumours[i].deep_reached ? tr("yes") : tr("no"));
   add_figure(form, QStringLiteral("deep"), tr("Deep pressure over each tumour:"), n ? deep.join(QStringLiteral("; ")) : QStringLiteral("-"));
-  QStringList advice;
-  for (const auto& a : s.advice) advice << QString::fromStdString(a);  // the scorer's English lines
-  auto* adv = add_figure(form, QStringLiteral("advice"), tr("Advice:"), advice.join(QLatin1Char('\n')));
+  QStringList advice_lines;
+  for (const auto& a : s.advice) advice_lines << advice(a);
+  auto* adv = add_figure(form, QStringLiteral("advice"), tr("Advice:"), advice_lines.join(QLatin1Char('\n')));
   adv->setWordWrap(true);
 
   // The report's own coverage map: the skin from above, each face by its level, the

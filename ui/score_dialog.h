@@ -12,6 +12,7 @@
 #include <QStringList>
 
 #include "cli/exam_report.h"
+#include "train/curriculum.h"
 #include "train/score_recording.h"
 
 class QFormLayout;
@@ -24,7 +25,10 @@ class ScoreDialog : public QDialog {
   Q_OBJECT
 
  public:
-  ScoreDialog(app::train::ScoredExam exam, app::cli::ReportInfo info, QWidget* parent = nullptr);
+  /// `evaluation`: the curriculum case's pass criteria applied (shown as passed / not
+  /// passed with the criteria missed); none for a free exam.
+  ScoreDialog(app::train::ScoredExam exam, app::cli::ReportInfo info, QWidget* parent = nullptr,
+              std::optional<app::train::Evaluation> evaluation = std::nullopt);
 
   const app::train::ScoredExam& exam() const { return exam_; }
   const app::cli::ReportInfo& info() const { return info_; }
@@ -35,14 +39,20 @@ class ScoreDialog : public QDialog {
   void set_report_folder(const QString& dir) { folder_ = dir; }
   QPushButton* save_button() const { return save_; }
   /// The text of one figure, by its name: "found", "false_positives", "sensitivity", "ppv",
-  /// "error", "time", "coverage", "strips", "deep", "advice".
+  /// "error", "time", "coverage", "strips", "deep", "advice", and "result" for a
+  /// curriculum case.
   QString figure(const QString& name) const;
   /// Whether the coverage map was drawn (Qt builds of the report draw it).
   bool has_coverage_image() const;
 
+  /// A pass criterion's name as the dialog shows it ("min_coverage.deep" -> "deep coverage").
+  static QString criterion_name(const std::string& key);
   /// How the dialog writes a fraction (0.5 -> "50 %") and an optional one ("-" for none).
   static QString percent(double f);
   static QString percent(const std::optional<double>& f);
+  /// One line of advice in the chosen language, composed from its kind and figures (the
+  /// scorer keeps the English line, Advice::text(), for the report and score.json).
+  static QString advice(const app::train::Advice& a);
 
  signals:
   void reportSaved(const QString& dir, const QStringList& files);

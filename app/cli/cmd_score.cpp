@@ -44,7 +44,8 @@ CommandAction add_score_command(CLI::App& app) {
   sub->add_option("--out", o->out, "Output folder")->required();
   sub->add_option("--thresholds", o->thresholds,
                   "Pressure-level thresholds: a JSON file with any of light_depth, medium_depth, deep_depth (fractions "
-                  "of the tissue thickness) and light_force, medium_force, deep_force (N)");
+                  "of the tissue thickness) and light_force, medium_force, deep_force (N); default: those the "
+                  "recorded session used");
   sub->add_option("--trainee", o->trainee, "Trainee's name for the report");
   sub->add_option("--case", o->case_name, "Case name for the report");
   sub->add_flag("--partial", o->partial, "Score what an interrupted recording holds (the file is not changed)");
@@ -55,8 +56,15 @@ CommandAction add_score_command(CLI::App& app) {
 #endif
   return [o]() {
     Recording rec = read_recording_arg(o->recording);
+    // The thresholds the session ran with, unless the command names others.
     train::PressureThresholds th;
-    if (!o->thresholds.empty()) {
+    if (o->thresholds.empty()) {
+      try {
+        th = train::recorded_thresholds(rec);
+      } catch (const std::invalid_argument& e) {
+        throw sim::ScenarioError(e.what());
+      }
+    } else {
       std::ifstream in(o->thresholds);
       if (!in) throw sim::ScenarioError(o->thresholds + ": (file): cannot be read");
       std::stringstream ss;
@@ -129,10 +137,17 @@ CommandAction add_score_command(CLI::App& app) {
         cur_name = cur->name;
       }
       if (case_name.empty()) case_name = exam.patient;
+      store::StoreOutcome stored;
       try {
-        lib->record_result(train::exam_result(s, ev, o->trainee, case_name, cur_name, {}, rec.path));
+        // The trainee was checked above; a PostgreSQL server gone meanwhile keeps the result
+        // on this machine, sent when the library is next used with the server back.
+        stored = lib->store_result(train::exam_result(s, ev, o->trainee, case_name, cur_name, {}, rec.path), false);
       } catch (const store::LibraryError& e) {
         throw sim::ScenarioError(e.what());
+      }
+      if (stored.id == 0) {
+        std::fprintf(stderr, "score: %s\n", stored.message.c_str());
+        return kExitOk;
       }
       std::printf("score: stored for %s in %s%s\n", o->trainee.c_str(), lib->location().c_str(),
                   ev ? (ev->passed ? " (passed)" : " (not passed)") : "");

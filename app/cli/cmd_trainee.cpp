@@ -115,9 +115,7 @@ CommandAction add_trainee_command(CLI::App& app) {
       }
       // progress
       const auto results = lib.results(o->name);
-      std::vector<std::string> passed_cases;
-      for (const auto& r : results)
-        if (r.passed && (!cur || r.curriculum == cur->name)) passed_cases.push_back(r.case_name);
+      const std::vector<std::string> passed_cases = train::passed_case_names(results, cur ? &*cur : nullptr);
       std::optional<std::size_t> next;
       if (cur) next = train::next_case(*cur, passed_cases);
       if (o->json_out) {

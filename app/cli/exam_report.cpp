@@ -93,7 +93,7 @@ std::string exam_report_html(const train::ScoredExam& exam, const ReportInfo& in
          "yellow light, orange medium, red deep; circles: each tumour's hit tolerance on the skin; crosses: marks (green hit, "
          "red false positive).</small></p>\n<p><img src=\"forces.png\" width=\"640\" alt=\"finger forces\"></p>\n";
   h += "<h2>What to practise next</h2>\n<ul>";
-  for (const auto& a : s.advice) h += "<li>" + esc(a) + "</li>";
+  for (const auto& a : s.advice) h += "<li>" + esc(a.text()) + "</li>";
   h += "</ul>\n<p><small>Pressure levels: light from " + pct(s.thresholds.light_depth) + " of the tissue's thickness or " +
        std::to_string(s.thresholds.light_force).substr(0, 4) + " N, medium from " + pct(s.thresholds.medium_depth) + " or " +
        std::to_string(s.thresholds.medium_force).substr(0, 4) + " N, deep from " + pct(s.thresholds.deep_depth) + " or " +

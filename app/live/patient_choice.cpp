@@ -34,7 +34,10 @@ bool set_phantom_resolution(sim::Scenario& s, const std::string& level) {
 }
 
 sim::Scenario case_patient(const std::string& path, const std::string& level) {
-  const sim::Scenario file = sim::load_scenario(path);
+  return case_patient(sim::load_scenario(path), path, level);
+}
+
+sim::Scenario case_patient(const sim::Scenario& file, const std::string& path, const std::string& level) {
   sim::Scenario s = default_workstation_scenario();
   s.source = path;
   s.patient = file.patient;

@@ -28,6 +28,9 @@ std::optional<double> resolution_edge(const std::string& phantom, const std::str
 /// resolution `level`, with the workstation's real-time solver settings and no finger
 /// paths of its own. Throws sim::ScenarioError naming the file, field and reason.
 sim::Scenario case_patient(const std::string& path, const std::string& level);
+/// The same for a scenario already in memory (a generated case, train::generate_case);
+/// `source` names it in messages and the recording.
+sim::Scenario case_patient(const sim::Scenario& file, const std::string& source, const std::string& level);
 
 /// Sets a phantom patient's resolution level and its edge length. False, and `s`
 /// unchanged, for a patient with its own mesh or an unknown level.

@@ -105,11 +105,31 @@ bool TrainingSession::end_exam() {
   if (!exam_running_) return false;
   exam_running_ = false;
   last_score_ = exam_.score(ws_.tumours().young(), ws_.now_s());
+  last_evaluation_.reset();
+  if (curriculum_ && case_) last_evaluation_ = train::evaluate(curriculum_->cases[*case_].pass, last_score_->score);
   Event e = Event::exam_ended(mode_change_of(mode_ == TrainingMode::Instructor ? TrainingMode::Exam : mode_));
   e.t = ws_.now_s();
   ws_.log_event(e);
   for (const auto& f : exam_end_listeners_) f(e);
   return true;
+}
+
+void TrainingSession::start_exam() {
+  if (!is_trainee(mode_)) return;
+  if (exam_running_) end_exam();
+  exam_running_ = true;
+  exam_start_ = ws_.now_s();
+  exam_.restart(exam_start_);
+  ws_.log_event(Event::mode_change(mode_change_of(mode_)));
+}
+
+void TrainingSession::set_curriculum(std::optional<train::Curriculum> c) {
+  curriculum_ = std::move(c);
+  case_.reset();
+}
+
+void TrainingSession::set_curriculum_case(std::optional<std::size_t> i) {
+  case_ = curriculum_ && i && *i < curriculum_->cases.size() ? i : std::nullopt;
 }
 
 void TrainingSession::set_mark_confidence(double c) { confidence_ = std::clamp(c, 0.0, 1.0); }

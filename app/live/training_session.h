@@ -21,6 +21,7 @@
 
 #include "live/event.h"
 #include "live/live_exam.h"
+#include "train/curriculum.h"
 
 namespace palpation::app::live {
 
@@ -96,6 +97,24 @@ class TrainingSession {
   /// Starts the coverage over (Instructor mode's "clear"; entering a trainee mode does it).
   void clear_coverage();
 
+  /// Starts a new exam in the current trainee mode (a new case loaded after the last exam
+  /// ended): logged as the mode's event, as entering the mode is. Nothing in Instructor
+  /// mode; a running exam ends first.
+  void start_exam();
+
+  // Curricula (train/curriculum.h) -------------------------------------------------------
+  /// The curriculum the trainee works through (none: free exams). Setting one forgets the
+  /// case in progress.
+  void set_curriculum(std::optional<train::Curriculum> c);
+  const std::optional<train::Curriculum>& curriculum() const { return curriculum_; }
+  /// The curriculum case loaded on the station (index into curriculum()->cases), set when
+  /// the GUI loads it; none when the patient is not the curriculum's.
+  void set_curriculum_case(std::optional<std::size_t> i);
+  std::optional<std::size_t> curriculum_case() const { return case_; }
+  /// The case's pass criteria applied to the exam that ended last: set by end_exam when a
+  /// curriculum case was loaded.
+  const std::optional<train::Evaluation>& last_evaluation() const { return last_evaluation_; }
+
   /// The confidence the next mark carries (0..1, clamped; 1: certain).
   void set_mark_confidence(double c);
   double mark_confidence() const { return confidence_; }
@@ -109,6 +128,9 @@ class TrainingSession {
   std::vector<std::function<void(const Event&)>> exam_end_listeners_;
   LiveExam exam_;
   std::optional<train::ScoredExam> last_score_;
+  std::optional<train::Curriculum> curriculum_;
+  std::optional<std::size_t> case_;
+  std::optional<train::Evaluation> last_evaluation_;
   std::shared_ptr<bool> alive_;  // the step listener outlives nothing it points to
 };
 

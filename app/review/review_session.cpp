@@ -188,15 +188,23 @@ std::string ReviewSession::score_error() const {
   return score_error_;
 }
 
-std::vector<unsigned char> ReviewSession::surface_levels(std::size_t surface_faces) const {
+std::vector<unsigned char> ReviewSession::surface_levels(std::size_t surface_faces, double t) const {
   const train::ScoredExam* ex = score();
   if (!ex || !ex->skin) return {};
+  const std::vector<unsigned char> at = t >= duration() ? ex->face_level : train::levels_at(ex->face_reached, t);
   std::vector<unsigned char> out(surface_faces, 0);
-  for (std::size_t i = 0; i < ex->face_level.size() && i < ex->skin->model_face.size(); ++i) {
+  for (std::size_t i = 0; i < at.size() && i < ex->skin->model_face.size(); ++i) {
     const int f = ex->skin->model_face[i];
-    if (f >= 0 && std::size_t(f) < out.size()) out[std::size_t(f)] = ex->face_level[i];
+    if (f >= 0 && std::size_t(f) < out.size()) out[std::size_t(f)] = at[i];
   }
   return out;
+}
+
+std::optional<std::array<double, train::kLevels>> ReviewSession::coverage_at(double t) const {
+  const train::ScoredExam* ex = score();
+  if (!ex || !ex->skin) return std::nullopt;
+  if (t >= duration()) return ex->score.coverage;
+  return train::coverage_at(*ex->skin, ex->face_reached, t);
 }
 
 void ReviewSession::cancel() {

@@ -119,10 +119,16 @@ class ReviewSession {
   /// Whether score() has been computed (it then returns at once): the GUI asks before it asks
   /// for the score, so that it never waits on the worker's scoring.
   bool score_ready() const { return score_ready_.load(std::memory_order_acquire); }
-  /// The highest pressure level reached on each face of the patient's surface, in
-  /// PatientGeometry::surface's order (`surface_faces` faces; the chest wall's and any face
-  /// off the skin 0), from score(): the coverage overlay. Empty when there is no score.
-  std::vector<unsigned char> surface_levels(std::size_t surface_faces) const;
+  /// The highest pressure level reached up to recording time `t` on each face of the
+  /// patient's surface, in PatientGeometry::surface's order (`surface_faces` faces; the chest
+  /// wall's and any face off the skin 0), from score(): the coverage overlay at the playback
+  /// time. A threshold per face on the times the score keeps (ScoredExam::face_reached),
+  /// nothing scored again; from the exam's end on (and without `t`) the whole exam's levels.
+  /// Empty when there is no score.
+  std::vector<unsigned char> surface_levels(std::size_t surface_faces, double t = train::kNever) const;
+  /// The skin fractions reached at least at each level (light, medium, deep) up to time `t`;
+  /// nothing when there is no score.
+  std::optional<std::array<double, train::kLevels>> coverage_at(double t) const;
 
   // Playback clock (the GUI advances it) ---------------------------------------------------
   double time() const { return time_; }

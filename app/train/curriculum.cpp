@@ -241,4 +241,11 @@ std::optional<std::size_t> next_case(const Curriculum& c, const std::vector<std:
   return std::nullopt;
 }
 
+std::vector<std::string> passed_case_names(const std::vector<store::ExamResult>& results, const Curriculum* c) {
+  std::vector<std::string> out;
+  for (const auto& r : results)
+    if (r.passed && (!c || r.curriculum == c->name)) out.push_back(r.case_name);
+  return out;
+}
+
 }  // namespace palpation::app::train

@@ -93,5 +93,8 @@ store::ExamResult exam_result(const ExamScore& s, const std::optional<Evaluation
 /// Index of the first case not yet passed, given the names of the cases passed (a trainee's
 /// passed results in this curriculum); nothing when every case is passed.
 std::optional<std::size_t> next_case(const Curriculum& c, const std::vector<std::string>& passed_case_names);
+/// The names of the cases a trainee passed (their results, store::PatientLibrary::results),
+/// counting only results recorded under curriculum `c` (all passed results when null).
+std::vector<std::string> passed_case_names(const std::vector<store::ExamResult>& results, const Curriculum* c);
 
 }  // namespace palpation::app::train

@@ -69,27 +69,6 @@ PressureThresholds thresholds_from_json(const json& j, const PressureThresholds&
   return t;
 }
 
-namespace {
-
-// Ray (origin o, direction d) against triangle (a, b, c), Moller-Trumbore: distance along d,
-// or a negative number when it misses.
-double ray_triangle(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
-                    const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const Eigen::Vector3d e1 = b - a, e2 = c - a, p = d.cross(e2);
-  const double det = e1.dot(p);
-  if (std::abs(det) < 1e-18) return -1;
-  const double inv = 1.0 / det;
-  const Eigen::Vector3d s = o - a;
-  const double u = s.dot(p) * inv;
-  if (u < -1e-9 || u > 1 + 1e-9) return -1;
-  const Eigen::Vector3d q = s.cross(e1);
-  const double v = d.dot(q) * inv;
-  if (v < -1e-9 || u + v > 1 + 1e-9) return -1;
-  return e2.dot(q) * inv;
-}
-
-}  // namespace
-
 SkinMap build_skin_map(const sim::Model& m) {
   SkinMap s;
   s.nodes = m.rest;
@@ -177,7 +156,7 @@ SkinMap build_skin_map(const sim::Model& m) {
     double best = -1;
     for (int f : chest) {
       const auto& t = m.surface[std::size_t(f)];
-      const double d = ray_triangle(s.centroid[i], -s.normal[i], m.rest[std::size_t(t[0])], m.rest[std::size_t(t[1])],
+      const double d = sim::ray_triangle(s.centroid[i], -s.normal[i], m.rest[std::size_t(t[0])], m.rest[std::size_t(t[1])],
                                     m.rest[std::size_t(t[2])]);
       if (d > 0 && (best < 0 || d < best)) best = d;
     }
@@ -265,7 +244,7 @@ Eigen::Vector3d SkinMap::skin_above(const Eigen::Vector3d& p) const {
   double best = -1;
   for (std::size_t i = 0; i < faces.size(); ++i) {
     if (normal[i].dot(up) <= 0) continue;
-    const double d = ray_triangle(p, up, nodes[std::size_t(faces[i][0])], nodes[std::size_t(faces[i][1])],
+    const double d = sim::ray_triangle(p, up, nodes[std::size_t(faces[i][0])], nodes[std::size_t(faces[i][1])],
                                   nodes[std::size_t(faces[i][2])]);
     if (d >= 0 && (best < 0 || d < best)) best = d;
   }
@@ -277,10 +256,6 @@ Eigen::Vector3d SkinMap::skin_above(const Eigen::Vector3d& p) const {
 std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, const std::vector<std::array<int, 4>>& tets,
                                       const std::vector<double>& young, double tissue_young, const SkinMap& skin,
                                       double pad_radius) {
-  // The tumour rule of the workstation (app/live/tumour_document.h, kTumourFactor): an
-  // element is tumour tissue above 1.2 x the tissue's modulus. Spelled here, not included:
-  // train does not depend on the live pipeline.
-  constexpr double kFactor = 1.2;
   const int ne = int(std::min(young.size(), tets.size()));
   std::vector<int> parent(rest.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -290,7 +265,7 @@ std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, 
   };
   std::vector<int> stiff;
   for (int e = 0; e < ne; ++e) {
-    if (!(young[std::size_t(e)] > kFactor * tissue_young)) continue;
+    if (!sim::is_tumour_modulus(young[std::size_t(e)], tissue_young)) continue;
     stiff.push_back(e);
     const auto& t = tets[std::size_t(e)];
     for (int k = 1; k < 4; ++k) parent[std::size_t(root(t[std::size_t(k)]))] = root(t[0]);
@@ -342,6 +317,7 @@ ExamTracker::ExamTracker(std::shared_ptr<const SkinMap> skin, PressureThresholds
 void ExamTracker::reset() {
   level_.assign(skin_->faces.size(), 0);
   touched_.assign(skin_->faces.size(), 0);
+  reached_.assign(skin_->faces.size(), LevelTimes{kNever, kNever, kNever});
   path_.clear();
   pressing_.fill(false);
   first_ = last_ = -1;
@@ -371,8 +347,17 @@ void ExamTracker::add(const FingerSample& s) {
   const double a = std::max(0.5 * s.radius, std::sqrt(std::max(0.0, s.radius * s.radius - (s.radius - d) * (s.radius - d))));
   const Eigen::Vector3d p = s.centre - dist * skin.normal[std::size_t(f)];
   const unsigned char l = static_cast<unsigned char>(lv);
-  level_[std::size_t(f)] = std::max(level_[std::size_t(f)], l);
-  for (int g : skin.faces_within(p, a)) level_[std::size_t(g)] = std::max(level_[std::size_t(g)], l);
+  // The time each level (and those below it) was first reached on the face: a sample
+  // without a finite time counts from the last one's, so that every level reached has a
+  // time and levels_at() at the end is face_level().
+  const double when = std::isfinite(s.t) ? s.t : std::max(0.0, last_);
+  auto raise = [&](std::size_t g) {
+    level_[g] = std::max(level_[g], l);
+    LevelTimes& r = reached_[g];
+    for (int q = 0; q < int(l); ++q) r[std::size_t(q)] = std::min(r[std::size_t(q)], when);
+  };
+  raise(std::size_t(f));
+  for (int g : skin.faces_within(p, a)) raise(std::size_t(g));
   if (first_ < 0) first_ = s.t;
   last_ = std::max(last_, s.t);
   if (!pressing_[k] || (p - last_p_[k]).norm() >= 1e-3) {
@@ -380,6 +365,26 @@ void ExamTracker::add(const FingerSample& s) {
     last_p_[k] = p;
   }
   pressing_[k] = true;
+}
+
+std::vector<unsigned char> levels_at(const std::vector<LevelTimes>& reached, double t) {
+  std::vector<unsigned char> out(reached.size(), 0);
+  for (std::size_t i = 0; i < reached.size(); ++i) {
+    unsigned char l = 0;
+    while (l < kLevels && reached[i][l] < kNever && reached[i][l] <= t) ++l;
+    out[i] = l;
+  }
+  return out;
+}
+
+std::array<double, kLevels> coverage_at(const SkinMap& skin, const std::vector<LevelTimes>& reached, double t) {
+  std::array<double, kLevels> c{};
+  if (skin.total_area <= 0) return c;
+  for (std::size_t i = 0; i < reached.size() && i < skin.area.size(); ++i)
+    for (std::size_t l = 0; l < std::size_t(kLevels); ++l)
+      if (reached[i][l] < kNever && reached[i][l] <= t) c[l] += skin.area[i];
+  for (double& v : c) v /= skin.total_area;
+  return c;
 }
 
 std::array<double, kLevels> ExamTracker::coverage() const {
@@ -549,27 +554,53 @@ ExamScore score_exam(const ExamTracker& tracker, const std::vector<TumourTruth>&
   if (tumours.empty()) s.specific = marks.empty();
   s.mean_error = s.hits ? err / s.hits : 0.0;
   // What to practise next.
-  auto pct = [](double v) { return std::to_string(int(std::lround(100 * v))) + "%"; };
-  const char* names[kLevels] = {"light", "medium", "deep"};
+  auto pct = [](double v) { return int(std::lround(100 * v)); };
   for (int l = 0; l < kLevels; ++l)
-    if (s.coverage[std::size_t(l)] < 0.9)
-      s.advice.push_back(std::string("Cover the whole breast at ") + names[l] + " pressure: " + pct(s.coverage[std::size_t(l)]) +
-                         " of the skin was reached at that level.");
-  if (s.pattern.path_length > 0 && (s.pattern.strips < 3 || s.pattern.vertical_fraction < 0.5))
-    s.advice.push_back("Search in vertical strips, head to foot, overlapping each by about a third of a finger pad: " +
-                       std::to_string(s.pattern.strips) + " strips covered " + pct(s.pattern.vertical_fraction) +
-                       " of the path.");
-  else if (s.pattern.strips >= 2 && s.pattern.mean_overlap < 0)
-    s.advice.push_back("Overlap neighbouring strips: they left gaps between them.");
+    if (s.coverage[std::size_t(l)] < 0.9) {
+      Advice a{Advice::Kind::Coverage};
+      a.level = static_cast<Level>(l + 1);
+      a.percent = pct(s.coverage[std::size_t(l)]);
+      s.advice.push_back(a);
+    }
+  if (s.pattern.path_length > 0 && (s.pattern.strips < 3 || s.pattern.vertical_fraction < 0.5)) {
+    Advice a{Advice::Kind::Strips};
+    a.count = s.pattern.strips;
+    a.percent = pct(s.pattern.vertical_fraction);
+    s.advice.push_back(a);
+  } else if (s.pattern.strips >= 2 && s.pattern.mean_overlap < 0) {
+    s.advice.push_back({Advice::Kind::Overlap});
+  }
   for (const TumourResult& r : s.tumours)
-    if (!r.found && !r.deep_reached)
-      s.advice.push_back("Press deep at every spot: a lump " + std::to_string(int(std::lround(r.truth.depth * 1000))) +
-                         " mm below the skin was missed where deep pressure was not reached.");
-  if (s.false_positives > 0)
-    s.advice.push_back("Check a suspected lump at all three pressure levels before marking it: " +
-                       std::to_string(s.false_positives) + " mark(s) found no lump.");
-  if (s.advice.empty()) s.advice.push_back("A complete examination: keep this pattern and pressure.");
+    if (!r.found && !r.deep_reached) {
+      Advice a{Advice::Kind::PressDeep};
+      a.depth_mm = int(std::lround(r.truth.depth * 1000));
+      s.advice.push_back(a);
+    }
+  if (s.false_positives > 0) {
+    Advice a{Advice::Kind::FalsePositives};
+    a.count = s.false_positives;
+    s.advice.push_back(a);
+  }
+  if (s.advice.empty()) s.advice.push_back({Advice::Kind::Complete});
   return s;
+}
+
+std::string Advice::text() const {
+  const std::string p = std::to_string(percent) + "%";
+  switch (kind) {
+    case Kind::Coverage:
+      return std::string("Cover the whole breast at ") + level_name(level) + " pressure: " + p + " of the skin was reached at that level.";
+    case Kind::Strips:
+      return "Search in vertical strips, head to foot, overlapping each by about a third of a finger pad: " + std::to_string(count) +
+             " strips covered " + p + " of the path.";
+    case Kind::Overlap: return "Overlap neighbouring strips: they left gaps between them.";
+    case Kind::PressDeep:
+      return "Press deep at every spot: a lump " + std::to_string(depth_mm) + " mm below the skin was missed where deep pressure was not reached.";
+    case Kind::FalsePositives:
+      return "Check a suspected lump at all three pressure levels before marking it: " + std::to_string(count) + " mark(s) found no lump.";
+    case Kind::Complete: return "A complete examination: keep this pattern and pressure.";
+  }
+  return {};
 }
 
 namespace {
@@ -621,7 +652,9 @@ json to_json(const ExamScore& s) {
   j["exam_time_s"] = s.exam_time;
   j["duration_s"] = s.duration;
   j["thresholds"] = to_json(s.thresholds);
-  j["advice"] = s.advice;
+  json advice = json::array();
+  for (const Advice& a : s.advice) advice.push_back(a.text());
+  j["advice"] = advice;
   return j;
 }
 

@@ -6,8 +6,9 @@
 //                area, normal and tissue thickness (skin to chest wall along the normal)
 //   PressureThresholds / classify   light, medium, deep from indentation / thickness and force
 //   ExamTracker  fed fingertip samples (centre, radius, simulated force): the highest level
-//                reached on each face, the contact path (for the search pattern), and the
-//                highest level reached over each tumour
+//                reached on each face and when each level was first reached there, the
+//                contact path (for the search pattern), and the highest level reached over
+//                each tumour
 //   score_exam   marks against tumours: hits, false positives, errors, times, sensitivity,
 //                positive predictive value, specificity (no tumour), coverage, pattern
 //
@@ -17,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -139,6 +141,18 @@ struct PatternFigures {
   double path_length = 0;          // m, pressed path of all fingers
 };
 
+/// When one skin face first reached each level (light, medium, deep), s since the
+/// recording's start; kNever where it never did. Reaching a level reaches the ones below
+/// it, so the times never decrease from light to deep.
+using LevelTimes = std::array<double, kLevels>;
+inline constexpr double kNever = std::numeric_limits<double>::infinity();
+/// The highest level each face had reached at time t (at or before t): the coverage as it
+/// grew during the exam (the review's overlay at its playback time). Levels up to the
+/// last sample's time are the tracker's face_level().
+std::vector<unsigned char> levels_at(const std::vector<LevelTimes>& reached, double t);
+/// Area fraction of the skin reached at least at each level by time t.
+std::array<double, kLevels> coverage_at(const SkinMap& skin, const std::vector<LevelTimes>& reached, double t);
+
 /// Accumulates an exam from fingertip samples (any rate; the workstation feeds each
 /// simulation step, `palpation score` the recording's steps or ticks).
 class ExamTracker {
@@ -147,6 +161,9 @@ class ExamTracker {
   void add(const FingerSample& s);
   /// The highest level reached on each skin face.
   const std::vector<unsigned char>& face_level() const { return level_; }
+  /// When each skin face first reached each level (samples' times; levels_at(face_reached(), t)
+  /// is face_level() as it stood at time t).
+  const std::vector<LevelTimes>& face_reached() const { return reached_; }
   /// Area fraction of the skin reached at least at each level (light, medium, deep).
   std::array<double, kLevels> coverage() const;
   /// Area fraction of the skin touched at all (any contact, below light pressure too).
@@ -165,6 +182,7 @@ class ExamTracker {
   std::shared_ptr<const SkinMap> skin_;
   PressureThresholds t_;
   std::vector<unsigned char> level_, touched_;
+  std::vector<LevelTimes> reached_;
   struct PathPoint {
     double t;
     Eigen::Vector3d p;
@@ -187,6 +205,28 @@ struct TumourResult {
   bool deep_reached = false;
 };
 
+/// One line of what to practise next, as data: its kind and its figures. text() is its
+/// English line (score.json, the report, `palpation score`); the GUI composes the line in
+/// the chosen language from the same data (ui/score_dialog).
+struct Advice {
+  enum class Kind {
+    Coverage,        // a level's coverage under 90 %: `level`, `percent` of the skin reached at it
+    Strips,          // fewer than three strips or under half the path in strips: `count` strips, `percent` of the path
+    Overlap,         // neighbouring strips left gaps between them
+    PressDeep,       // a tumour missed where deep pressure was not reached: `depth_mm` below the skin
+    FalsePositives,  // `count` marks found no lump
+    Complete,        // nothing to practise
+  };
+  Kind kind = Kind::Complete;
+  Level level = Level::None;  // Coverage
+  int percent = 0;            // Coverage, Strips: rounded to a whole per cent
+  int count = 0;              // Strips, FalsePositives
+  int depth_mm = 0;           // PressDeep: rounded to a whole millimetre
+  /// The English line.
+  std::string text() const;
+  bool operator==(const Advice&) const = default;
+};
+
 struct ExamScore {
   std::array<double, kLevels> coverage{};  // fractions of the skin, at least light / medium / deep
   double touched = 0;                      // fraction of the skin touched at all
@@ -203,8 +243,8 @@ struct ExamScore {
   double exam_time = 0;                    // s, first contact to the end
   double duration = 0;                     // s, the whole session
   PressureThresholds thresholds;
-  /// What to practise next, one English line each (the report and the GUI).
-  std::vector<std::string> advice;
+  /// What to practise next, one line each (Advice::text() in English).
+  std::vector<Advice> advice;
 };
 
 /// A scripted trainee: vertical strips (along y) over the skin between x_min and x_max,

@@ -28,6 +28,26 @@ constexpr double kPlotPeriod = 0.02;
 
 }  // namespace
 
+PressureThresholds recorded_thresholds(const store::Recording& rec) {
+  const nlohmann::json* found = nullptr;
+  if (rec.header.is_object() && rec.header.contains("settings") && rec.header["settings"].is_object() &&
+      rec.header["settings"].contains("thresholds"))
+    found = &rec.header["settings"]["thresholds"];
+  for (const auto& e : rec.events)
+    if (e.is_object() && e.value("kind", std::string()) == "thresholds") found = &e;
+  if (!found) return {};
+  nlohmann::json j = *found;
+  if (j.is_object()) {
+    j.erase("t");
+    j.erase("kind");
+  }
+  try {
+    return thresholds_from_json(j);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(rec.path + ": recorded pressure thresholds: " + e.what());
+  }
+}
+
 ScoredExam score_recording(const store::Recording& rec, const PressureThresholds& thresholds) {
   if (!rec.complete)
     throw ScoreError(rec.path + ": the recording was cut short (" +
@@ -138,6 +158,7 @@ ScoredExam score_recording(const store::Recording& rec, const PressureThresholds
   if (!rec.steps.empty()) duration = std::max(duration, rec.steps.back().t);
   out.score = score_exam(tracker, tumours, std::move(marks), duration);
   out.face_level = tracker.face_level();
+  out.face_reached = tracker.face_reached();
   return out;
 }
 

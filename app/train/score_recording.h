@@ -28,6 +28,10 @@ struct ScoredExam {
   ExamScore score;
   std::shared_ptr<const SkinMap> skin;
   std::vector<unsigned char> face_level;          // highest level on each skin face
+  /// When each skin face first reached each level, recording time (ExamTracker::face_reached):
+  /// levels_at(face_reached, t) and coverage_at(*skin, face_reached, t) are the exam as it
+  /// stood at time t, face_level and the score's coverage at its end.
+  std::vector<LevelTimes> face_reached;
   /// |force| on each finger against time, the simulation's (steps) or as sent (ticks),
   /// decimated to 50 Hz: the report's force plot.
   std::vector<double> plot_t;
@@ -35,6 +39,11 @@ struct ScoredExam {
   std::string patient;                             // what the recording's scenario calls the patient
   int samples = 0;                                 // fingertip samples scored
 };
+
+/// The pressure thresholds a workstation session used: the last "thresholds" event, else
+/// the header's settings.thresholds, else the defaults. A recorded value that does not
+/// validate throws std::invalid_argument naming the field.
+PressureThresholds recorded_thresholds(const store::Recording& rec);
 
 /// Scores a recording. Throws ScoreError for one cut short (no end chunk: recover it first),
 /// a scenario that cannot be read, or marks outside the body.

@@ -4,6 +4,7 @@
 // band on the default patient's rest skin; what it covers is known by construction.
 #include <QtTest>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -186,10 +187,98 @@ class TestTraining : public QObject {
     QCOMPARE(sl.tumours[0].max_level_over, Level::Light);
     QVERIFY(sl.coverage[0] > 0.95 && sl.coverage[2] < 0.01);
     bool advised = false;
-    for (const auto& a : sl.advice) advised |= a.find("Press deep") != std::string::npos;
+    for (const auto& a : sl.advice) advised |= a.kind == app::train::Advice::Kind::PressDeep;
     QVERIFY(advised);
     const ExamScore sa = score_exam(run(p, {}), p.tumours, {}, 60.0);
     QVERIFY(sa.tumours[0].deep_reached);
+  }
+
+  // The advice is data (its kind and figures); its English line, what score.json, the report
+  // and `palpation score` show, is word for word the scorer's wording.
+  void adviceInEnglish() {
+    using K = Advice::Kind;
+    auto advice = [](K k) {
+      Advice a;
+      a.kind = k;
+      return a;
+    };
+    Advice cover = advice(K::Coverage);
+    cover.level = Level::Medium;
+    cover.percent = 47;
+    QCOMPARE(cover.text(), std::string("Cover the whole breast at medium pressure: 47% of the skin was reached at that level."));
+    cover.level = Level::Light;
+    cover.percent = 5;
+    QCOMPARE(cover.text(), std::string("Cover the whole breast at light pressure: 5% of the skin was reached at that level."));
+    cover.level = Level::Deep;
+    cover.percent = 0;
+    QCOMPARE(cover.text(), std::string("Cover the whole breast at deep pressure: 0% of the skin was reached at that level."));
+    Advice strips = advice(K::Strips);
+    strips.count = 2;
+    strips.percent = 31;
+    QCOMPARE(strips.text(), std::string("Search in vertical strips, head to foot, overlapping each by about a third of a finger pad: "
+                                        "2 strips covered 31% of the path."));
+    QCOMPARE(advice(K::Overlap).text(), std::string("Overlap neighbouring strips: they left gaps between them."));
+    Advice deep = advice(K::PressDeep);
+    deep.depth_mm = 37;
+    QCOMPARE(deep.text(), std::string("Press deep at every spot: a lump 37 mm below the skin was missed where deep pressure was not reached."));
+    Advice fp = advice(K::FalsePositives);
+    fp.count = 3;
+    QCOMPARE(fp.text(), std::string("Check a suspected lump at all three pressure levels before marking it: 3 mark(s) found no lump."));
+    QCOMPARE(advice(K::Complete).text(), std::string("A complete examination: keep this pattern and pressure."));
+
+    // From a score: the figures rounded as the lines write them, score.json the English lines.
+    StripExamSpec spec;
+    spec.x_max = cx();
+    spec.levels = {Level::Light};
+    const ExamScore s = score_exam(run(paper_, spec), paper_.tumours, {{3.0, paper_.skin->skin_above(Eigen::Vector3d(cx() + 0.04, 0, 0)), 1.0}}, 30.0);
+    QVERIFY(!s.advice.empty());
+    QCOMPARE(s.advice.front().kind, K::Coverage);
+    QCOMPARE(s.advice.front().level, Level::Light);
+    QCOMPARE(s.advice.front().percent, int(std::lround(100 * s.coverage[0])));
+    QCOMPARE(s.advice.back().kind, K::FalsePositives);
+    QCOMPARE(s.advice.back().count, 1);
+    const nlohmann::json j = to_json(s);
+    QCOMPARE(j["advice"].size(), s.advice.size());
+    for (std::size_t i = 0; i < s.advice.size(); ++i) QCOMPARE(j["advice"][i].get<std::string>(), s.advice[i].text());
+  }
+
+  // The coverage as it grew: the time each face first reached each level gives the levels and
+  // the fractions at any time, growing with it, and the tracker's at the end.
+  void coverageGrowsWithTime() {
+    const ExamTracker tr = run(paper_, {});
+    const auto& reached = tr.face_reached();
+    QCOMPARE(reached.size(), paper_.skin->faces.size());
+    const double end = tr.last_contact();
+    QVERIFY(end > 10);
+    QVERIFY(levels_at(reached, end) == tr.face_level());
+    QVERIFY(levels_at(reached, kNever) == tr.face_level());
+    QVERIFY(coverage_at(*paper_.skin, reached, end) == tr.coverage());
+    for (const auto& r : reached) QVERIFY(r[0] <= r[1] && r[1] <= r[2]);
+    const auto none = levels_at(reached, tr.first_contact() - 1);
+    QVERIFY(std::all_of(none.begin(), none.end(), [](unsigned char l) { return l == 0; }));
+    std::vector<unsigned char> before = none;
+    std::array<double, kLevels> was{};
+    int covered_before = 0;
+    for (int k = 1; k <= 10; ++k) {
+      const double t = end * k / 10.0;
+      const auto now = levels_at(reached, t);
+      const auto c = coverage_at(*paper_.skin, reached, t);
+      int covered = 0;
+      for (std::size_t i = 0; i < now.size(); ++i) {
+        QVERIFY(now[i] >= before[i]);
+        covered += now[i] > 0;
+      }
+      for (int l = 0; l < kLevels; ++l) QVERIFY(c[std::size_t(l)] >= was[std::size_t(l)]);
+      if (k == 2) QVERIFY2(covered < int(0.5 * now.size()), qPrintable(QString("%1 of %2 faces by a fifth of the exam").arg(covered).arg(now.size())));
+      QVERIFY(covered >= covered_before);
+      covered_before = covered;
+      before = now;
+      was = c;
+    }
+    // Forgotten with the rest.
+    ExamTracker again = tr;
+    again.reset();
+    for (const auto& r : again.face_reached()) QVERIFY(r[0] == kNever && r[2] == kNever);
   }
 
   // No tumour: specificity counts whether anything was marked.

@@ -17,6 +17,10 @@
 //   - the chooser lists the built-in patients, and choosing one reaches the simulation.
 #include <QtTest>
 
+#include <QSettings>
+
+#include <algorithm>
+
 #include <QComboBox>
 #include <QCryptographicHash>
 #include <QLabel>
@@ -34,6 +38,7 @@
 #include "store/patient_library.h"
 #include "store/recording.h"
 #include "review_window.h"
+#include "score_dialog.h"
 #include "tumour_editor.h"
 #include "vtk_view.h"
 #include "review/workstation_recorder.h"
@@ -73,6 +78,10 @@ class TstReview : public QObject {
     qputenv("PALPATION_DB", dir_.filePath(QStringLiteral("patients.sqlite")).toUtf8());
     qputenv("PALPATION_RECORDINGS", dir_.filePath(QStringLiteral("recordings")).toUtf8());
     ui::VtkView::use_default_surface_format();
+    // A run stopped half-way leaves its settings (test mode's own folder): start as a new
+    // user would, in English with the default patient.
+    QSettings().remove(QStringLiteral("language"));
+    QSettings().remove(QStringLiteral("patient"));
     rec_path_ = dir_.filePath(QStringLiteral("scripted.palrec"));
   }
 
@@ -169,7 +178,27 @@ class TstReview : public QObject {
     QVERIFY(c.max_force > 0.2);
     // Same backend, settings and thread count: the same operations in the same order.
     QVERIFY2(c.max_diff <= 1e-9, qPrintable(QString::number(c.max_diff)));
-    QVERIFY(std::isfinite(c.max_sent_diff));
+    // The forces sent at 1 kHz against the re-simulated step forces (each tick against the
+    // step at or before it): recomputed here from the recording, whose step forces the
+    // re-simulated ones equal (max_diff above, 1e-9 N: the bound below). Not zero: the
+    // device got the simulated force times the patient's force scale (0.6 on this patient).
+    {
+      const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
+      const std::size_t nf = std::size_t(rec.fingers);
+      double sent_diff = 0;
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < rec.ticks(); ++i) {
+        while (j + 1 < rec.steps.size() && rec.steps[j + 1].t <= rec.t[i]) ++j;
+        if (rec.steps[j].t > rec.t[i]) continue;
+        for (std::size_t k = 0; k < nf; ++k) {
+          const double d = (rec.f[i * nf + k] - rec.steps[j].fingers[k].f).norm();
+          if (std::isfinite(d)) sent_diff = std::max(sent_diff, d);
+        }
+      }
+      QVERIFY2(sent_diff > 0.05, qPrintable(QString::number(sent_diff)));
+      QVERIFY2(std::abs(c.max_sent_diff - sent_diff) <= 1e-9,
+               qPrintable(QString("reported %1 N, recomputed %2 N").arg(c.max_sent_diff).arg(sent_diff)));
+    }
     QVERIFY(rw.difference_label()->text().contains(QLatin1String("Reproduced")));
     // In Japanese (the .qm compiled from translations/palpation_ja.ts): the review's own
     // strings follow a language change; a missing or stale catalogue leaves them English.
@@ -305,19 +334,68 @@ class TstReview : public QObject {
                  summary.contains(QStringLiteral("Coverage: light ")),
              qPrintable(summary));
 
-    // The overlay: hidden until toggled, then exactly the pressed skin faces coloured.
+    // The coverage at a playback time: the levels reached up to it, from the times the score
+    // keeps (nothing scored again). None before the first press, more as the exam goes on,
+    // never less, and at the end the whole exam's.
     QTRY_VERIFY_WITH_TIMEOUT(s.frame_at(s.time()) != nullptr, 120000);
+    const std::size_t nsurf = s.frame_at(s.time())->geometry->surface.size();
+    auto covered = [](const std::vector<unsigned char>& lv) { return int(std::count_if(lv.begin(), lv.end(), [](unsigned char l) { return l > 0; })); };
+    const double end = s.duration();
+    const std::vector<unsigned char> whole = s.surface_levels(nsurf);
+    QCOMPARE(covered(whole), pressed);
+    QVERIFY(s.surface_levels(nsurf, end) == whole);
+    QVERIFY(*s.coverage_at(end) == want.score.coverage);
+    double first = app::train::kNever, last = 0;
+    for (const auto& r : want.face_reached)
+      if (r[0] < app::train::kNever) {
+        first = std::min(first, r[0]);
+        last = std::max(last, r[0]);
+      }
+    QVERIFY(first < last && last <= end);
+    QCOMPARE(covered(s.surface_levels(nsurf, first - 1e-6)), 0);
+    QCOMPARE((*s.coverage_at(first - 1e-6))[0], 0.0);
+    const double early = first + 0.25 * (last - first);
+    const int covered_early = covered(s.surface_levels(nsurf, early));
+    qInfo("coverage over time: %d faces at %.3f s (first press %.3f s), %d at the end (%.3f s)", covered_early, early, first,
+          pressed, end);
+    QVERIFY2(covered_early > 0 && covered_early < pressed, qPrintable(QString::number(covered_early)));
+    QVERIFY((*s.coverage_at(early))[0] < want.score.coverage[0]);
+    std::vector<unsigned char> before(nsurf, 0);
+    for (int k = 0; k <= 40; ++k) {
+      const auto now = s.surface_levels(nsurf, end * k / 40.0);
+      for (std::size_t i = 0; i < nsurf; ++i) QVERIFY(now[i] >= before[i]);
+      before = now;
+    }
+    QVERIFY(before == whole);
+
+    // The overlay: hidden until toggled, then the skin faces pressed up to the playback time
+    // coloured, the figures beside the toggle with it.
     rw.tick();  // the first frame's patient in the view
     QVERIFY(!rw.view()->coverage_visible());
     QVERIFY(rw.coverage_button()->isEnabled());
+    rw.seek(end);
     QTest::mouseClick(rw.coverage_button(), Qt::LeftButton);
     QVERIFY(rw.coverage_button()->isChecked());
     QVERIFY(rw.view()->coverage_visible());
-    const auto counts = rw.view()->coverage_counts();
+    auto counts = rw.view()->coverage_counts();
     QCOMPARE(counts[1] + counts[2] + counts[3], pressed);
     QVERIFY(counts[0] > pressed);  // the rest of the skin and the chest wall stay uncoloured
+    QVERIFY(rw.coverage_now_label()->isVisible());
+    QVERIFY2(rw.coverage_now_label()->text().contains(ui::ScoreDialog::percent(want.score.coverage[0])), qPrintable(rw.coverage_now_label()->text()));
+    rw.seek(early);
+    counts = rw.view()->coverage_counts();
+    QCOMPARE(counts[1] + counts[2] + counts[3], covered_early);
+    QVERIFY2(rw.coverage_now_label()->text().contains(ui::ScoreDialog::percent((*s.coverage_at(early))[0])),
+             qPrintable(rw.coverage_now_label()->text()));
+    rw.seek(0.0);
+    counts = rw.view()->coverage_counts();
+    QCOMPARE(counts[1] + counts[2] + counts[3], covered(s.surface_levels(nsurf, 0.0)));
+    rw.seek(end);
+    counts = rw.view()->coverage_counts();
+    QCOMPARE(counts[1] + counts[2] + counts[3], pressed);
     QTest::mouseClick(rw.coverage_button(), Qt::LeftButton);
     QVERIFY(!rw.view()->coverage_visible());
+    QVERIFY(!rw.coverage_now_label()->isVisible());
 
     // Save report: into the folder set here, the same score as `palpation score` writes.
     const QString out = dir_.filePath(QStringLiteral("review-report"));

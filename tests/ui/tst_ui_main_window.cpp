@@ -42,10 +42,12 @@
 #include <fstream>
 
 #include "force_plots.h"
+#include "pressure_dialog.h"
 #include "progress_window.h"
 #include "score_dialog.h"
 #include "store/patient_library.h"
 #include "live/training_session.h"
+#include "train/curriculum.h"
 #include "train/exam.h"
 #include "review/workstation_recorder.h"
 #include "store/recording.h"
@@ -232,7 +234,8 @@ class TstUiMainWindow : public QObject {
 
   // What the user reads in the menus (titles and actions, recursively), on the dock
   // titles and on the panels' buttons, in a fixed order. The Language menu is left out: it
-  // names each language in itself.
+  // names each language in itself; so are the built-in curricula (Mode > Curriculum), named
+  // by their files.
   QStringList visible_strings() const {
     QStringList out;
     std::function<void(const QList<QAction*>&)> walk = [&](const QList<QAction*>& actions) {
@@ -242,7 +245,7 @@ class TstUiMainWindow : public QObject {
           if (m->title().startsWith(QLatin1String("Language"))) continue;
           out << m->title();
           walk(m->actions());
-        } else if (!a->text().isEmpty()) {
+        } else if (!a->text().isEmpty() && !a->objectName().startsWith(QLatin1String("curriculum_"))) {
           out << a->text();
         }
       }
@@ -955,7 +958,42 @@ class TstUiMainWindow : public QObject {
     QCOMPARE(d->figure(QStringLiteral("deep")),
              QStringLiteral("tumour 1: %1").arg(s.tumours[0].deep_reached ? QStringLiteral("yes") : QStringLiteral("no")));
     QVERIFY(!s.advice.empty());
-    QVERIFY(d->figure(QStringLiteral("advice")).contains(QString::fromStdString(s.advice.front())));
+    QVERIFY(d->figure(QStringLiteral("advice")).contains(QString::fromStdString(s.advice.front().text())));
+    // In Japanese the advice is composed from its kind and figures (ScoreDialog::advice), not
+    // the scorer's English line; the English lines stay the report's.
+    {
+      QVERIFY(set_language(QStringLiteral("ja")));
+      ui::ScoreDialog ja(*w_->training().last_score(), {});
+      const QStringList lines = ja.figure(QStringLiteral("advice")).split(QLatin1Char('\n'));
+      QCOMPARE(lines.size(), qsizetype(s.advice.size()));
+      for (qsizetype i = 0; i < lines.size(); ++i) {
+        const QString en = QString::fromStdString(s.advice[std::size_t(i)].text());
+        qInfo("advice: %s | %s", qPrintable(en), qPrintable(lines[i]));
+        QVERIFY2(!lines[i].isEmpty() && lines[i] != en, qPrintable(lines[i]));
+      }
+      // Every kind of advice, each level's, is translated; in English it reads as the report's.
+      using K = app::train::Advice::Kind;
+      std::vector<app::train::Advice> every;
+      for (K k : {K::Coverage, K::Strips, K::Overlap, K::PressDeep, K::FalsePositives, K::Complete}) {
+        app::train::Advice a;
+        a.kind = k;
+        a.percent = 42;
+        a.count = 2;
+        a.depth_mm = 17;
+        if (k == K::Coverage)
+          for (auto l : {app::train::Level::Light, app::train::Level::Medium, app::train::Level::Deep}) {
+            a.level = l;
+            every.push_back(a);
+          }
+        else every.push_back(a);
+      }
+      QStringList untranslated;
+      for (const auto& a : every)
+        if (ui::ScoreDialog::advice(a) == QString::fromStdString(a.text())) untranslated << QString::fromStdString(a.text());
+      QVERIFY2(untranslated.isEmpty(), qPrintable(QStringLiteral("still English: ") + untranslated.join(QStringLiteral(" | "))));
+      QVERIFY(set_language(QStringLiteral("en")));
+      for (const auto& a : every) QCOMPARE(ui::ScoreDialog::advice(a), QString::fromStdString(a.text()));
+    }
     QVERIFY(d->has_coverage_image());
     doc_shot(d->grab().toImage(), "training-score.png");
 
@@ -1007,6 +1045,104 @@ class TstUiMainWindow : public QObject {
     p->close();
     if (w_->score_dialog()) w_->score_dialog()->close();
     QTest::qWait(50);
+  }
+
+  // Mode > Pressure levels...: thresholds that do not rise from light to deep are refused
+  // in the dialog (it stays open, nothing changes); good ones reach the live exam and
+  // QSettings. Hidden from a trainee.
+  void pressure_levels_are_set_in_the_dialog() {
+    using app::live::TrainingMode;
+    w_->set_mode(TrainingMode::Instructor);
+    const app::train::PressureThresholds before = w_->training().exam().thresholds();
+    ui::PressureDialog* d = w_->open_pressure_dialog();
+    QVERIFY(d);
+    QTRY_VERIFY(d->isVisible());
+    app::train::PressureThresholds bad = before;
+    bad.medium_force = bad.light_force / 2;  // medium below light
+    d->set_thresholds(bad);
+    d->accept();
+    QVERIFY(d->isVisible());
+    QVERIFY(!d->error_text().isEmpty());
+    QCOMPARE(w_->training().exam().thresholds().medium_force, before.medium_force);
+    app::train::PressureThresholds good = before;
+    good.light_force = 0.5;
+    good.deep_depth = 0.4;
+    d->set_thresholds(good);
+    d->accept();
+    QTRY_VERIFY(!w_->findChild<ui::PressureDialog*>());  // accepted and closed (deleted on close)
+    QCOMPARE(w_->training().exam().thresholds().light_force, 0.5);
+    QCOMPARE(w_->training().exam().thresholds().deep_depth, 0.4);
+    const auto stored = nlohmann::json::parse(QSettings().value(QStringLiteral("training/thresholds")).toString().toStdString());
+    QCOMPARE(stored.at("light_force").get<double>(), 0.5);
+    w_->set_mode(TrainingMode::GuidedPractice);
+    QVERIFY(!w_->open_pressure_dialog());
+    w_->set_mode(TrainingMode::Instructor);
+    w_->set_pressure_thresholds(app::train::PressureThresholds{});  // the defaults again for what follows
+    QSettings().remove(QStringLiteral("training/thresholds"));
+  }
+
+  // Mode > Curriculum: the built-in curriculum loads the trainee's first case; the exam on
+  // it is stored under the curriculum and judged by the case's criteria (the score dialog
+  // says passed or not); Next curriculum case repeats a case not passed and goes on after
+  // one passed.
+  void curriculum_cases_in_order() {
+    using app::live::TrainingMode;
+    w_->set_mode(TrainingMode::Instructor);
+    const QString who = QStringLiteral("Carol Curriculum");
+    w_->set_trainee_name(who);
+    QString err;
+    QVERIFY(!w_->set_curriculum(QStringLiteral(":/curricula/no-such.json"), &err));
+    QVERIFY2(err.contains(QStringLiteral("no-such.json")), qPrintable(err));
+    QVERIFY(!w_->training().curriculum());
+    const auto generation = [this] {
+      const auto& g = w_->workstation().tumours().patient();
+      return g ? g->generation : std::uint64_t(0);
+    };
+    const std::uint64_t before = generation();
+    QVERIFY2(w_->set_curriculum(QStringLiteral(":/curricula/cbe-basics.json"), &err), qPrintable(err));
+    const auto& cur = *w_->training().curriculum();
+    QVERIFY(cur.cases.size() >= 2);
+    QCOMPARE(w_->training().curriculum_case(), std::optional<std::size_t>(0));
+    QCOMPARE(w_->patient_name().toStdString(), cur.cases[0].name());
+    QCOMPARE(w_->curriculum_text(), QStringLiteral("Curriculum %1: case 1 of %2").arg(QString::fromStdString(cur.name)).arg(cur.cases.size()));
+    QTRY_VERIFY_WITH_TIMEOUT(generation() > before, 120000);  // the generated case is on the station
+
+    w_->set_mode(TrainingMode::Exam);
+    QVERIFY(w_->end_exam());
+    QVERIFY(w_->training().last_evaluation());
+    const bool passed = w_->training().last_evaluation()->passed;
+    QVERIFY(!passed);  // an exam ended at once finds nothing
+    ui::ScoreDialog* d = w_->score_dialog();
+    QVERIFY(d);
+    QVERIFY2(d->figure(QStringLiteral("result")).startsWith(QStringLiteral("not passed: ")), qPrintable(d->figure(QStringLiteral("result"))));
+    auto results = w_->library()->results(who.toStdString());
+    QCOMPARE(results.size(), std::size_t(1));
+    QCOMPARE(results.back().curriculum, cur.name);
+    QCOMPARE(results.back().case_name, cur.cases[0].name());
+    QCOMPARE(results.back().passed, false);
+
+    // Not passed: the same case again, a new exam on it.
+    QVERIFY2(w_->next_curriculum_case(&err), qPrintable(err));
+    QCOMPARE(w_->training().curriculum_case(), std::optional<std::size_t>(0));
+    QVERIFY(w_->training().exam_running());
+    QVERIFY(w_->end_exam());
+    // Passed (recorded as the library would after a good exam): the next case.
+    app::store::ExamResult ok = results.back();
+    ok.passed = true;
+    w_->library()->record_result(ok);
+    QVERIFY2(w_->next_curriculum_case(&err), qPrintable(err));
+    QCOMPARE(w_->training().curriculum_case(), std::optional<std::size_t>(1));
+    QCOMPARE(w_->patient_name().toStdString(), cur.cases[1].name());
+    if (w_->score_dialog()) w_->score_dialog()->close();
+
+    w_->set_mode(TrainingMode::Instructor);
+    w_->clear_curriculum();
+    QVERIFY(!w_->training().curriculum());
+    QVERIFY(w_->curriculum_text().isEmpty());
+    // The default patient again for what follows.
+    const std::uint64_t at_case = generation();
+    QVERIFY2(w_->choose_patient(QStringLiteral("phantom:breast"), &err), qPrintable(err));
+    QTRY_VERIFY_WITH_TIMEOUT(generation() > at_case, 120000);
   }
 
   // The Japanese catalogue (translations/palpation_ja.ts, compiled into :/i18n/palpation_ja.qm
