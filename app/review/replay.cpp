@@ -30,6 +30,15 @@ using store::Recording;
 
 const char* replay_force_name(ReplayForce f) { return f == ReplayForce::Simulated ? "simulated" : "sent"; }
 
+void ReplayResult::set_headline(ReplayForce f, const ForceDiff& d) {
+  compared_force = f;
+  max_force_diff = d.max_diff;
+  max_diff_t = d.at_t;
+  max_diff_finger = d.finger;
+  max_recorded_force = d.max_recorded_force;
+  compared = d.compared;
+}
+
 void ForceDiff::add(double t, int k, const Eigen::Vector3d& replayed, const Eigen::Vector3d& recorded) {
   if (!recorded.allFinite()) return;
   max_recorded_force = std::max(max_recorded_force, recorded.norm());
@@ -260,12 +269,7 @@ ReplayResult replay_steps(const Recording& rec, const ReplayOptions& opt) {
   }
   run_ticks(HUGE_VAL);
 
-  r.compared_force = ReplayForce::Simulated;
-  r.max_force_diff = simulated.max_diff;
-  r.max_diff_t = simulated.at_t;
-  r.max_diff_finger = simulated.finger;
-  r.max_recorded_force = simulated.max_recorded_force;
-  r.compared = simulated.compared;
+  r.set_headline(ReplayForce::Simulated, simulated);
   const double wall = std::chrono::duration<double>(clock_type::now() - wall0).count();
   const sim::Model& m = simulation->model();
   json& j = r.run.summary;
@@ -342,12 +346,7 @@ ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt) {
   ForceDiff sent;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < nf; ++k) sent.add(rec.t[i], int(k), r.run.samples[i * nf + k].f * scale, rec.f[i * nf + k]);
-  r.compared_force = ReplayForce::Sent;
-  r.max_force_diff = sent.max_diff;
-  r.max_diff_t = sent.at_t;
-  r.max_diff_finger = sent.finger;
-  r.max_recorded_force = sent.max_recorded_force;
-  r.compared = sent.compared;
+  r.set_headline(ReplayForce::Sent, sent);
   auto& j = r.run.summary;
   j["replay"] = {{"recording", rec.path},
                  {"recorded_ticks", rec.ticks()},

@@ -70,6 +70,8 @@ struct ReplayResult {
   double force_scale = 1.0;          // device force per simulated force (the first patient's)
   std::string force_scale_source;    // "recorded" (the header or the session's events), "re-measured" (the
                                      // patient's deep press again, as the workstation chose it), "none" (1)
+  /// Makes `d` the headline comparison, of force `f`.
+  void set_headline(ReplayForce f, const ForceDiff& d);
 };
 
 /// The scenario a recording was made with, its finger paths replaced by the recorded

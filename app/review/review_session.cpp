@@ -106,22 +106,7 @@ ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path
     markers_.push_back(std::move(m));
   }
   // Parameter changes as data: applied by the re-simulation before the step that saw them.
-  for (const json& e : rec_.events) {
-    if (!e.is_object() || e.value("kind", "") != "parameter" || !e.contains("index") || !e["index"].is_number_unsigned())
-      continue;
-    Command c;
-    c.index = e["index"].get<std::uint64_t>();
-    c.kind = e.value("command", "");
-    if (c.kind == "young" && e.contains("changes") && e["changes"].is_array()) {
-      for (const auto& p : e["changes"])
-        if (p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number())
-          c.young.emplace_back(p[0].get<int>(), p[1].get<double>());
-    } else if ((c.kind == "params" || c.kind == "patient") && e.contains("scenario")) {
-      c.scenario = e["scenario"];
-    }
-    commands_.push_back(std::move(c));
-  }
-  std::stable_sort(commands_.begin(), commands_.end(), [](const Command& a, const Command& b) { return a.index < b.index; });
+  commands_ = recorded_commands(rec_);
   const std::size_t n = has_steps() ? rec_.steps.size() : rec_.ticks();
   resim_t_.assign(n, 0.0);
   resim_f_.assign(n * std::size_t(rec_.fingers), Eigen::Vector3d::Zero());
@@ -266,7 +251,7 @@ void ReviewSession::run_steps(const std::string& backend) {
     // batch: in order on the current model, a patient swap after the batch.
     const json* swap = nullptr;
     while (ci < commands_.size() && commands_[ci].index < st.commands_applied) {
-      const Command& c = commands_[ci++];
+      const RecordedCommand& c = commands_[ci++];
       if (c.kind == "young") apply_element_young(*simulation, c.young);
       else if (c.kind == "params") apply_params(*simulation, sim::parse_scenario(c.scenario.dump(), rec_.path + ": params change").params);
       else if (c.kind == "patient") swap = &c.scenario;

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "review/replay.h"
 #include "store/recording.h"
 #include "live/workstation.h"
 #include "train/score_recording.h"
@@ -157,13 +158,7 @@ class ReviewSession {
   mutable std::string score_error_;
   mutable std::atomic<bool> score_ready_{false};
   std::vector<ReviewMarker> markers_;
-  struct Command {
-    std::uint64_t index = 0;
-    std::string kind;
-    std::vector<std::pair<int, double>> young;
-    nlohmann::json scenario;
-  };
-  std::vector<Command> commands_;
+  std::vector<RecordedCommand> commands_;  // the recording's, in queue order (replay.h)
   std::vector<Eigen::Vector3d> resim_f_;   // per step (or tick) x fingers
   std::vector<double> resim_t_;            // per step (or tick)
   std::vector<std::shared_ptr<const ReviewFrame>> frames_;

@@ -5,6 +5,8 @@
 // machine by tools/gpu-check.sh; this suite is its small, Qt-side twin.
 #include <QtTest>
 
+#include "relative_error.h"
+
 #include <cmath>
 #include <string>
 
@@ -40,14 +42,6 @@ Trace run(const Scenario& s, const Model& m, const std::string& backend, int ste
   return t;
 }
 
-double rel(const std::vector<double>& a, const std::vector<double>& r) {
-  double n = 0, d = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    n += (a[i] - r[i]) * (a[i] - r[i]);
-    d += r[i] * r[i];
-  }
-  return a.size() == r.size() && d > 0 ? std::sqrt(n / d) : INFINITY;
-}
 
 // Hertz indentation on the coarse box: no contact for 500 steps (the rest path), then
 // pressing: 700 steps cover both.
@@ -123,12 +117,12 @@ class TestBackendAgreement : public QObject {
     const Trace kept5 = run(s, m, "cpu", steps);
     double fmax = 0;
     for (double f : full.force) fmax = std::max(fmax, std::abs(f));
-    const double e3 = rel(kept3.force, full.force), e5 = rel(kept5.force, full.force);
+    const double e3 = relative_error(kept3.force, full.force), e5 = relative_error(kept5.force, full.force);
     qInfo("peak force component %.2f N; force error at tolerance 1e-3: %.2e, at 1e-5: %.2e", fmax, e3, e5);
     QVERIFY2(fmax > 1.0, "the fingertip never pressed: nothing compared");
     QVERIFY2(e3 <= 5e-3, qPrintable(QString("force error %1 at 1e-3").arg(e3)));
     QVERIFY2(e5 <= 1e-2 * e3 && e5 <= 1e-5, qPrintable(QString("force error %1 at 1e-5").arg(e5)));
-    QVERIFY2(rel(kept3.x, full.x) <= 5e-3, "positions differ");
+    QVERIFY2(relative_error(kept3.x, full.x) <= 5e-3, "positions differ");
   }
 
   // Too few CG iterations for the tolerance (a real-time budget: 5 per step on the coarse
@@ -158,7 +152,7 @@ class TestBackendAgreement : public QObject {
     } catch (const std::exception& e) {
       QFAIL(e.what());
     }
-    const double e = rel(capped.force, converged.force);
+    const double e = relative_error(capped.force, converged.force);
     qInfo("5 CG iterations per step: force error %.2e against CG 1e-3", e);
     QVERIFY2(e <= 1e-2, qPrintable(QString("force error %1").arg(e)));
   }
@@ -176,7 +170,7 @@ class TestBackendAgreement : public QObject {
     const Model m = build_scenario_model(s, patient_mesh(s));
     const Trace cpu = run(s, m, "cpu", 700);
     const Trace gpu = run(s, m, backend.toStdString(), 700);
-    const double ef = rel(gpu.force, cpu.force), ex = rel(gpu.x, cpu.x);
+    const double ef = relative_error(gpu.force, cpu.force), ex = relative_error(gpu.x, cpu.x);
     qInfo("%s double against cpu double (Hertz, coarse box, 700 steps): force error %.2e, position error %.2e",
           qPrintable(backend), ef, ex);
     QVERIFY2(ef <= 1e-6, qPrintable(QString("force error %1").arg(ef)));
@@ -196,7 +190,7 @@ class TestBackendAgreement : public QObject {
     sf.params.solver.cg_max_iterations = 1000;
     const Trace cpu = run(s, m, "cpu", 700);
     const Trace gpu = run(sf, m, "cuda", 700);
-    const double ef = rel(gpu.force, cpu.force), ex = rel(gpu.x, cpu.x);
+    const double ef = relative_error(gpu.force, cpu.force), ex = relative_error(gpu.x, cpu.x);
     qInfo("cuda float against cpu double (Hertz, coarse box, 700 steps): force error %.2e, position error %.2e", ef, ex);
     QVERIFY2(ef <= 2e-2, qPrintable(QString("force error %1").arg(ef)));
     QVERIFY2(ex <= 2e-2, qPrintable(QString("position error %1").arg(ex)));

@@ -5,6 +5,8 @@
 // with a visible reason where no GPU is usable.
 #include <QtTest>
 
+#include "relative_error.h"
+
 #include <cmath>
 #include <memory>
 #include <string>
@@ -63,14 +65,6 @@ double max_displacement(const Backend& b, const Model& m) {
   return d;
 }
 
-double rel(const std::vector<double>& a, const std::vector<double>& r) {
-  double n = 0, d = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    n += (a[i] - r[i]) * (a[i] - r[i]);
-    d += r[i] * r[i];
-  }
-  return a.size() == r.size() && d > 0 ? std::sqrt(n / d) : INFINITY;
-}
 
 }  // namespace
 
@@ -159,7 +153,7 @@ class TestWorkSkipping : public QObject {
     // rho g H^2 / (2 E) = 1000 * 9.81 * 0.02^2 / (2 * 19000) ~ 0.1 mm: the reference did sag.
     QVERIFY2(sag > 2e-5, "the reference never sagged: nothing compared");
     // The same state and the same steps: equal to rounding (the CG is solved to 1e-10).
-    const double e = rel(x, xr);
+    const double e = relative_error(x, xr);
     QVERIFY2(max_displacement(*b, m) > 0.9 * sag && e < 1e-6,
              qPrintable(QString("sag %1 mm against %2 mm, position error %3").arg(max_displacement(*b, m) * 1e3).arg(sag * 1e3).arg(e)));
     // Settled under gravity (it rests again), a damping change is solved for, then rests.
@@ -214,14 +208,14 @@ class TestWorkSkipping : public QObject {
         fr.push_back(outr[0].force[c]);
       }
     }
-    const double e = rel(f, fr);
+    const double e = relative_error(f, fr);
     qInfo("finger force %.3f N; after the tolerance switch the force differs by %.2e relative", outr[0].force.norm(), e);
     QVERIFY2(outr[0].force.norm() > 0.1, "the finger never pressed: nothing compared");
     QVERIFY2(e < 5e-3, qPrintable(QString("force error %1 after the switch").arg(e)));
     std::vector<double> x, xr;
     b->positions(x);
     ref->positions(xr);
-    QVERIFY2(rel(x, xr) < 5e-3, qPrintable(QString("position error %1").arg(rel(x, xr))));
+    QVERIFY2(relative_error(x, xr) < 5e-3, qPrintable(QString("position error %1").arg(relative_error(x, xr))));
     // The switch assembled once in full, then the kept stiffness was updated in place.
     QCOMPARE(cpu_work_counters(*b).full_assemblies, full0 + 1);
   }
