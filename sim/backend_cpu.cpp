@@ -233,8 +233,9 @@ class CpuBackend final : public Backend {
       dvprev_ = dv_;
     }
     const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
-                               cg_, parallel());
+                               cg_, parallel(), T(p_.solver.cg_rescue_tolerance), p_.solver.cg_rescue_iterations);
     st.cg_iterations = res.iterations;
+    st.rescued = res.rescued;
     last_converged_ = res.converged;
     st.cg_residual = res.relative_residual;
     st.solved = true;

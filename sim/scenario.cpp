@@ -187,8 +187,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
 
   if (j.contains("solver")) {
     const json& sv = j["solver"];
-    rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations", "threads",
-                             "corotation_tolerance"});
+    rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations",
+                             "cg_rescue_tolerance", "cg_rescue_iterations", "threads", "corotation_tolerance"});
     if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
     if (sv.contains("dt")) {
       s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
@@ -203,6 +203,13 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     }
     if (sv.contains("cg_max_iterations"))
       s.params.solver.cg_max_iterations = rd.integer(sv["cg_max_iterations"], "solver.cg_max_iterations", 1, 100000);
+    if (sv.contains("cg_rescue_tolerance")) {
+      s.params.solver.cg_rescue_tolerance = rd.positive(sv["cg_rescue_tolerance"], "solver.cg_rescue_tolerance");
+      if (s.params.solver.cg_rescue_tolerance >= 1) rd.fail("solver.cg_rescue_tolerance", "must be < 1");
+    }
+    if (sv.contains("cg_rescue_iterations"))
+      s.params.solver.cg_rescue_iterations =
+          rd.integer(sv["cg_rescue_iterations"], "solver.cg_rescue_iterations", 0, 100000);
     if (sv.contains("threads")) s.params.solver.threads = rd.integer(sv["threads"], "solver.threads", 0, 256);
     if (sv.contains("corotation_tolerance")) {
       s.params.solver.corotation_tolerance = rd.non_negative(sv["corotation_tolerance"], "solver.corotation_tolerance");
@@ -323,6 +330,8 @@ std::string scenario_to_json(const Scenario& s) {
                  {"precision", sv.precision == Precision::Float ? "float" : "double"},
                  {"cg_tolerance", sv.cg_tolerance},
                  {"cg_max_iterations", sv.cg_max_iterations},
+                 {"cg_rescue_tolerance", sv.cg_rescue_tolerance},
+                 {"cg_rescue_iterations", sv.cg_rescue_iterations},
                  {"corotation_tolerance", sv.corotation_tolerance}};
   j["contact"] = {{"stiffness", s.params.contact.stiffness},
                   {"damping", s.params.contact.damping},

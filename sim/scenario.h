@@ -73,7 +73,7 @@ struct Scenario {
 
 /// Largest tumour/tissue Young's modulus ratio (either way) a scenario may ask for: the
 /// stability bound measured by `palpation stress` (docs/stability.md).
-inline constexpr double kMaxStiffnessContrast = 30.0;
+inline constexpr double kMaxStiffnessContrast = 10000.0;
 
 /// Parses and validates. Throws ScenarioError("FILE: FIELD: reason").
 Scenario parse_scenario(const std::string& json_text, const std::string& source_name);

@@ -32,7 +32,7 @@ double tet_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 double min_tet_quality(const TetMesh& m, int* worst = nullptr);
 /// Slivers below this make the CG solve of a step stall (stress case sliver-0.1%, quality
 /// 0.0011: residual 6e-3 after 500 iterations; sliver-2%, quality 0.022, converges).
-inline constexpr double kMinTetQuality = 0.01;
+inline constexpr double kMinTetQuality = 0.001;
 
 /// Applies inclusions to a model's elements (centroid test). Returns elements changed.
 int apply_inclusions(Model& m, const std::vector<Inclusion>& inclusions);

@@ -48,6 +48,7 @@ struct Result {
   int iterations = 0;
   double relative_residual = 0.0;
   bool converged = false;
+  bool rescued = false;  // went past max_iter towards rescue_tol
 };
 
 /// y = A x; returns x . y when `dot_out` is set (fused: one pass over the matrix).
@@ -176,11 +177,13 @@ inline void thread_rows(int n, int& lo, int& hi) {
   hi = int(std::int64_t(n) * (t + 1) / nt);
 }
 
-/// Solves A x = b to ||b - A x|| <= tol ||b|| or max_iter iterations. Two passes over
-/// memory per iteration: the product (fused with p . q) and one fused update
-/// (x, r, z = P r, r . z, r . r).
+/// Solves A x = b to ||b - A x|| <= tol ||b|| or max_iter iterations; a solve still above
+/// rescue_tol ||b|| there goes on to rescue_tol or rescue_iter iterations in all
+/// (SolverParams::cg_rescue_tolerance says why). Two passes over memory per iteration: the
+/// product (fused with p . q) and one fused update (x, r, z = P r, r . z, r . r).
 template <class T>
-Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Workspace<T>& w, bool parallel) {
+Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Workspace<T>& w, bool parallel,
+             T rescue_tol = T(1), int rescue_iter = 0) {
   const int n = 3 * A.n;
   w.resize(n);
   build_block_jacobi(A, w.precond.data());
@@ -214,7 +217,7 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
   T rz = precondition(P, r, z, 0, A.n);
   for (int i = 0; i < n; ++i) p[i] = z[i];
   int it = 0;
-  while (it < max_iter && rnorm > tol * bnorm) {
+  while ((it < max_iter && rnorm > tol * bnorm) || (it < rescue_iter && rnorm > rescue_tol * bnorm)) {
     T pq = 0;
     multiply(A, p, q, parallel, &pq);
     if (!(pq > 0)) break;  // not positive definite along p (or NaN): stop, report
@@ -237,6 +240,7 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
   res.iterations = it;
   res.relative_residual = double(rnorm / bnorm);
   res.converged = rnorm <= tol * bnorm;
+  res.rescued = it > max_iter;
   return res;
 }
 

@@ -50,6 +50,7 @@ struct StressResult {
   double rest_displacement = -1;      // m, largest |x - rest| at the end (after release)
   double rest_speed = -1;             // m/s, at the end
   int cg_max_iterations = 0, cg_unconverged = 0;
+  int cg_rescued = 0;  // steps whose solve went past the cap (SolverParams::cg_rescue_tolerance)
   double cg_worst_residual = 0;
   int divergences = 0;
   double min_quality = -1;            // lowest element quality of an edited mesh (-1: not computed)

@@ -137,8 +137,8 @@ void validate(const CaseRanges& r, const std::string& source, const std::string&
                 std::to_string(r.tumours_min) + ", " + std::to_string(r.tumours_max) + "]");
   range("diameter", r.diameter_min, r.diameter_max, CaseRanges::kMinDiameter, CaseRanges::kMaxDiameter, " m");
   range("depth", r.depth_min, r.depth_max, CaseRanges::kMinDepth, CaseRanges::kMaxDepth, " m");
-  range("hardness", r.hardness_min, r.hardness_max, CaseRanges::kMinHardness, sim::kMaxStiffnessContrast,
-        " (x tissue; the upper bound is the simulation's stiffness-contrast limit, docs/stability.md)");
+  range("hardness", r.hardness_min, r.hardness_max, CaseRanges::kMinHardness, CaseRanges::kMaxHardness,
+        " (x tissue; above 30x no published lesion, docs/training.md)");
   range("base_radius", r.base_radius_min, r.base_radius_max, CaseRanges::kMinBaseRadius, CaseRanges::kMaxBaseRadius, " m");
   range("height", r.height_min, r.height_max, CaseRanges::kMinHeight, CaseRanges::kMaxHeight, " m");
   // A grid point must lie in each range (0.1 mm lengths, 0.1x hardness).

@@ -44,6 +44,10 @@ struct CaseRanges {
   static constexpr double kMinDiameter = 0.002, kMaxDiameter = 0.03;
   static constexpr double kMinDepth = 0.002, kMaxDepth = 0.05;
   static constexpr double kMinHardness = 1.5;        // below, the scorer's tumour rule (1.2x) is too close
+  // Above, no published lesion: invasive ductal carcinoma reaches 460-558 kPa against fat's
+  // 20-24 kPa at 15 % precompression (docs/training.md), about 25x; the simulation itself
+  // handles up to sim::kMaxStiffnessContrast.
+  static constexpr double kMaxHardness = 30;
   static constexpr double kMinBaseRadius = 0.05, kMaxBaseRadius = 0.1;
   static constexpr double kMinHeight = 0.035, kMaxHeight = 0.09;
 };

@@ -378,6 +378,7 @@ class CudaBackend final : public Backend {
     }
     st.cg_iterations = iterations;
     st.cg_residual = residual;
+    st.rescued = iterations > p_.solver.cg_max_iterations;
     st.solved = true;
     st.contacts = R.start_contacts;
     rested_ = R.rested != 0;
@@ -463,6 +464,8 @@ class CudaBackend final : public Backend {
     a.h = T(p_.solver.dt);
     a.tol = T(p_.solver.cg_tolerance);
     a.max_it = p_.solver.cg_max_iterations;
+    a.rescue_tol = T(p_.solver.cg_rescue_tolerance);
+    a.rescue_it = p_.solver.cg_rescue_iterations;
     a.fused = fused_ ? 1 : 0;
     a.scr = scratch_.get();
     a.res = dev_res_;

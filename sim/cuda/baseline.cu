@@ -119,7 +119,7 @@ class CsrBaselineImpl final : public CsrBaseline<T> {
       precondition(a.P, r, z);
       copy(z, p);
       T rz = dot(r, z);
-      while (it < max_it && rnorm > tol * bnorm) {
+      while ((it < max_it && rnorm > tol * bnorm) || (it < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
         spmv(vec_p_);
         const T pq = dot(p, q);
         if (!(pq > 0)) break;

@@ -202,7 +202,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     bool first = true;
     T* pold = a.p0;
     T* pnew = a.p1;
-    while (it < a.max_it && rnorm > a.tol * bnorm) {
+    while ((it < a.max_it && rnorm > a.tol * bnorm) || (it < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
       // Search direction p = z + beta p (first: p = z) and q = A p.
       if (!a.fused) {
         for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];

@@ -34,6 +34,8 @@ struct PcgArgs {
   T h;
   T tol;
   int max_it;
+  T rescue_tol;   // past max_it: on while above rescue_tol, up to rescue_it in all
+  int rescue_it;
   int fused;  // 1: search direction updated inside the SpMV (2 barriers per iteration)
   DevScratch* scr;
   DevResult* res;

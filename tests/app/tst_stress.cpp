@@ -53,8 +53,8 @@ class TestStress : public QObject {
   // Each case: finite, bounded, the device within its limit, back at rest, CG converged.
   void matrixSubset_data() {
     QTest::addColumn<QString>("name");
-    for (const char* n : {"dt-50ms", "contrast-30x", "poisson-0.499", "jump-through", "squeeze-5", "inverted-order",
-                          "sliver-2%"})
+    for (const char* n : {"dt-50ms", "contrast-30x", "contrast-1000x", "poisson-0.499", "jump-through", "squeeze-5",
+                          "inverted-order", "sliver-2%", "sliver-0.1%"})
       QTest::newRow(n) << QString(n);
   }
   void matrixSubset() {
@@ -74,19 +74,40 @@ class TestStress : public QObject {
     QCOMPARE(r.cg_unconverged, 0);
   }
 
-  // Beyond the measured bounds the input is refused with one line naming the field:
-  // stiffness contrast above 30x, sliver elements in a mesh file (docs/stability.md).
-  void outOfBoundsIsRefused() {
+  // The hard cases need more CG iterations than the cap: the rescue takes them to the
+  // tolerance (matrixSubset asserts that), and the steps that went past the cap are counted.
+  void hardCasesAreRescued() {
     const auto cases = app::cli::stress_cases(true);
     for (const char* n : {"contrast-1000x", "sliver-0.1%"}) {
       const app::cli::StressResult r = app::cli::run_stress_case(find_case(cases, n), "cpu");
-      QVERIFY2(r.skipped, n);
-      QVERIFY(r.skip_reason.find('\n') == std::string::npos);
-      QCOMPARE(r.steps, 0);
+      QVERIFY2(r.pass && !r.skipped, n);
+      QVERIFY2(r.cg_max_iterations > find_case(cases, n).scenario.params.solver.cg_max_iterations || r.cg_rescued == 0, n);
     }
-    const app::cli::StressResult c = app::cli::run_stress_case(find_case(cases, "contrast-1000x"), "cpu");
-    QVERIFY2(c.skip_reason.find("inclusions[0].young_modulus: must be within 30x") != std::string::npos, c.skip_reason.c_str());
     const app::cli::StressResult m = app::cli::run_stress_case(find_case(cases, "sliver-0.1%"), "cpu");
+    QVERIFY2(m.cg_rescued > 0, "the 0.1 % slivers need more than the cap of 500 iterations");
+    QVERIFY(m.min_quality > sim::kMinTetQuality && m.min_quality < 0.01);
+  }
+
+  // Beyond the measured bounds the input is refused with one line naming the field:
+  // stiffness contrast above 10,000x, elements below quality 0.001 in a mesh file
+  // (docs/stability.md).
+  void outOfBoundsIsRefused() {
+    const auto cases = app::cli::stress_cases(true);
+    app::cli::StressCase stiff = find_case(cases, "contrast-10000x");
+    stiff.scenario.inclusions[0].young_modulus *= 3;
+    const app::cli::StressResult c = app::cli::run_stress_case(stiff, "cpu");
+    QVERIFY2(c.skipped && c.steps == 0, c.skip_reason.c_str());
+    QVERIFY(c.skip_reason.find('\n') == std::string::npos);
+    QVERIFY2(c.skip_reason.find("inclusions[0].young_modulus: must be within 10000x") != std::string::npos,
+             c.skip_reason.c_str());
+    app::cli::StressCase flat = find_case(cases, "sliver-0.1%");
+    flat.mesh_edit = [](sim::TetMesh& m) {  // the top cell layer flattened to 0.02 % of its 6 mm
+      for (auto& p : m.nodes)
+        if (std::abs(p.z() - 0.024) < 1e-9) p.z() = 0.03 - 0.0002 * 0.006;
+    };
+    const app::cli::StressResult m = app::cli::run_stress_case(flat, "cpu");
+    QVERIFY2(m.skipped && m.steps == 0, m.skip_reason.c_str());
+    QVERIFY(m.skip_reason.find('\n') == std::string::npos);
     QVERIFY2(m.skip_reason.find("patient.mesh") != std::string::npos && m.skip_reason.find("sliver") != std::string::npos,
              m.skip_reason.c_str());
     QVERIFY(m.min_quality > 0 && m.min_quality < sim::kMinTetQuality);

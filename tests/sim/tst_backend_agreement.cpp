@@ -146,6 +146,7 @@ class TestBackendAgreement : public QObject {
     const Trace converged = run(s, m, "cpu", steps);
     s.params.solver.cg_tolerance = 1e-10;
     s.params.solver.cg_max_iterations = 5;
+    s.params.solver.cg_rescue_iterations = 0;  // a fixed-iteration solver: no rescue past the cap
     Trace capped;
     try {
       capped = run(s, m, "cpu", steps);
