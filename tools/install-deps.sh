@@ -8,7 +8,7 @@ if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 PACKAGES="build-essential cmake ninja-build git pkg-config \
   qt6-base-dev libqt6opengl6-dev qt6-charts-dev libqt6sql6-sqlite libqt6sql6-psql qt6-tools-dev qt6-tools-dev-tools \
   qt6-l10n-tools libvtk9-dev libassimp-dev libeigen3-dev libgmsh-dev gmsh nlohmann-json3-dev \
-  libcli11-dev xvfb xauth libgl1-mesa-dri fonts-ipafont-gothic postgresql"
+  libcli11-dev libzstd-dev xvfb xauth libgl1-mesa-dri fonts-ipafont-gothic postgresql"
 missing=""
 for p in $PACKAGES; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -460,8 +460,8 @@ void ReviewWindow::show_time() {
     // The recorded patient's tumours as it was loaded.
     view_->show_tumours(app::live::TumourDocument(fr->geometry));
   }
-  if (fr.get() != shown_) {
-    shown_ = fr.get();
+  if (fr != shown_) {
+    shown_ = fr;
     view_->show_snapshot(fr->snapshot);
   }
 }

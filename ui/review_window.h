@@ -128,7 +128,9 @@ class ReviewWindow : public QMainWindow {
   qint64 last_tick_ms_ = 0, last_series_ms_ = 0;
   std::uint64_t generation_ = 0;
   std::size_t series_done_ = 0;
-  const app::review::ReviewFrame* shown_ = nullptr;
+  // The frame the view shows, held: the review decodes frames on demand and frees those it
+  // no longer keeps, so a new frame may reuse a shown one's address.
+  std::shared_ptr<const app::review::ReviewFrame> shown_;
 };
 
 }  // namespace palpation::ui

@@ -35,5 +35,8 @@ struct BenchSetting {
 nlohmann::json run_bench(const BenchOptions& opt);
 /// The time to score a 5-minute exam recording (palpation bench --score; bench_score.cpp).
 nlohmann::json run_score_bench(const BenchOptions& opt);
+/// The memory a review of `recording` keeps, and the time to show a frame (palpation bench
+/// --review FILE; bench_review.cpp).
+nlohmann::json run_review_bench(const BenchOptions& opt, const std::string& recording);
 
 }  // namespace palpation::app::cli

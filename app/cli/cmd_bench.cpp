@@ -1,4 +1,4 @@
-// palpation bench [--quick] [--out DIR] [--meshes ...] [--backends ...] [--precisions ...]
+// palpation bench [--quick] [--out DIR] [--meshes ...] [--backends ...] [--precisions ...] [--score] [--review FILE]
 #include <cstdio>
 
 #include "cli/bench.h"
@@ -18,7 +18,14 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_option("--scenario", o->scenario, "Built-in scenario to step (paper-sweep, idle, hertz)");
   auto score = std::make_shared<bool>(false);
   sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
-  return [o, score]() {
+  auto review = std::make_shared<std::string>();
+  sub->add_option("--review", *review,
+                  "Instead: the memory a review of this recording keeps, re-simulated to its end (writes DIR/review-bench.json)");
+  return [o, score, review]() {
+    if (!review->empty()) {
+      run_review_bench(*o, *review);
+      return kExitOk;
+    }
     if (*score) {
       run_score_bench(*o);
       return kExitOk;

@@ -108,7 +108,6 @@ ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path
   // Parameter changes as data: applied by the re-simulation before the step that saw them.
   commands_ = recorded_commands(rec_);
   const std::size_t n = has_steps() ? rec_.steps.size() : rec_.ticks();
-  resim_t_.assign(n, 0.0);
   resim_f_.assign(n * std::size_t(rec_.fingers), Eigen::Vector3d::Zero());
 }
 
@@ -199,25 +198,50 @@ void ReviewSession::cancel() {
 
 void ReviewSession::keep_frame(double t, sim::Simulation& s, const std::shared_ptr<const PatientGeometry>& g,
                                const std::vector<sim::FingerInput>& in, const std::vector<Eigen::Vector3d>& f) {
-  auto fr = std::make_shared<ReviewFrame>();
-  fr->t = t;
-  fr->geometry = g;
   std::vector<double> xyz;
   s.backend().positions(xyz);
-  RenderSnapshot& rs = fr->snapshot;
-  rs.model_generation = g->generation;
-  rs.sim_time = t;
-  rs.positions.resize(xyz.size());
-  for (std::size_t i = 0; i < xyz.size(); ++i) rs.positions[i] = float(xyz[i]);
+  FrameStore::Fingers fingers;
   for (std::size_t d = 0; d < in.size() && d < std::size_t(dv::kMaxFingers); ++d) {
-    rs.finger_position[d] = in[d].position;
-    rs.finger_force[d] = f[d];
-    rs.finger_active[d] = in[d].active;
-    rs.finger_radius = in[d].radius;
+    fingers.position[d] = in[d].position;
+    fingers.force[d] = f[d];
+    fingers.active[d] = in[d].active;
+    fingers.radius = in[d].radius;
   }
+  if (keep_raw_) {
+    std::lock_guard<std::mutex> lk(mu_);
+    raw_frames_.emplace_back(xyz.begin(), xyz.end());
+  }
+  frames_.add(t, g, xyz, fingers);
+}
+
+std::vector<float> ReviewSession::raw_frame_for_test(std::size_t i) const {
   std::lock_guard<std::mutex> lk(mu_);
-  rs.sequence = frames_.size() + 1;
-  frames_.push_back(std::move(fr));
+  return i < raw_frames_.size() ? raw_frames_[i] : std::vector<float>();
+}
+
+ReviewSession::Memory ReviewSession::memory() const {
+  Memory m;
+  m.frames = frames_.bytes();
+  m.frame_cache = frames_.cache_bytes();
+  m.resimulation = resim_f_.capacity() * sizeof(Eigen::Vector3d);
+  {
+    std::lock_guard<std::mutex> lk(mu_);
+    for (const auto& r : raw_frames_) m.frame_cache += r.capacity() * sizeof(float);
+  }
+  // The recording: its arrays, each step's fingers (one allocation each, ~16 bytes of
+  // allocator overhead), the events as their JSON text (nlohmann's tree is larger; a few kB).
+  m.recording = rec_.t.capacity() * sizeof(double) + (rec_.x.capacity() + rec_.f.capacity()) * sizeof(Eigen::Vector3d) +
+                rec_.steps.capacity() * sizeof(store::RecordedStep);
+  for (const auto& st : rec_.steps) m.recording += st.fingers.capacity() * sizeof(store::RecordedStep::Finger) + 16;
+  m.recording += rec_.events.capacity() * sizeof(json) + rec_.header.dump().size();
+  for (const auto& e : rec_.events) m.recording += e.dump().size();
+  for (const auto& g : frames_.patients()) {
+    if (!g) continue;
+    m.geometry += g->rest.capacity() * sizeof(Eigen::Vector3d) + g->tets.capacity() * sizeof(std::array<int, 4>) +
+                  g->surface.capacity() * sizeof(std::array<int, 3>) + g->centroid.capacity() * sizeof(Eigen::Vector3d) +
+                  g->young.capacity() * sizeof(double);
+  }
+  return m;
 }
 
 void ReviewSession::run_steps(const std::string& backend) {
@@ -286,7 +310,6 @@ void ReviewSession::run_steps(const std::string& backend) {
       }
       ++cmp.compared;
     }
-    resim_t_[i] = st.t;
     if (st.t - last_frame >= frame_period || i + 1 == rec_.steps.size()) {
       last_frame = st.t;
       keep_frame(st.t, *simulation, geometry, in, f);
@@ -359,7 +382,6 @@ void ReviewSession::run_ticks(const std::string& backend) {
       }
       ++cmp.compared;
     }
-    resim_t_[i] = rec_.t[i];
     if (rec_.t[i] - last_frame >= frame_period || i + 1 == rec_.ticks()) {
       last_frame = rec_.t[i];
       keep_frame(rec_.t[i], simulation, geometry, in, f);
@@ -373,21 +395,20 @@ void ReviewSession::run_ticks(const std::string& backend) {
   }
 }
 
-std::shared_ptr<const ReviewFrame> ReviewSession::frame_at(double t) const {
-  std::lock_guard<std::mutex> lk(mu_);
-  if (frames_.empty()) return nullptr;
-  auto it = std::upper_bound(frames_.begin(), frames_.end(), t,
-                             [](double v, const std::shared_ptr<const ReviewFrame>& f) { return v < f->t; });
-  if (it == frames_.begin()) return frames_.front();
-  return *(it - 1);
-}
+std::shared_ptr<const ReviewFrame> ReviewSession::frame_at(double t) const { return frames_.at_time(t); }
 
 bool ReviewSession::resim_force_at(double t, int k, Eigen::Vector3d& f) const {
   const std::size_t n = done();
   if (n == 0 || k < 0 || k >= rec_.fingers) return false;
-  auto it = std::upper_bound(resim_t_.begin(), resim_t_.begin() + std::ptrdiff_t(n), t);
-  if (it == resim_t_.begin()) return false;
-  const std::size_t i = std::size_t(it - resim_t_.begin()) - 1;
+  // The first step (tick) after t among the n done.
+  std::size_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (t < resim_t(mid)) hi = mid;
+    else lo = mid + 1;
+  }
+  if (lo == 0) return false;
+  const std::size_t i = lo - 1;
   f = resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)];
   return true;
 }
@@ -416,9 +437,9 @@ std::vector<std::pair<double, double>> ReviewSession::resim_series(int k, double
   const std::size_t n = done();
   double last = -1e300;
   for (std::size_t i = 0; i < n; ++i) {
-    if (resim_t_[i] - last < step && i + 1 != n) continue;
-    last = resim_t_[i];
-    v.emplace_back(resim_t_[i], resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)].norm());
+    if (resim_t(i) - last < step && i + 1 != n) continue;
+    last = resim_t(i);
+    v.emplace_back(resim_t(i), resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)].norm());
   }
   return v;
 }

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "review/frame_store.h"
 #include "review/replay.h"
 #include "store/recording.h"
 #include "live/workstation.h"
@@ -42,13 +43,6 @@ struct ReviewMarker {
   std::optional<live::Event> event;
   bool has_position = false;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // marks: where, world m
-};
-
-/// One re-simulated frame for the 3-D view (kept at most every `frame_period` s).
-struct ReviewFrame {
-  double t = 0;                                   // s, recording time
-  std::shared_ptr<const PatientGeometry> geometry;
-  RenderSnapshot snapshot;
 };
 
 class ReviewSession {
@@ -94,7 +88,31 @@ class ReviewSession {
   Compare compare() const;
 
   /// The frame to show at time t (the newest at or before t that is computed), or null.
+  /// Decoded from the compact store (review/frame_store.h: positions within 2.5 um of the
+  /// re-simulated ones); the same frame asked again is the same object while it is among
+  /// the last decoded.
   std::shared_ptr<const ReviewFrame> frame_at(double t) const;
+  /// Frames kept so far, and frame i of them (decoded as frame_at does), or null.
+  std::size_t frame_count() const { return frames_.size(); }
+  std::shared_ptr<const ReviewFrame> frame(std::size_t i) const { return frames_.at(i); }
+
+  /// What the review keeps in memory, in bytes (estimates from the containers' sizes).
+  struct Memory {
+    std::size_t frames = 0;        // the kept frames, coded (FrameStore::bytes)
+    std::size_t frame_cache = 0;   // decoding state: a few decoded frames (FrameStore::cache_bytes)
+    std::size_t resimulation = 0;  // the re-simulated forces per step (tick)
+    std::size_t recording = 0;     // the recording as read: ticks, steps, events
+    std::size_t geometry = 0;      // the patients' rest shapes, meshes and skin maps
+    std::size_t total() const { return frames + frame_cache + resimulation + recording + geometry; }
+  };
+  Memory memory() const;
+  /// Bytes the kept frames take (Memory::frames): divided by frame_count(), the bytes per frame.
+  std::size_t frame_memory_bytes() const { return frames_.bytes(); }
+  /// Test hook: also keep each frame's positions as re-simulated (float, uncoded), to
+  /// compare decoded frames with. Before start().
+  void keep_raw_frames_for_test(bool on) { keep_raw_ = on; }
+  /// Frame i's positions as re-simulated (with keep_raw_frames_for_test), else empty.
+  std::vector<float> raw_frame_for_test(std::size_t i) const;
   /// Re-simulated force of finger k at the step (tick) at or before t; false when not yet computed.
   bool resim_force_at(double t, int k, Eigen::Vector3d& f) const;
   /// Recorded force sent and fingertip position at the tick at or before t.
@@ -159,10 +177,14 @@ class ReviewSession {
   mutable std::atomic<bool> score_ready_{false};
   std::vector<ReviewMarker> markers_;
   std::vector<RecordedCommand> commands_;  // the recording's, in queue order (replay.h)
-  std::vector<Eigen::Vector3d> resim_f_;   // per step (or tick) x fingers
-  std::vector<double> resim_t_;            // per step (or tick)
-  std::vector<std::shared_ptr<const ReviewFrame>> frames_;
-  mutable std::mutex mu_;                  // frames_, error_, backend_, compare_
+  std::vector<Eigen::Vector3d> resim_f_;   // per step (or tick) x fingers; times: the recording's
+  /// Recording time of step (tick) i.
+  double resim_t(std::size_t i) const { return has_steps() ? rec_.steps[i].t : rec_.t[i]; }
+  // The kept frames, coded (thread-safe: the worker appends, frame_at decodes).
+  FrameStore frames_;
+  bool keep_raw_ = false;
+  std::vector<std::vector<float>> raw_frames_;  // keep_raw_frames_for_test, under mu_
+  mutable std::mutex mu_;                  // error_, backend_, compare_, raw_frames_
   std::string error_, backend_;
   Compare compare_;
   std::thread worker_;

@@ -9,6 +9,13 @@
 //                    fingers x (f64 active, f64 radius, f64 x[3], f64 v[3], f64 f[3]))
 //                    the simulation thread's steps: dt, the fingertip inputs and the forces
 //                    out, so that a review re-simulates a real-time session exactly
+//     type 5 ticks, type 6 steps (version 3): the records of a type 1 / type 4 chunk,
+//                    compressed losslessly: u32 count, u32 columns, u32 coding (1), then one
+//                    zstd frame of count x columns x 8 bytes: per column (a record's f64
+//                    fields in order), each value's bits minus the previous value's in that
+//                    column (wrapping, zigzag), stored as 8 byte planes. Each chunk is
+//                    self-contained (no state across chunks), so a torn tail loses only
+//                    its last chunk. Version 3 files may hold type 1 and 4 chunks too.
 //
 // Little-endian. The writer appends whole chunks with write(2) at least every 0.25 s of
 // recording time and fdatasync()s at least every second, so a crashed process loses at
@@ -20,15 +27,19 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+struct ZSTD_CCtx_s;
+
 namespace palpation::app::store {
 
-/// Version 2 added the steps chunk (type 4); version 1 files read unchanged.
-inline constexpr std::uint32_t kRecordingVersion = 2;
+/// Version 2 added the steps chunk (type 4); version 3 stores ticks and steps compressed
+/// (types 5 and 6, about a sixth of the size). Versions 1 and 2 read unchanged.
+inline constexpr std::uint32_t kRecordingVersion = 3;
 inline constexpr int kRecordingMaxFingers = 5;
 
 /// A bad recording: what() names the file, the chunk/offset and the reason.
@@ -57,7 +68,10 @@ class RecordingWriter {
   /// Creates (truncates) `path` and writes the header. `header` must hold "scenario"
   /// (scenario_to_json as an object); "format", "version", "fingers", "created" are added.
   /// Throws RecordingError when the file cannot be created or the header not written.
-  RecordingWriter(const std::string& path, nlohmann::json header, int fingers);
+  /// `version`: the format written: 3, or an older one for tests and comparisons (2:
+  /// uncompressed; 1: no steps either, add_step() does nothing).
+  RecordingWriter(const std::string& path, nlohmann::json header, int fingers,
+                  std::uint32_t version = kRecordingVersion);
   ~RecordingWriter();
   RecordingWriter(const RecordingWriter&) = delete;
   RecordingWriter& operator=(const RecordingWriter&) = delete;
@@ -81,6 +95,7 @@ class RecordingWriter {
   std::uint64_t ticks() const { return ticks_; }
   std::uint64_t steps() const { return steps_; }
   int fingers() const { return fingers_; }
+  std::uint32_t version() const { return version_; }
   const std::string& path() const { return path_; }
 
   /// Test hook: fail every write after `bytes` bytes in total (0: off), as a full disk would.
@@ -88,9 +103,14 @@ class RecordingWriter {
 
  private:
   bool write_all(const void* data, std::size_t n);
-  void write_chunk(std::uint32_t type, const std::string& payload);
+  void write_chunk(std::uint32_t type, std::string_view payload);
+  /// Writes a buffered type 1 / type 4 payload (u32 count, records), compressed in version 3.
+  void write_records(std::uint32_t type, const std::string& payload, std::uint32_t count, std::uint32_t columns);
   std::string path_, error_;
   int fd_ = -1, fingers_ = 0;
+  std::uint32_t version_ = kRecordingVersion;
+  ZSTD_CCtx_s* zctx_ = nullptr;  // reused across chunks; every chunk is its own zstd frame
+  std::string columns_, packed_;  // version 3 scratch: the columns, the chunk's payload
   std::uint32_t seq_ = 0;
   std::uint64_t bytes_ = 0, ticks_ = 0, limit_ = 0;
   std::string buf_;             // pending tick records
@@ -111,7 +131,7 @@ struct Recording {
   std::vector<double> t;             // per tick
   std::vector<Eigen::Vector3d> x, f; // per tick x finger (index tick * fingers + finger)
   std::vector<nlohmann::json> events;
-  std::vector<RecordedStep> steps;   // version 2 workstation sessions; empty otherwise
+  std::vector<RecordedStep> steps;   // workstation sessions (version 2 and later); empty otherwise
   int chunks = 0;
   bool complete = false;             // ends with an end chunk
   bool recovered = false;            // the end chunk says it was recovered

@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
   {
     nlohmann::json header = {{"scenario", nlohmann::json::parse(palpation::sim::scenario_to_json(
                                               palpation::sim::builtin_scenario("hertz")))}};
-    palpation::app::store::RecordingWriter w(dir + "/recording/short.prec", header, 1);
+    palpation::app::store::RecordingWriter w(dir + "/recording/short.prec", header, 1, 1);
     for (int i = 0; i < 40; ++i) {
       const Eigen::Vector3d x(0.001 * i, 0, 0.05), f(0, 0, 0.01 * i);
       w.add_tick(0.001 * (i + 1), &x, &f);
@@ -65,11 +65,13 @@ int main(int argc, char** argv) {
     }
     w.close();
   }
-  {
-    // Version 2: a workstation recording with simulation steps (two fingers).
+  // Version 2: a workstation recording with simulation steps (two fingers); version 3: the
+  // same, its ticks and steps compressed.
+  for (const std::uint32_t version : {2u, 3u}) {
     nlohmann::json header = {{"scenario", nlohmann::json::parse(palpation::sim::scenario_to_json(
                                               palpation::sim::builtin_scenario("hertz")))}};
-    palpation::app::store::RecordingWriter w(dir + "/recording/steps.prec", header, 2);
+    palpation::app::store::RecordingWriter w(
+        dir + (version == 2 ? "/recording/steps.prec" : "/recording/steps-v3.prec"), header, 2, version);
     for (int i = 0; i < 12; ++i) {
       const Eigen::Vector3d x[2] = {{0.001 * i, 0, 0.05}, {0, 0.01, 0.06}}, f[2] = {{0, 0, 0.01 * i}, {0, 0, 0}};
       w.add_tick(0.001 * (i + 1), x, f);
