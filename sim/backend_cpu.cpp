@@ -241,24 +241,37 @@ class CpuBackend final : public Backend {
     st.solved = true;
 
     T vmax = 0, dvmax = 0;
+    double v2max = 0, d2max = 0, ke = 0;
     for (int i = 0; i < nf; ++i) {
       const int node = m_.free_nodes[i];
+      double v2 = 0, d2 = 0;
       for (int k = 0; k < 3; ++k) {
         T& v = v_[3 * node + k];
         v += dv_[3 * i + k];
         x_[3 * node + k] += h * v;
         vmax = std::max(vmax, std::abs(v));
         dvmax = std::max(dvmax, std::abs(dv_[3 * i + k]));
+        v2 += double(v) * double(v);
+        const double d = double(x_[3 * node + k]) - m_.rest[node][k];
+        d2 += d * d;
       }
+      v2max = std::max(v2max, v2);
+      d2max = std::max(d2max, d2);
+      ke += 0.5 * m_.mass[node] * v2;
     }
     st.finite = std::isfinite(double(vmax)) && std::isfinite(double(res.relative_residual));
     // At rest: no contact, velocities and their change negligible (1 um/s).
     if (contacts_.empty() && vmax < T(1e-6) && dvmax < T(1e-7)) {
       std::fill(v_.begin(), v_.end(), T(0));
       rested_ = true;
+      v2max = ke = 0;
     } else {
       rested_ = false;
     }
+    const bool finite_v = std::isfinite(double(vmax)) && std::isfinite(ke);
+    st.max_speed = finite_v ? std::sqrt(v2max) : INFINITY;
+    st.max_displacement = finite_v && std::isfinite(d2max) ? std::sqrt(d2max) : INFINITY;
+    st.kinetic_energy = finite_v ? ke : INFINITY;
     finger_outputs(fingers, out);
     for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
     return st;

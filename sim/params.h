@@ -89,6 +89,11 @@ struct StepStats {
   int cg_iterations = 0;
   double cg_residual = 0.0;        // relative, at exit
   bool rescued = false;            // the solve went past cg_max_iterations (SolverParams)
+  // The state's summary for the divergence guard, formed within the step so that the guard
+  // needs no read-back of the state: the largest node speed (m/s) and displacement from
+  // rest (m), the kinetic energy (J), all +inf when a velocity is not finite. Negative:
+  // not formed (a skipped step; Simulation then reads the state back).
+  double max_speed = -1, max_displacement = -1, kinetic_energy = -1;
   bool solved = false;             // false when the step was skipped (body at rest)
   bool finite = true;
   int contacts = 0;

@@ -139,6 +139,7 @@ Simulation::Outcome Simulation::advance(std::span<const FingerInput> in, std::sp
 }
 
 DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<const FingerOutput> out) {
+  const DivergenceCheck prev = check_;
   check_ = DivergenceCheck{};
   DivergenceCheck& c = check_;
   if (!limits_.enabled) return c;
@@ -147,25 +148,38 @@ DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<cons
     if (c.reason.empty() && !(o.force.allFinite() && o.force_raw.allFinite() && o.stiffness.allFinite()))
       c.reason = "non-finite finger force";
   if (c.reason.empty()) {
-    backend_->positions(xyz_);
-    backend_->velocities(vel_);
-    const int n = model_.num_nodes();
-    double v2max = 0, d2max = 0, ke = 0;
     bool finite = true;
-    for (int i = 0; i < n && i * 3 + 2 < int(xyz_.size()) && i * 3 + 2 < int(vel_.size()); ++i) {
-      const Eigen::Vector3d x(xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]);
-      const Eigen::Vector3d v(vel_[3 * i], vel_[3 * i + 1], vel_[3 * i + 2]);
-      if (!x.allFinite() || !v.allFinite()) {
-        finite = false;
-        break;
+    if (st.max_speed >= 0) {
+      // Formed within the step by the backend: no read-back of the state.
+      c.max_speed = st.max_speed;
+      c.max_displacement = st.max_displacement;
+      c.kinetic_energy = st.kinetic_energy;
+      finite = std::isfinite(c.max_speed) && std::isfinite(c.max_displacement) && std::isfinite(c.kinetic_energy);
+    } else if (!st.solved && summary_known_) {
+      // A skipped step leaves the state as the last check saw it (at rest: no speed).
+      c.max_displacement = prev.max_displacement;
+    } else {
+      ++readbacks_;
+      backend_->positions(xyz_);
+      backend_->velocities(vel_);
+      const int n = model_.num_nodes();
+      double v2max = 0, d2max = 0, ke = 0;
+      for (int i = 0; i < n && i * 3 + 2 < int(xyz_.size()) && i * 3 + 2 < int(vel_.size()); ++i) {
+        const Eigen::Vector3d x(xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]);
+        const Eigen::Vector3d v(vel_[3 * i], vel_[3 * i + 1], vel_[3 * i + 2]);
+        if (!x.allFinite() || !v.allFinite()) {
+          finite = false;
+          break;
+        }
+        v2max = std::max(v2max, v.squaredNorm());
+        d2max = std::max(d2max, (x - model_.rest[i]).squaredNorm());
+        if (i < int(model_.mass.size())) ke += 0.5 * model_.mass[i] * v.squaredNorm();
       }
-      v2max = std::max(v2max, v.squaredNorm());
-      d2max = std::max(d2max, (x - model_.rest[i]).squaredNorm());
-      if (i < int(model_.mass.size())) ke += 0.5 * model_.mass[i] * v.squaredNorm();
+      c.max_speed = std::sqrt(v2max);
+      c.max_displacement = std::sqrt(d2max);
+      c.kinetic_energy = ke;
     }
-    c.max_speed = std::sqrt(v2max);
-    c.max_displacement = std::sqrt(d2max);
-    c.kinetic_energy = ke;
+    summary_known_ = finite;
     char buf[160];
     if (!finite) {
       c.reason = "non-finite node position or velocity";
@@ -181,6 +195,7 @@ DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<cons
   if (!c.reason.empty()) {
     c.diverged = true;
     ++divergences_;
+    summary_known_ = false;
     backend_->reset();
     if (log_) {
       char buf[96];
@@ -217,6 +232,7 @@ int Simulation::set_element_young(std::span<const std::pair<int, double>> change
 
 void Simulation::reset() {
   backend_->reset();
+  summary_known_ = false;
   t_ = 0;
   steps_ = 0;
 }

@@ -108,6 +108,9 @@ class Simulation {
   const DivergenceLimits& divergence_limits() const { return limits_; }
   const DivergenceCheck& last_check() const { return check_; }
   int divergences() const { return divergences_; }
+  /// Steps whose divergence guard read the state back (a backend that forms the summary in
+  /// its step, as both do, leaves this at 0).
+  int readbacks() const { return readbacks_; }
   int fallbacks() const { return fallbacks_; }
   void set_log(const LogFn& log) { log_ = log; }
   double time() const { return t_; }
@@ -132,6 +135,8 @@ class Simulation {
   int divergences_ = 0, fallbacks_ = 0;
   double diagonal_ = 0;                  // m, rest bounding-box diagonal
   std::vector<double> xyz_, vel_;        // scratch
+  bool summary_known_ = false;           // check_ holds the state's summary (unchanged by a skipped step)
+  int readbacks_ = 0;                    // steps whose guard read the state back
   LogFn log_;
 };
 

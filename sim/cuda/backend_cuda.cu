@@ -245,6 +245,7 @@ class CudaBackend final : public Backend {
     rest_.resize(3 * std::size_t(nn_));
     for (int j = 0; j < nn_; ++j)
       for (int c = 0; c < 3; ++c) rest_[3 * j + c] = T(m_.rest[j][c]);
+    rest_dev_.upload(rest_, stream_);
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
       launch_ = cuda::pcg_launch<T>(nf_, tuning);
@@ -383,6 +384,11 @@ class CudaBackend final : public Backend {
     st.contacts = R.start_contacts;
     rested_ = R.rested != 0;
     st.finite = std::isfinite(R.vmax) && std::isfinite(residual);
+    const bool finite_v = std::isfinite(R.v2max) && std::isfinite(R.ke);
+    st.max_speed = finite_v ? std::sqrt(R.v2max) : INFINITY;
+    st.max_displacement = finite_v && std::isfinite(R.d2max) ? std::sqrt(R.d2max) : INFINITY;
+    st.kinetic_energy = finite_v ? (rested_ ? 0.0 : R.ke) : INFINITY;
+    if (rested_) st.max_speed = 0;
     finger_outputs(fingers, out);
     for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
     return st;
@@ -461,6 +467,8 @@ class CudaBackend final : public Backend {
     a.free_nodes = free_nodes_.get();
     a.xpos = x_.get();
     a.vel = v_.get();
+    a.rest = rest_dev_.get();
+    a.mass = mass_.get();
     a.h = T(p_.solver.dt);
     a.tol = T(p_.solver.cg_tolerance);
     a.max_it = p_.solver.cg_max_iterations;
@@ -516,6 +524,7 @@ class CudaBackend final : public Backend {
   DevResult* host_res_ = nullptr;  // mapped pinned memory
   DevResult* dev_res_ = nullptr;   // its device address
   std::vector<T> rest_;
+  DeviceArray<T> rest_dev_;  // the same on the device (the divergence guard's displacement)
   std::vector<Eigen::Vector3d> filtered_;
   bool rested_ = true;
   Profiler prof_;

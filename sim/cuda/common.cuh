@@ -97,6 +97,8 @@ struct DevScratch {
   double facc[kMaxFingers][kFingerVals];
   double red[4][4];  // reduction ring of the persistent kernel
   unsigned long long vmax_bits, dvmax_bits;
+  unsigned long long v2max_bits, d2max_bits;  // largest |v|^2 and |x - X|^2 over the nodes
+  double ke;                                  // kinetic energy, 1/2 sum m |v|^2
   unsigned int detect_done;
   int start_contacts;
   int rested;
@@ -107,6 +109,7 @@ struct DevScratch {
 struct DevResult {
   double finger[kMaxFingers][kFingerVals];
   double vmax, dvmax;
+  double v2max, d2max, ke;  // the divergence guard's summary (StepStats::max_speed ...)
   double cg_residual;
   int cg_iterations;
   int start_contacts;
@@ -190,6 +193,9 @@ __device__ __forceinline__ void zero_step_scratch(DevScratch* s) {
     for (int j = 0; j < 4; ++j) s->red[r][j] = 0.0;
   s->vmax_bits = 0ull;
   s->dvmax_bits = 0ull;
+  s->v2max_bits = 0ull;
+  s->d2max_bits = 0ull;
+  s->ke = 0.0;
   s->rested = 0;
 }
 
@@ -207,6 +213,9 @@ inline __device__ void finalize_result(DevScratch* scr, DevResult* res, bool end
     res->start_contacts = sc->start_contacts;
     res->vmax = bits_to_double(sc->vmax_bits);
     res->dvmax = bits_to_double(sc->dvmax_bits);
+    res->v2max = bits_to_double(sc->v2max_bits);
+    res->d2max = bits_to_double(sc->d2max_bits);
+    res->ke = sc->ke;
     res->rested = sc->rested;
     sc->detect_done = 0u;
     if (end_of_step) sc->start_contacts = 0;  // the next step counts afresh

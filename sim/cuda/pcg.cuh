@@ -31,6 +31,8 @@ struct PcgArgs {
   const int* free_nodes;
   T* xpos;
   T* vel;
+  const T* rest;   // (3 nnode) rest positions, for the divergence guard's displacement
+  const T* mass;   // (nnode) lumped masses, for its kinetic energy
   T h;
   T tol;
   int max_it;
@@ -51,29 +53,41 @@ __device__ __forceinline__ void precondition_row(const T* P, const T* r, T* z, i
   z[3 * i + 2] = Pi[6] * r0 + Pi[7] * r1 + Pi[8] * r2;
 }
 
-/// v += dv, x += h v over the free nodes; block maxima of |v| and |dv| into the scratch.
+/// v += dv, x += h v over the free nodes; block maxima of |v| and |dv| into the scratch,
+/// and the divergence guard's summary (largest |v|^2 and |x - X|^2, kinetic energy), so
+/// that the host need not read the state back.
 template <class T>
 __device__ void update_state(const PcgArgs<T>& a) {
-  double vmax = 0, dvmax = 0;
+  double vmax = 0, dvmax = 0, v2max = 0, d2max = 0, ke = 0;
   bool bad = false;
   for (int i = blockIdx.x * blockDim.x + threadIdx.x; i < a.n; i += gridDim.x * blockDim.x) {
     const int node = a.free_nodes[i];
+    double v2 = 0, d2 = 0;
 #pragma unroll
     for (int c = 0; c < 3; ++c) {
       const T dv = a.x[3 * i + c];
       const T v = a.vel[3 * node + c] + dv;
       a.vel[3 * node + c] = v;
-      a.xpos[3 * node + c] += a.h * v;
+      const T x = a.xpos[3 * node + c] + a.h * v;
+      a.xpos[3 * node + c] = x;
       vmax = fmax(vmax, double(fabs(v)));
       dvmax = fmax(dvmax, double(fabs(dv)));
       bad = bad || !isfinite(v) || !isfinite(dv);
+      v2 += double(v) * double(v);
+      const double d = double(x) - double(a.rest[3 * node + c]);
+      d2 += d * d;
     }
+    v2max = fmax(v2max, v2);
+    d2max = fmax(d2max, d2);
+    ke += 0.5 * double(a.mass[node]) * v2;
   }
   // A non-finite velocity must reach the host (fmax drops NaN): report it as +inf.
-  if (bad) vmax = dvmax = INFINITY;
-  double m2[2] = {vmax, dvmax};
-  unsigned long long* const dst[2] = {&a.scr->vmax_bits, &a.scr->dvmax_bits};
-  block_max_atomic<2>(m2, dst);
+  if (bad) vmax = dvmax = v2max = d2max = INFINITY;
+  double m4[4] = {vmax, dvmax, v2max, d2max};
+  unsigned long long* const dst[4] = {&a.scr->vmax_bits, &a.scr->dvmax_bits, &a.scr->v2max_bits, &a.scr->d2max_bits};
+  block_max_atomic<4>(m4, dst);
+  double s1[1] = {bad ? double(INFINITY) : ke};
+  block_sum_atomic<1>(s1, &a.scr->ke);
 }
 
 /// Rest rule of backend_cpu.cpp: no contact at the start, |v| < 1e-6, |dv| < 1e-7 ->
