@@ -239,9 +239,7 @@ ReviewWindow::ReviewWindow(std::unique_ptr<app::review::ReviewSession> session, 
 
   const auto& rec = session_->recording();
   t_axis_->setRange(0, std::max(0.1, session_->duration()));
-  double fmax = 0.5;
-  for (std::size_t i = 0; i < rec.f.size(); ++i)
-    if (rec.f[i].allFinite()) fmax = std::max(fmax, rec.f[i].norm());
+  const double fmax = std::max(0.5, session_->max_recorded_force());
   f_axis_->setRange(0, fmax * 1.1);
   for (int k = 0; k < 5; ++k) {
     const bool used = k < rec.fingers;

@@ -74,7 +74,7 @@ sim::Scenario replay_scenario(const Recording& rec) {
   return s;
 }
 
-std::vector<RecordedCommand> recorded_commands(const Recording& rec) {
+std::vector<RecordedCommand> recorded_commands(const store::RecordingInfo& rec) {
   std::vector<RecordedCommand> v;
   for (const json& e : rec.events) {
     if (!e.is_object() || e.value("kind", "") != "parameter" || !e.contains("index") || !e["index"].is_number_unsigned())

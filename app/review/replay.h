@@ -88,7 +88,7 @@ struct RecordedCommand {
   nlohmann::json scenario;                    // params / patient
 };
 /// The recording's commands in queue order.
-std::vector<RecordedCommand> recorded_commands(const Recording& rec);
+std::vector<RecordedCommand> recorded_commands(const store::RecordingInfo& rec);
 
 /// Re-simulates and compares. Throws sim::ScenarioError / std::runtime_error.
 ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt);

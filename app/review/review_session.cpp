@@ -23,7 +23,7 @@ using live::apply_params;
 using live::configure_realtime_threads;
 using live::make_patient_geometry;
 using store::RecordedStep;
-using store::read_recording;
+using store::read_recording_compact;
 
 using nlohmann::json;
 
@@ -62,7 +62,7 @@ std::string one_line(const json& e) {
 
 }  // namespace
 
-ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path)) {
+ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording_compact(path)) {
   // The workstation records an instructor's change twice: as data for the re-simulation
   // ("parameter") and as a line of its event log ("instructor", the same text within a
   // few ms); a trainee's mark likewise ("mark" with its position, and the log's "trainee
@@ -107,19 +107,23 @@ ReviewSession::ReviewSession(const std::string& path) : rec_(read_recording(path
   }
   // Parameter changes as data: applied by the re-simulation before the step that saw them.
   commands_ = recorded_commands(rec_);
-  const std::size_t n = has_steps() ? rec_.steps.size() : rec_.ticks();
-  resim_f_.assign(n * std::size_t(rec_.fingers), Eigen::Vector3d::Zero());
+  const std::size_t n = has_steps() ? rec_.step_count() : rec_.ticks();
+  resim_f_.assign(n * std::size_t(rec_.fingers), Eigen::Vector3f::Zero());
+  rec_.for_each_tick([&](std::size_t, double, const Eigen::Vector3d*, const Eigen::Vector3d* f) {
+    for (int k = 0; k < rec_.fingers; ++k)
+      if (f[k].allFinite()) max_recorded_force_ = std::max(max_recorded_force_, f[k].norm());
+  });
 }
 
 ReviewSession::~ReviewSession() { cancel(); }
 
 double ReviewSession::duration() const {
   double d = rec_.duration();
-  if (!rec_.steps.empty()) d = std::max(d, rec_.steps.back().t);
+  if (has_steps()) d = std::max(d, rec_.step_times().back());
   return d;
 }
 
-std::size_t ReviewSession::total() const { return has_steps() ? rec_.steps.size() : rec_.ticks(); }
+std::size_t ReviewSession::total() const { return has_steps() ? rec_.step_count() : rec_.ticks(); }
 
 std::string ReviewSession::error() const {
   std::lock_guard<std::mutex> lk(mu_);
@@ -223,18 +227,13 @@ ReviewSession::Memory ReviewSession::memory() const {
   Memory m;
   m.frames = frames_.bytes();
   m.frame_cache = frames_.cache_bytes();
-  m.resimulation = resim_f_.capacity() * sizeof(Eigen::Vector3d);
+  m.resimulation = resim_f_.capacity() * sizeof(Eigen::Vector3f);
   {
     std::lock_guard<std::mutex> lk(mu_);
     for (const auto& r : raw_frames_) m.frame_cache += r.capacity() * sizeof(float);
   }
-  // The recording: its arrays, each step's fingers (one allocation each, ~16 bytes of
-  // allocator overhead), the events as their JSON text (nlohmann's tree is larger; a few kB).
-  m.recording = rec_.t.capacity() * sizeof(double) + (rec_.x.capacity() + rec_.f.capacity()) * sizeof(Eigen::Vector3d) +
-                rec_.steps.capacity() * sizeof(store::RecordedStep);
-  for (const auto& st : rec_.steps) m.recording += st.fingers.capacity() * sizeof(store::RecordedStep::Finger) + 16;
-  m.recording += rec_.events.capacity() * sizeof(json) + rec_.header.dump().size();
-  for (const auto& e : rec_.events) m.recording += e.dump().size();
+  // The recording: its coded chunks, the times, the events as their JSON text.
+  m.recording = rec_.bytes();
   for (const auto& g : frames_.patients()) {
     if (!g) continue;
     m.geometry += g->rest.capacity() * sizeof(Eigen::Vector3d) + g->tets.capacity() * sizeof(std::array<int, 4>) +
@@ -268,9 +267,13 @@ void ReviewSession::run_steps(const std::string& backend) {
   std::size_t ci = 0;
   double last_frame = -1e300;
   Compare cmp;
-  for (std::size_t i = 0; i < rec_.steps.size(); ++i) {
+  // The steps decoded a chunk (0.25 s) at a time: the recording stays coded in memory.
+  const std::size_t nsteps = rec_.step_count();
+  CompactRecording::Steps chunk;
+  for (std::size_t i = 0; i < nsteps; ++i) {
     if (cancel_.load(std::memory_order_relaxed)) return;
-    const RecordedStep& st = rec_.steps[i];
+    if (i == 0 || i >= chunk.first + chunk.steps.size()) rec_.decode_steps(rec_.step_chunk_of(i), chunk);
+    const RecordedStep& st = chunk.steps[i - chunk.first];
     // The commands this step saw, applied as the workstation's simulation thread applies a
     // batch: in order on the current model, a patient swap after the batch.
     const json* swap = nullptr;
@@ -299,7 +302,7 @@ void ReviewSession::run_steps(const std::string& backend) {
     const bool ok = simulation->advance(in, out, st.h).ok;
     for (int k = 0; k < nf; ++k) {
       f[std::size_t(k)] = ok ? Eigen::Vector3d(out[std::size_t(k)].force) : Eigen::Vector3d::Zero();
-      resim_f_[i * std::size_t(nf) + std::size_t(k)] = f[std::size_t(k)];
+      resim_f_[i * std::size_t(nf) + std::size_t(k)] = f[std::size_t(k)].cast<float>();
       const Eigen::Vector3d& fr = st.fingers[std::size_t(k)].f;
       cmp.max_force = std::max(cmp.max_force, fr.norm());
       const double d = (f[std::size_t(k)] - fr).norm();
@@ -310,7 +313,7 @@ void ReviewSession::run_steps(const std::string& backend) {
       }
       ++cmp.compared;
     }
-    if (st.t - last_frame >= frame_period || i + 1 == rec_.steps.size()) {
+    if (st.t - last_frame >= frame_period || i + 1 == nsteps) {
       last_frame = st.t;
       keep_frame(st.t, *simulation, geometry, in, f);
     }
@@ -323,15 +326,16 @@ void ReviewSession::run_steps(const std::string& backend) {
   }
   // The forces sent at 1 kHz (the haptic loop: local contact model, coupling, safety filter)
   // against the step forces held until the next step: reported, not expected to vanish.
+  const std::vector<double>& step_t = rec_.step_times();
   std::size_t j = 0;
-  for (std::size_t i = 0; i < rec_.ticks(); ++i) {
-    while (j + 1 < rec_.steps.size() && rec_.steps[j + 1].t <= rec_.t[i]) ++j;
-    if (rec_.steps[j].t > rec_.t[i]) continue;
+  rec_.for_each_tick([&](std::size_t, double t, const Eigen::Vector3d*, const Eigen::Vector3d* fs) {
+    while (j + 1 < step_t.size() && step_t[j + 1] <= t) ++j;
+    if (step_t[j] > t) return;
     for (int k = 0; k < nf; ++k) {
-      const double d = (rec_.f[i * std::size_t(nf) + std::size_t(k)] - resim_f_[j * std::size_t(nf) + std::size_t(k)]).norm();
+      const double d = (fs[k] - resim_f_[j * std::size_t(nf) + std::size_t(k)].cast<double>()).norm();
       if (std::isfinite(d)) cmp.max_sent_diff = std::max(cmp.max_sent_diff, d);
     }
-  }
+  });
   std::lock_guard<std::mutex> lk(mu_);
   compare_ = cmp;
 }
@@ -339,7 +343,9 @@ void ReviewSession::run_steps(const std::string& backend) {
 void ReviewSession::run_ticks(const std::string& backend) {
   // As replay_recording (palpation replay): the recorded device input as finger paths, the
   // forces at each 1 kHz tick with the local contact model between simulation steps.
-  sim::Scenario s = replay_scenario(rec_);
+  // The finger paths are built from the ticks decoded whole (a recording without steps is
+  // a short scripted one; the paths are as large as the ticks in any case).
+  sim::Scenario s = replay_scenario(rec_.decode());
   if (!backend.empty()) s.backend = backend;
   sim::Simulation simulation(s);
   simulation.reset();
@@ -353,8 +359,13 @@ void ReviewSession::run_ticks(const std::string& backend) {
   std::vector<sim::FingerInput> in(static_cast<std::size_t>(nf));
   double last_frame = -1e300;
   Compare cmp;
-  for (std::size_t i = 0; i < rec_.ticks(); ++i) {
+  const std::size_t nticks = rec_.ticks();
+  CompactRecording::Ticks chunk;
+  for (std::size_t i = 0; i < nticks; ++i) {
     if (cancel_.load(std::memory_order_relaxed)) return;
+    if (i == 0 || i >= chunk.first + chunk.t.size()) rec_.decode_ticks(rec_.tick_chunk_of(i), chunk);
+    const std::size_t ci = i - chunk.first;
+    const double ti = chunk.t[ci];
     const double tk = double(i + 1) * 0.001;
     while (simulation.time() < tk - 1e-9) {
       simulation.step();
@@ -370,28 +381,28 @@ void ReviewSession::run_ticks(const std::string& backend) {
       in[std::size_t(k)].position = x;
       in[std::size_t(k)].radius = s.fingers[std::size_t(k)].radius;
       in[std::size_t(k)].active = true;
-      resim_f_[i * std::size_t(nf) + std::size_t(k)] = force;
-      const Eigen::Vector3d& fr = rec_.f[i * std::size_t(nf) + std::size_t(k)];
+      resim_f_[i * std::size_t(nf) + std::size_t(k)] = force.cast<float>();
+      const Eigen::Vector3d& fr = chunk.f[ci * std::size_t(nf) + std::size_t(k)];
       if (!fr.allFinite()) continue;
       cmp.max_force = std::max(cmp.max_force, fr.norm());
       const double d = (force - fr).norm();
       if (!(d <= cmp.max_diff)) {
         cmp.max_diff = std::isfinite(d) ? d : HUGE_VAL;
-        cmp.at_t = rec_.t[i];
+        cmp.at_t = ti;
         cmp.finger = k;
       }
       ++cmp.compared;
     }
-    if (rec_.t[i] - last_frame >= frame_period || i + 1 == rec_.ticks()) {
-      last_frame = rec_.t[i];
-      keep_frame(rec_.t[i], simulation, geometry, in, f);
+    if (ti - last_frame >= frame_period || i + 1 == nticks) {
+      last_frame = ti;
+      keep_frame(ti, simulation, geometry, in, f);
     }
     {
       std::lock_guard<std::mutex> lk(mu_);
       compare_ = cmp;
     }
     done_.store(i + 1, std::memory_order_release);
-    done_t_.store(rec_.t[i], std::memory_order_release);
+    done_t_.store(ti, std::memory_order_release);
   }
 }
 
@@ -409,25 +420,27 @@ bool ReviewSession::resim_force_at(double t, int k, Eigen::Vector3d& f) const {
   }
   if (lo == 0) return false;
   const std::size_t i = lo - 1;
-  f = resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)];
+  f = resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)].cast<double>();
   return true;
 }
 
 std::size_t ReviewSession::tick_index(double t) const {
-  if (rec_.t.empty()) return 0;
-  auto it = std::upper_bound(rec_.t.begin(), rec_.t.end(), t);
-  return it == rec_.t.begin() ? 0 : std::size_t(it - rec_.t.begin()) - 1;
+  const std::vector<double>& ts = rec_.tick_times();
+  if (ts.empty()) return 0;
+  auto it = std::upper_bound(ts.begin(), ts.end(), t);
+  return it == ts.begin() ? 0 : std::size_t(it - ts.begin()) - 1;
 }
 
 std::vector<std::pair<double, double>> ReviewSession::recorded_series(int k, double step) const {
   std::vector<std::pair<double, double>> v;
   if (k < 0 || k >= rec_.fingers) return v;
   double last = -1e300;
-  for (std::size_t i = 0; i < rec_.ticks(); ++i) {
-    if (rec_.t[i] - last < step && i + 1 != rec_.ticks()) continue;
-    last = rec_.t[i];
-    v.emplace_back(rec_.t[i], rec_.f[i * std::size_t(rec_.fingers) + std::size_t(k)].norm());
-  }
+  const std::size_t n = rec_.ticks();
+  rec_.for_each_tick([&](std::size_t i, double t, const Eigen::Vector3d*, const Eigen::Vector3d* f) {
+    if (t - last < step && i + 1 != n) return;
+    last = t;
+    v.emplace_back(t, f[k].norm());
+  });
   return v;
 }
 
@@ -439,7 +452,7 @@ std::vector<std::pair<double, double>> ReviewSession::resim_series(int k, double
   for (std::size_t i = 0; i < n; ++i) {
     if (resim_t(i) - last < step && i + 1 != n) continue;
     last = resim_t(i);
-    v.emplace_back(resim_t(i), resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)].norm());
+    v.emplace_back(resim_t(i), double(resim_f_[i * std::size_t(rec_.fingers) + std::size_t(k)].norm()));
   }
   return v;
 }
@@ -449,17 +462,16 @@ void ReviewSession::export_csv(const std::string& path) const {
   if (!out) throw std::runtime_error(path + ": cannot write");
   out << "t,finger,x,y,z,fx,fy,fz,fx_resim,fy_resim,fz_resim\n";
   out.precision(9);
-  for (std::size_t i = 0; i < rec_.ticks(); ++i)
+  rec_.for_each_tick([&](std::size_t, double t, const Eigen::Vector3d* xs, const Eigen::Vector3d* fs) {
     for (int k = 0; k < rec_.fingers; ++k) {
-      const std::size_t idx = i * std::size_t(rec_.fingers) + std::size_t(k);
-      const Eigen::Vector3d& x = rec_.x[idx];
-      const Eigen::Vector3d& f = rec_.f[idx];
-      out << rec_.t[i] << ',' << k << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << f.x() << ',' << f.y() << ','
-          << f.z();
+      const Eigen::Vector3d& x = xs[k];
+      const Eigen::Vector3d& f = fs[k];
+      out << t << ',' << k << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << f.x() << ',' << f.y() << ',' << f.z();
       Eigen::Vector3d fr;
-      if (resim_force_at(rec_.t[i], k, fr)) out << ',' << fr.x() << ',' << fr.y() << ',' << fr.z() << '\n';
+      if (resim_force_at(t, k, fr)) out << ',' << fr.x() << ',' << fr.y() << ',' << fr.z() << '\n';
       else out << ",,,\n";
     }
+  });
   if (!out) throw std::runtime_error(path + ": write failed");
 }
 

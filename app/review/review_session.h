@@ -31,6 +31,7 @@ namespace palpation::app::review {
 
 using live::PatientGeometry;
 using live::RenderSnapshot;
+using store::CompactRecording;
 using store::Recording;
 
 /// What the timeline shows besides the forces.
@@ -54,11 +55,15 @@ class ReviewSession {
   ReviewSession(const ReviewSession&) = delete;
   ReviewSession& operator=(const ReviewSession&) = delete;
 
-  const Recording& recording() const { return rec_; }
+  /// The recording, its ticks and steps kept coded (store::CompactRecording, decoded a
+  /// chunk at a time): what a 30-minute review keeps of it fits beside the frames in 1 GB.
+  const CompactRecording& recording() const { return rec_; }
   double duration() const;
   const std::vector<ReviewMarker>& markers() const { return markers_; }
   /// Exact mode: the recording holds the simulation's steps.
-  bool has_steps() const { return !rec_.steps.empty(); }
+  bool has_steps() const { return rec_.step_count() > 0; }
+  /// The largest recorded force sent (N, finite ones), for the plot's scale.
+  double max_recorded_force() const { return max_recorded_force_; }
   /// Device fingers of the recording: 5 (workstation) or the scenario's.
   int fingers() const { return rec_.fingers; }
 
@@ -101,7 +106,7 @@ class ReviewSession {
     std::size_t frames = 0;        // the kept frames, coded (FrameStore::bytes)
     std::size_t frame_cache = 0;   // decoding state: a few decoded frames (FrameStore::cache_bytes)
     std::size_t resimulation = 0;  // the re-simulated forces per step (tick)
-    std::size_t recording = 0;     // the recording as read: ticks, steps, events
+    std::size_t recording = 0;     // the recording as kept: ticks and steps coded, their times, events
     std::size_t geometry = 0;      // the patients' rest shapes, meshes and skin maps
     std::size_t total() const { return frames + frame_cache + resimulation + recording + geometry; }
   };
@@ -168,7 +173,8 @@ class ReviewSession {
   void keep_frame(double t, sim::Simulation& s, const std::shared_ptr<const PatientGeometry>& g,
                   const std::vector<sim::FingerInput>& in, const std::vector<Eigen::Vector3d>& f);
 
-  Recording rec_;
+  CompactRecording rec_;
+  double max_recorded_force_ = 0;
   // The score: computed once under score_mu_, never changed after (score() hands out a pointer).
   mutable std::mutex score_mu_;
   mutable bool scored_ = false;
@@ -177,9 +183,13 @@ class ReviewSession {
   mutable std::atomic<bool> score_ready_{false};
   std::vector<ReviewMarker> markers_;
   std::vector<RecordedCommand> commands_;  // the recording's, in queue order (replay.h)
-  std::vector<Eigen::Vector3d> resim_f_;   // per step (or tick) x fingers; times: the recording's
+  // Per step (or tick) x fingers; times: the recording's. Float: 12 bytes a finger step
+  // instead of 24 (a GPU session's 900 steps a second: 97 MB for 30 minutes, not 194),
+  // and 7 significant digits are more than the plot and the CSV's 1e-9 N noise need; the
+  // comparison with the recorded forces is made in double before it is stored.
+  std::vector<Eigen::Vector3f> resim_f_;
   /// Recording time of step (tick) i.
-  double resim_t(std::size_t i) const { return has_steps() ? rec_.steps[i].t : rec_.t[i]; }
+  double resim_t(std::size_t i) const { return has_steps() ? rec_.step_times()[i] : rec_.tick_times()[i]; }
   // The kept frames, coded (thread-safe: the worker appends, frame_at decodes).
   FrameStore frames_;
   bool keep_raw_ = false;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <algorithm>
 #include <ctime>
 #include <fcntl.h>
 #include <fstream>
@@ -318,11 +319,84 @@ std::string read_file(const std::string& path) {
 
 }  // namespace
 
+namespace {
+
+// Tick and step records, as the version-2 chunks lay them out (rows of f64), into values:
+// the records read_recording has checked (no checks here).
+void parse_ticks(const unsigned char* rows, std::uint32_t count, int fingers, std::vector<double>& t,
+                 std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Vector3d>& f) {
+  const std::size_t rec_bytes = 8 + 48 * std::size_t(fingers);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const unsigned char* rp = rows + i * rec_bytes;
+    t.push_back(get_f64(rp));
+    for (int k = 0; k < fingers; ++k) {
+      const unsigned char* fp = rp + 8 + 48 * k;
+      x.emplace_back(get_f64(fp), get_f64(fp + 8), get_f64(fp + 16));
+      f.emplace_back(get_f64(fp + 24), get_f64(fp + 32), get_f64(fp + 40));
+    }
+  }
+}
+
+void parse_steps(const unsigned char* rows, std::uint32_t count, int fingers, std::vector<RecordedStep>& out) {
+  const std::size_t step_bytes = 24 + 88 * std::size_t(fingers);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const unsigned char* sp = rows + std::size_t(i) * step_bytes;
+    RecordedStep st;
+    st.t = get_f64(sp);
+    st.h = get_f64(sp + 8);
+    st.commands_applied = std::uint64_t(get_f64(sp + 16));
+    st.fingers.resize(std::size_t(fingers));
+    for (int k = 0; k < fingers; ++k) {
+      const unsigned char* fp = sp + 24 + 88 * std::size_t(k);
+      RecordedStep::Finger& fi = st.fingers[std::size_t(k)];
+      fi.active = get_f64(fp) == 1.0;
+      fi.radius = get_f64(fp + 8);
+      for (int c = 0; c < 3; ++c) {
+        fi.x[c] = get_f64(fp + 16 + 8 * c);
+        fi.v[c] = get_f64(fp + 40 + 8 * c);
+        fi.f[c] = get_f64(fp + 64 + 8 * c);
+      }
+    }
+    out.push_back(std::move(st));
+  }
+}
+
+std::uint32_t tick_columns(int fingers) { return 1 + 6 * std::uint32_t(fingers); }
+std::uint32_t step_columns(int fingers) { return 3 + 11 * std::uint32_t(fingers); }
+
+// One chunk's records (count x columns f64) back from their coding: `rows` resized.
+void decode_chunk(const std::string& coded, std::uint32_t count, std::uint32_t columns, std::string& rows) {
+  thread_local std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dctx(ZSTD_createDCtx(), &ZSTD_freeDCtx);
+  thread_local std::string planes;
+  const std::size_t raw = std::size_t(count) * columns * 8;
+  planes.resize(raw);
+  if (!dctx) throw RecordingError("out of memory for the decompressor");
+  const std::size_t got = ZSTD_decompressDCtx(dctx.get(), planes.data(), raw, coded.data(), coded.size());
+  if (ZSTD_isError(got) || got != raw) throw RecordingError("a kept chunk does not decode (memory corrupted)");
+  rows.resize(raw);
+  decode_columns(reinterpret_cast<const unsigned char*>(planes.data()), count, columns,
+                 reinterpret_cast<unsigned char*>(rows.data()));
+}
+
+// Reads and checks the file into `r`; with `compact`, each ticks and steps chunk's records
+// are kept coded there (the file's zstd frame as it is, or an uncompressed chunk coded
+// as version 3 codes it) with their times, and not in `r`.
+void read_into(const std::string& path, Recording& r, CompactRecording::Sink* compact);
+
+}  // namespace
+
 Recording read_recording(const std::string& path) {
+  Recording r;
+  read_into(path, r, nullptr);
+  return r;
+}
+
+namespace {
+
+void read_into(const std::string& path, Recording& r, CompactRecording::Sink* compact) {
   const std::string data = read_file(path);
   const auto* p = reinterpret_cast<const unsigned char*>(data.data());
   const std::uint64_t n = data.size();
-  Recording r;
   r.path = path;
   r.file_bytes = n;
   auto fail = [&](const std::string& where, const std::string& why) -> RecordingError {
@@ -356,7 +430,34 @@ Recording read_recording(const std::string& path) {
   r.valid_bytes = off;
   std::uint32_t seq = 0;
   double last_t = -1e300;
+  // The last step's time and commands applied, for the checks of the next.
+  bool any_step = false;
+  double last_step_t = 0;
+  std::uint64_t last_applied = 0;
   std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dctx(nullptr, &ZSTD_freeDCtx);
+  std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> cctx(nullptr, &ZSTD_freeCCtx);
+  std::string columns_buf;
+  // With `compact`: the chunk's records coded (the file's frame, or coded here).
+  auto keep_coded = [&](const std::string& where, bool ticks, const unsigned char* frame, std::size_t frame_len,
+                        const unsigned char* rows, std::uint32_t count) {
+    const std::uint32_t columns = ticks ? tick_columns(r.fingers) : step_columns(r.fingers);
+    std::string coded;
+    if (frame != nullptr) {
+      coded.assign(reinterpret_cast<const char*>(frame), frame_len);
+    } else {
+      const std::size_t raw = std::size_t(count) * columns * 8;
+      columns_buf.resize(raw);
+      encode_columns(rows, count, columns, reinterpret_cast<unsigned char*>(columns_buf.data()));
+      if (!cctx) cctx.reset(ZSTD_createCCtx());
+      if (!cctx) throw fail(where, "out of memory for the compressor");
+      coded.resize(ZSTD_compressBound(raw));
+      const std::size_t z = ZSTD_compressCCtx(cctx.get(), coded.data(), coded.size(), columns_buf.data(), raw, kZstdLevel);
+      if (ZSTD_isError(z)) throw fail(where, std::string("zstd: ") + ZSTD_getErrorName(z));
+      coded.resize(z);
+      coded.shrink_to_fit();
+    }
+    compact->add(ticks, count, std::move(coded));
+  };
   while (off < n) {
     const std::string where = "chunk " + std::to_string(seq) + " at offset " + std::to_string(off);
     if (r.complete) throw fail(where, std::to_string(n - off) + " bytes after the end chunk");
@@ -387,6 +488,8 @@ Recording read_recording(const std::string& path) {
     const unsigned char* q = p + off + 16;
     std::uint64_t size = len;  // of the records' payload, decompressed
     std::string decoded;
+    const unsigned char* frame = nullptr;  // a compressed chunk's zstd frame
+    std::size_t frame_len = 0;
     if ((type == kTicksZ || type == kStepsZ) && r.version >= 3) {
       // The compressed records of a version-3 file: back to the type 1 / type 4 payload.
       const bool ticks = type == kTicksZ;
@@ -416,6 +519,8 @@ Recording read_recording(const std::string& path) {
       for (int i = 0; i < 4; ++i) decoded[std::size_t(i)] = char((count >> (8 * i)) & 0xFF);
       decode_columns(reinterpret_cast<const unsigned char*>(planes.data()), count, columns,
                      reinterpret_cast<unsigned char*>(decoded.data()) + 4);
+      frame = q + 12;
+      frame_len = len - 12;
       q = reinterpret_cast<const unsigned char*>(decoded.data());
       size = decoded.size();
       type = ticks ? kTicks : kSteps;
@@ -441,6 +546,13 @@ Recording read_recording(const std::string& path) {
           r.f.push_back(f);
         }
       }
+      if (compact != nullptr && count > 0) {
+        keep_coded(where, true, frame, frame_len, q + 4, count);
+        compact->tick_t.insert(compact->tick_t.end(), r.t.begin(), r.t.end());
+        r.t.clear();
+        r.x.clear();
+        r.f.clear();
+      }
     } else if (type == kSteps && r.version >= 2) {
       const std::size_t step_bytes = 24 + 88 * std::size_t(r.fingers);
       if (size < 4) throw fail(where, "steps chunk too short");
@@ -454,11 +566,11 @@ Recording read_recording(const std::string& path) {
         st.h = get_f64(sp + 8);
         const double applied = get_f64(sp + 16);
         const std::string which = "step " + std::to_string(i);
-        if (!std::isfinite(st.t) || (!r.steps.empty() && st.t < r.steps.back().t))
+        if (!std::isfinite(st.t) || (any_step && st.t < last_step_t))
           throw fail(where, which + ": time not finite or decreasing");
         if (!(st.h > 0 && st.h <= 1.0)) throw fail(where, which + ": dt " + std::to_string(st.h) + " s not in (0, 1]");
         if (!(applied >= 0 && applied <= 9.0e15) || applied != std::floor(applied) ||
-            (!r.steps.empty() && std::uint64_t(applied) < r.steps.back().commands_applied))
+            (any_step && std::uint64_t(applied) < last_applied))
           throw fail(where, which + ": commands applied not a non-decreasing count");
         st.commands_applied = std::uint64_t(applied);
         st.fingers.resize(std::size_t(r.fingers));
@@ -477,8 +589,13 @@ Recording read_recording(const std::string& path) {
             throw fail(where, which + " finger " + std::to_string(k) + ": bad value (flag, radius or not finite)");
           fi.active = active == 1.0;
         }
-        r.steps.push_back(std::move(st));
+        any_step = true;
+        last_step_t = st.t;
+        last_applied = st.commands_applied;
+        if (compact != nullptr) compact->step_t.push_back(st.t);
+        else r.steps.push_back(std::move(st));
       }
+      if (compact != nullptr && count > 0) keep_coded(where, false, frame, frame_len, q + 4, count);
     } else if (type == kEvent || type == kEnd) {
       json j;
       try {
@@ -502,7 +619,84 @@ Recording read_recording(const std::string& path) {
     r.valid_bytes = off;
   }
   if (!r.complete && r.interrupted.empty()) r.interrupted = "no end chunk after chunk " + std::to_string(seq) + " (interrupted)";
+}
+
+}  // namespace
+
+CompactRecording read_recording_compact(const std::string& path) {
+  Recording r;
+  CompactRecording c;
+  CompactRecording::Sink sink{c, c.tick_t_, c.step_t_};
+  read_into(path, r, &sink);
+  static_cast<RecordingInfo&>(c) = std::move(static_cast<RecordingInfo&>(r));
+  c.tick_t_.shrink_to_fit();
+  c.step_t_.shrink_to_fit();
+  c.tick_chunks_.shrink_to_fit();
+  c.step_chunks_.shrink_to_fit();
+  return c;
+}
+
+void CompactRecording::Sink::add(bool ticks, std::uint32_t count, std::string coded) {
+  auto& v = ticks ? rec.tick_chunks_ : rec.step_chunks_;
+  const std::size_t first = v.empty() ? 0 : v.back().first + v.back().count;
+  v.push_back({first, count, std::move(coded)});
+}
+
+void CompactRecording::decode_ticks(std::size_t c, Ticks& out) const {
+  const Chunk& k = tick_chunks_.at(c);
+  thread_local std::string rows;
+  decode_chunk(k.coded, k.count, tick_columns(fingers), rows);
+  out.first = k.first;
+  out.t.clear();
+  out.x.clear();
+  out.f.clear();
+  parse_ticks(reinterpret_cast<const unsigned char*>(rows.data()), k.count, fingers, out.t, out.x, out.f);
+}
+
+void CompactRecording::decode_steps(std::size_t c, Steps& out) const {
+  const Chunk& k = step_chunks_.at(c);
+  thread_local std::string rows;
+  decode_chunk(k.coded, k.count, step_columns(fingers), rows);
+  out.first = k.first;
+  out.steps.clear();
+  parse_steps(reinterpret_cast<const unsigned char*>(rows.data()), k.count, fingers, out.steps);
+}
+
+namespace {
+std::size_t chunk_of(const auto& chunks, std::size_t i) {
+  // The last chunk whose first record is at or before i.
+  auto it = std::upper_bound(chunks.begin(), chunks.end(), i, [](std::size_t v, const auto& c) { return v < c.first; });
+  return it == chunks.begin() ? 0 : std::size_t(it - chunks.begin()) - 1;
+}
+}  // namespace
+
+std::size_t CompactRecording::tick_chunk_of(std::size_t i) const { return chunk_of(tick_chunks_, i); }
+std::size_t CompactRecording::step_chunk_of(std::size_t i) const { return chunk_of(step_chunks_, i); }
+
+Recording CompactRecording::decode() const {
+  Recording r;
+  static_cast<RecordingInfo&>(r) = *this;
+  r.t.reserve(ticks());
+  r.x.reserve(ticks() * std::size_t(fingers));
+  r.f.reserve(ticks() * std::size_t(fingers));
+  for_each_tick([&](std::size_t, double t, const Eigen::Vector3d* x, const Eigen::Vector3d* f) {
+    r.t.push_back(t);
+    r.x.insert(r.x.end(), x, x + fingers);
+    r.f.insert(r.f.end(), f, f + fingers);
+  });
+  r.steps.reserve(step_count());
+  for_each_step([&](std::size_t, const RecordedStep& s) { r.steps.push_back(s); });
   return r;
+}
+
+std::size_t CompactRecording::bytes() const {
+  std::size_t b = sizeof(*this) + (tick_t_.capacity() + step_t_.capacity()) * sizeof(double) +
+                  (tick_chunks_.capacity() + step_chunks_.capacity()) * sizeof(Chunk);
+  for (const auto* v : {&tick_chunks_, &step_chunks_})
+    for (const Chunk& c : *v) b += c.coded.capacity() + 16;
+  b += events.capacity() * sizeof(nlohmann::json) + header.dump().size();
+  for (const auto& e : events) b += e.dump().size();
+  return b;
 }
 
 RecoverResult recover_recording(const std::string& path) {
@@ -543,7 +737,7 @@ RecoverResult recover_recording(const std::string& path) {
   return res;
 }
 
-double recorded_force_scale(const Recording& r) {
+double recorded_force_scale(const RecordingInfo& r) {
   if (!r.header.is_object() || !r.header.contains("session") || !r.header["session"].is_object()) return 1.0;
   const nlohmann::json& s = r.header["session"];
   if (!s.contains("force_scale") || !s["force_scale"].is_number()) return 1.0;

@@ -123,35 +123,137 @@ class RecordingWriter {
   bool closed_ = false;
 };
 
-struct Recording {
+/// What a recording holds besides its ticks and steps: the header, events, end and how far
+/// it is valid (read_recording, read_recording_compact).
+struct RecordingInfo {
   std::string path;
   std::uint32_t version = 0;
   nlohmann::json header, footer;     // footer: null when there is no end chunk
   int fingers = 0;
-  std::vector<double> t;             // per tick
-  std::vector<Eigen::Vector3d> x, f; // per tick x finger (index tick * fingers + finger)
   std::vector<nlohmann::json> events;
-  std::vector<RecordedStep> steps;   // workstation sessions (version 2 and later); empty otherwise
   int chunks = 0;
   bool complete = false;             // ends with an end chunk
   bool recovered = false;            // the end chunk says it was recovered
   std::string interrupted;           // non-empty: why the tail was dropped (no end chunk)
   std::uint64_t valid_bytes = 0;     // offset after the last valid chunk
   std::uint64_t file_bytes = 0;
+};
+
+struct Recording : RecordingInfo {
+  std::vector<double> t;             // per tick
+  std::vector<Eigen::Vector3d> x, f; // per tick x finger (index tick * fingers + finger)
+  std::vector<RecordedStep> steps;   // workstation sessions (version 2 and later); empty otherwise
   std::size_t ticks() const { return t.size(); }
+  std::size_t step_count() const { return steps.size(); }
   double duration() const { return t.empty() ? 0.0 : t.back(); }
+  /// As CompactRecording's: f(tick, t, x, f) with `fingers` positions and forces.
+  template <class F>
+  void for_each_tick(F&& fn) const {
+    for (std::size_t i = 0; i < t.size(); ++i)
+      fn(i, t[i], &x[i * std::size_t(fingers)], &f[i * std::size_t(fingers)]);
+  }
+  /// f(step index, step).
+  template <class F>
+  void for_each_step(F&& fn) const {
+    for (std::size_t i = 0; i < steps.size(); ++i) fn(i, steps[i]);
+  }
+};
+
+/// A recording with its ticks and steps kept as they are coded in a version-3 file (each
+/// chunk's records as one zstd frame of delta-coded byte-plane columns; the chunks of older
+/// files are coded so when read), decoded a chunk (0.25 s) at a time when asked for. What a
+/// review keeps: a five-finger workstation session's ticks as doubles take 248 bytes each
+/// (446 MB for 30 minutes at 1 kHz) and its steps some 500 bytes each (180 to 800 MB),
+/// coded about a sixth of that; only the times stay decoded (8 bytes a tick or step), for
+/// lookups by time. Lossless: a decoded tick or step is bit for bit what read_recording
+/// returns. Immutable after reading; the const members are safe from several threads.
+class CompactRecording : public RecordingInfo {
+ public:
+  /// One chunk's ticks decoded: ticks first .. first + size - 1.
+  struct Ticks {
+    std::size_t first = 0;
+    std::vector<double> t;
+    std::vector<Eigen::Vector3d> x, f;  // tick x finger
+  };
+  struct Steps {
+    std::size_t first = 0;
+    std::vector<RecordedStep> steps;
+  };
+
+  std::size_t ticks() const { return tick_t_.size(); }
+  std::size_t step_count() const { return step_t_.size(); }
+  double duration() const { return tick_t_.empty() ? 0.0 : tick_t_.back(); }
+  /// Recording time of every tick (step), in order.
+  const std::vector<double>& tick_times() const { return tick_t_; }
+  const std::vector<double>& step_times() const { return step_t_; }
+
+  std::size_t tick_chunks() const { return tick_chunks_.size(); }
+  std::size_t step_chunks() const { return step_chunks_.size(); }
+  /// Decodes chunk c of the ticks (steps) into `out` (its buffers reused).
+  void decode_ticks(std::size_t c, Ticks& out) const;
+  void decode_steps(std::size_t c, Steps& out) const;
+  /// The chunk that holds tick (step) i.
+  std::size_t tick_chunk_of(std::size_t i) const;
+  std::size_t step_chunk_of(std::size_t i) const;
+
+  /// f(tick, t, x, f), every tick in order, x and f `fingers` each; a chunk decoded at a time.
+  template <class F>
+  void for_each_tick(F&& fn) const {
+    Ticks b;
+    for (std::size_t c = 0; c < tick_chunks(); ++c) {
+      decode_ticks(c, b);
+      for (std::size_t j = 0; j < b.t.size(); ++j)
+        fn(b.first + j, b.t[j], &b.x[j * std::size_t(fingers)], &b.f[j * std::size_t(fingers)]);
+    }
+  }
+  /// f(step index, step), every step in order.
+  template <class F>
+  void for_each_step(F&& fn) const {
+    Steps b;
+    for (std::size_t c = 0; c < step_chunks(); ++c) {
+      decode_steps(c, b);
+      for (std::size_t j = 0; j < b.steps.size(); ++j) fn(b.first + j, b.steps[j]);
+    }
+  }
+
+  /// Everything decoded: what read_recording returns for the file.
+  Recording decode() const;
+  /// Bytes kept: the coded chunks, the times, the events' text, with an estimate of 16
+  /// bytes of allocator overhead per allocation.
+  std::size_t bytes() const;
+
+  /// The reader's way in (read_recording_compact): appends a chunk's coded records.
+  struct Sink {
+    CompactRecording& rec;
+    std::vector<double>& tick_t;
+    std::vector<double>& step_t;
+    void add(bool ticks, std::uint32_t count, std::string coded);
+  };
+
+ private:
+  friend CompactRecording read_recording_compact(const std::string& path);
+  struct Chunk {
+    std::size_t first = 0;      // index of its first tick (step)
+    std::uint32_t count = 0;    // records
+    std::string coded;          // zstd frame of count x columns x 8 bytes (the version-3 coding)
+  };
+  std::vector<Chunk> tick_chunks_, step_chunks_;
+  std::vector<double> tick_t_, step_t_;
 };
 
 /// The force scale the recorded session sent to its device (header "session"."force_scale",
 /// app/live/force_mapping.h): the ticks' forces are this times the simulated ones. 1 for
 /// recordings made before the scale, and for a missing or unusable value.
-double recorded_force_scale(const Recording& r);
+double recorded_force_scale(const RecordingInfo& r);
 
 /// Reads and validates a recording. A torn tail (no end chunk; the last chunk cut short or
 /// failing its checksum at the end of the file) is not an error: `interrupted` says what
 /// was dropped. Anything else (bad magic, newer version, header checksum, a bad chunk
 /// followed by more data, bad values) throws RecordingError("FILE: chunk N at offset O: reason").
 Recording read_recording(const std::string& path);
+/// As read_recording (the same checks and errors), the ticks and steps kept coded
+/// (CompactRecording): for a long recording kept open, the review.
+CompactRecording read_recording_compact(const std::string& path);
 
 struct RecoverResult {
   bool was_complete = false;     // nothing to do

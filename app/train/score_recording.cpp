@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
 
 #include "phantom.h"
 #include "scenario.h"
@@ -28,7 +29,7 @@ constexpr double kPlotPeriod = 0.02;
 
 }  // namespace
 
-PressureThresholds recorded_thresholds(const store::Recording& rec) {
+PressureThresholds recorded_thresholds(const store::RecordingInfo& rec) {
   const nlohmann::json* found = nullptr;
   if (rec.header.is_object() && rec.header.contains("settings") && rec.header["settings"].is_object() &&
       rec.header["settings"].contains("thresholds"))
@@ -48,7 +49,11 @@ PressureThresholds recorded_thresholds(const store::Recording& rec) {
   }
 }
 
-ScoredExam score_recording(const store::Recording& rec, const PressureThresholds& thresholds) {
+namespace {
+
+// Either kind of recording (store::Recording, store::CompactRecording): the same pass.
+template <class Rec>
+ScoredExam score_any(const Rec& rec, const PressureThresholds& thresholds) {
   if (!rec.complete)
     throw ScoreError(rec.path + ": the recording was cut short (" +
                      (rec.interrupted.empty() ? std::string("no end chunk") : rec.interrupted) +
@@ -101,9 +106,9 @@ ScoredExam score_recording(const store::Recording& rec, const PressureThresholds
     tracker.add({t, k, x, r, f});
     ++out.samples;
   };
-  if (!rec.steps.empty()) {
-    for (const store::RecordedStep& st : rec.steps) {
-      if (swapped && st.commands_applied <= swap_index) continue;
+  if (rec.step_count() > 0) {
+    rec.for_each_step([&](std::size_t, const store::RecordedStep& st) {
+      if (swapped && st.commands_applied <= swap_index) return;
       for (int k = 0; k < nf && k < int(st.fingers.size()); ++k) {
         const auto& fi = st.fingers[std::size_t(k)];
         if (fi.active) sample(st.t, k, fi.x, fi.radius, fi.f.norm());
@@ -114,23 +119,21 @@ ScoredExam score_recording(const store::Recording& rec, const PressureThresholds
         for (int k = 0; k < nf; ++k)
           out.plot_force[std::size_t(k)].push_back(k < int(st.fingers.size()) ? st.fingers[std::size_t(k)].f.norm() : 0.0);
       }
-    }
+    });
   } else {
     // Ticks hold the forces sent to the device: back to simulated ones for the levels.
     const double to_sim = 1.0 / store::recorded_force_scale(rec);
-    for (std::size_t i = 0; i < rec.ticks(); ++i) {
-      const double t = rec.t[i];
+    rec.for_each_tick([&](std::size_t, double t, const Eigen::Vector3d* x, const Eigen::Vector3d* f) {
       for (int k = 0; k < nf; ++k) {
         const double r = k < int(sc.fingers.size()) ? sc.fingers[std::size_t(k)].radius : 0.008;
-        sample(t, k, rec.x[i * std::size_t(nf) + std::size_t(k)], r, to_sim * rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
+        sample(t, k, x[k], r, to_sim * f[k].norm());
       }
       if (t - last_plot >= kPlotPeriod) {
         last_plot = t;
         out.plot_t.push_back(t);
-        for (int k = 0; k < nf; ++k)
-          out.plot_force[std::size_t(k)].push_back(to_sim * rec.f[i * std::size_t(nf) + std::size_t(k)].norm());
+        for (int k = 0; k < nf; ++k) out.plot_force[std::size_t(k)].push_back(to_sim * f[k].norm());
       }
-    }
+    });
   }
   // Marks: the session's mark events and the scripted trainee's.
   std::vector<Mark> marks;
@@ -155,11 +158,25 @@ ScoredExam score_recording(const store::Recording& rec, const PressureThresholds
   const double pad = sc.fingers.empty() ? kPadRadius : sc.fingers.front().radius;
   const auto tumours = find_tumours(model->rest, model->tets, young, sc.young_modulus, *skin, pad);
   double duration = rec.duration();
-  if (!rec.steps.empty()) duration = std::max(duration, rec.steps.back().t);
+  if constexpr (std::is_same_v<Rec, store::CompactRecording>) {
+    if (rec.step_count() > 0) duration = std::max(duration, rec.step_times().back());
+  } else {
+    if (!rec.steps.empty()) duration = std::max(duration, rec.steps.back().t);
+  }
   out.score = score_exam(tracker, tumours, std::move(marks), duration);
   out.face_level = tracker.face_level();
   out.face_reached = tracker.face_reached();
   return out;
+}
+
+}  // namespace
+
+ScoredExam score_recording(const store::Recording& rec, const PressureThresholds& thresholds) {
+  return score_any(rec, thresholds);
+}
+
+ScoredExam score_recording(const store::CompactRecording& rec, const PressureThresholds& thresholds) {
+  return score_any(rec, thresholds);
 }
 
 }  // namespace palpation::app::train

@@ -43,9 +43,11 @@ struct ScoredExam {
 /// The pressure thresholds a workstation session used: the last "thresholds" event, else
 /// the header's settings.thresholds, else the defaults. A recorded value that does not
 /// validate throws std::invalid_argument naming the field.
-PressureThresholds recorded_thresholds(const store::Recording& rec);
+PressureThresholds recorded_thresholds(const store::RecordingInfo& rec);
 
 /// Scores a recording. Throws ScoreError for one cut short (no end chunk: recover it first),
 /// a scenario that cannot be read, or marks outside the body.
 ScoredExam score_recording(const store::Recording& rec, const PressureThresholds& thresholds = {});
+/// The same from a recording kept coded (the review's): the steps or ticks decoded a chunk at a time.
+ScoredExam score_recording(const store::CompactRecording& rec, const PressureThresholds& thresholds = {});
 }  // namespace palpation::app::train

@@ -196,7 +196,9 @@ class TstReview : public QObject {
         }
       }
       QVERIFY2(sent_diff > 0.05, qPrintable(QString::number(sent_diff)));
-      QVERIFY2(std::abs(c.max_sent_diff - sent_diff) <= 1e-9,
+      // The review keeps the re-simulated forces in float (7 significant digits) but
+      // compares in double before storing: 1e-6 relative covers float's rounding.
+      QVERIFY2(std::abs(c.max_sent_diff - sent_diff) <= 1e-6 * std::max(1.0, sent_diff),
                qPrintable(QString("reported %1 N, recomputed %2 N").arg(c.max_sent_diff).arg(sent_diff)));
     }
     QVERIFY(rw.difference_label()->text().contains(QLatin1String("Reproduced")));
