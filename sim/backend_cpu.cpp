@@ -41,6 +41,7 @@
 #include "contact_sphere.h"
 #include "fem_corotational.h"
 #include "lanes4.h"
+#include "nodal_pressure.h"
 #include "solve_cg.h"
 
 namespace palpation::sim {
@@ -123,21 +124,27 @@ class CpuBackend final : public Backend {
     // kept at all, so a switch to above 0 would lose every still element's rotation term
     // until the next full assembly. Any change of tolerance assembles afresh.
     if (p.solver.corotation_tolerance != p_.solver.corotation_tolerance) assembled_ = false;
+    const bool element_changed = p.element != p_.element;
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
     p_ = p;
+    if (element_changed) set_materials(mat_);
   }
   const CpuWorkCounters& counters() const { return counters_; }
 
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
+    if (&mat != &mat_) mat_ = mat;
     lambda_.resize(ne);
     mu_.resize(ne);
+    // The nodal-pressure element takes lambda out of the element blocks into its nodal term.
+    const bool nodal = p_.element == Element::NodalPressure;
     for (int e = 0; e < ne; ++e) {
-      lambda_[e] = T(mat.lambda[e]);
+      lambda_[e] = nodal ? T(0) : T(mat.lambda[e]);
       mu_[e] = T(mat.mu[e]);
     }
+    if (nodal) build_nodal_pressure(mat);
     rested_ = false;
     assembled_ = false;  // every element's blocks change: assemble K afresh
   }
@@ -172,6 +179,27 @@ class CpuBackend final : public Backend {
         eblk_[16 * std::size_t(e) + k] = blk < 0 ? -1 : 9 * blk;
       }
     }
+  }
+
+  // The nodal-pressure term's pattern (once), its weights for these materials, and the
+  // per-element pair offsets (-1 for a fixed node: element() skips those).
+  void build_nodal_pressure(const Materials& mat) {
+    const int ne = m_.num_tets(), nn = m_.num_nodes(), nf = m_.num_free();
+    if (np_.row_ptr.empty()) {
+      np_ = build_nodal_pressure_pattern(m_);
+      npb_.assign(3 * std::size_t(np_.num_pairs()), T(0));
+      epair_.resize(16 * std::size_t(ne));
+      for (int e = 0; e < ne; ++e)
+        for (int k = 0; k < 16; ++k) epair_[16 * std::size_t(e) + k] = np_.tet_pair[e][k];
+      npi_.resize(nn);
+      npc_.resize(nn);
+      npx_.resize(3 * std::size_t(nf));
+      npdiag_.resize(9 * std::size_t(nf));
+    }
+    const std::vector<double> w = nodal_pressure_weights(m_, np_, mat.lambda);
+    npw_.assign(w.begin(), w.end());
+    npt_ = cg::PressureTerm<T>{nn, np_.row_ptr.data(), np_.col.data(), np_.t_row_ptr.data(), np_.t_node.data(),
+                               np_.t_pair.data(), npb_.data(), npw_.data(), npi_.data()};
   }
 
   void reset() override {
@@ -217,6 +245,10 @@ class CpuBackend final : public Backend {
     sys.scale = h * h + h * T(p_.damping.stiffness);  // (h^2 + h beta) K + D
     sys.diag = diag_.data();
     sys.diag_index = m_.diag_block.data();
+    if (nodal()) {
+      sys.pressure = &npt_;
+      sys.pressure_diag = npdiag_.data();
+    }
     // Warm start: the last two solutions extrapolated linearly (the velocity change of a
     // pushed body varies smoothly from step to step; on the coarse sweep 10-13 % fewer CG
     // iterations than the last solution alone). A guess worse than zero is caught by
@@ -278,6 +310,8 @@ class CpuBackend final : public Backend {
   }
 
  private:
+  bool nodal() const { return p_.element == Element::NodalPressure; }
+
   // threads: 1 = serial, >= 2 = always parallel (OpenMP's team), 0 = where it pays.
   bool parallel() const {
     return p_.solver.threads >= 2 || (p_.solver.threads == 0 && m_.num_free() >= kParallelMinFree && cores_ >= kParallelMinCores);
@@ -317,6 +351,7 @@ class CpuBackend final : public Backend {
     if (full) {
       std::fill(blocks_.begin(), blocks_.end(), T(0));
       std::fill(b0_.begin(), b0_.end(), T(0));
+      std::fill(npb_.begin(), npb_.end(), T(0));
       steps_since_assembly_ = 0;
       ++counters_.full_assemblies;
     }
@@ -358,6 +393,7 @@ class CpuBackend final : public Backend {
       cg::multiply(K, vfree_.data(), kv_.data(), par);
       for (int i = 0; i < 3 * nf; ++i) b_[i] -= damp * kv_[i];
     }
+    if (nodal()) nodal_pressure_forces(damp, par);
     // Mass terms of the diagonal: (1 + h alpha) M.
     const T mscale = T(1) + T(p_.solver.dt) * T(p_.damping.mass);
     std::fill(diag_.begin(), diag_.end(), T(0));
@@ -429,6 +465,57 @@ class CpuBackend final : public Backend {
     for (int a = 0; a < 4; ++a) {
       T* bb = &b0_[std::size_t(rows[a])];
       for (int k = 0; k < 3; ++k) bb[k] += acc[a][k];
+    }
+  }
+
+  // The element's part of the nodal-pressure couplings b_nj, (V / 4) r_j for each of its
+  // nodes n and free nodes j, for r1 (r_j = R g_j), minus that for r0 when given. A pair
+  // (n, j) belongs to elements that hold the free node j, which no two elements of one
+  // colour share: race-free under the coloured parallel pass.
+  void rotate_pairs(std::size_t e, const V4 r1[4], const V4* r0) {
+    const T q = T(0.25) * evol_[e];
+    const int* pr = &epair_[16 * e];
+    for (int b = 0; b < 4; ++b) {
+      const V4 d = q * (r0 ? r1[b] - r0[b] : r1[b]);
+      for (int a = 0; a < 4; ++a) {
+        const int k = pr[4 * a + b];
+        if (k < 0) continue;
+        T* bk = &npb_[3 * std::size_t(k)];
+        for (int c = 0; c < 3; ++c) bk[c] += d[c];
+      }
+    }
+  }
+
+  // The nodal-pressure term's part of b_ (the elastic force minus its stiffness damping,
+  // as for the blocks in assemble()): -B^T W (B (u + damp v) + c), where
+  // c_n = sum_{e at n} (V_e / 4) (tr R_e - 3) is B's rest-position part (sum_j b_nj . X_j,
+  // since sum_a (R g_a) . X_a = tr R for the element's rotation R); and the diagonal
+  // blocks of B^T W B for the preconditioner.
+  void nodal_pressure_forces(T damp, bool par) {
+    const int nf = m_.num_free(), ne = m_.num_tets();
+    std::fill(npc_.begin(), npc_.end(), T(0));
+    for (int e = 0; e < ne; ++e) {
+      const T* Rk = &ekrot_[9 * std::size_t(e)];
+      const T ce = T(0.25) * evol_[e] * ((Rk[0] + Rk[4] + Rk[8]) - T(3));
+      for (int a = 0; a < 4; ++a) npc_[m_.tets[e][a]] += ce;
+    }
+    for (int i = 0; i < nf; ++i) {
+      const int node = m_.free_nodes[i];
+      for (int k = 0; k < 3; ++k)
+        npx_[3 * i + k] = x_[3 * node + k] - T(m_.rest[node][k]) + damp * v_[3 * node + k];
+    }
+    cg::pressure_rows(npt_, npx_.data(), npc_.data(), par);
+#pragma omp parallel for schedule(static) if (par)
+    for (int j = 0; j < nf; ++j) {
+      const V4 g = cg::pressure_gather(npt_, j);
+      for (int k = 0; k < 3; ++k) b_[3 * j + k] -= g[k];
+      M3 D = M3::Zero();
+      for (int k = np_.t_row_ptr[j]; k < np_.t_row_ptr[j + 1]; ++k) {
+        const Eigen::Map<const V3> bk(&npb_[3 * std::size_t(np_.t_pair[k])]);
+        D.noalias() += npw_[np_.t_node[k]] * bk * bk.transpose();
+      }
+      Eigen::Map<M3> dst(&npdiag_[9 * std::size_t(j)]);
+      dst = D;
     }
   }
 
@@ -532,6 +619,7 @@ class CpuBackend final : public Backend {
       }
       if (full) {
         rotate_blocks(es, r, kept ? y : nullptr, nullptr, nullptr, blk, rows);
+        if (nodal()) rotate_pairs(es, r, nullptr);
       } else {  // the element's old blocks (and its part of b0) out, the new ones in
         const V4 R0[3] = {lanes::load3(Rk), lanes::load3(Rk + 3), lanes::load3(Rk + 6)};
         V4 r0[4], y0[4];
@@ -540,6 +628,7 @@ class CpuBackend final : public Backend {
           y0[a] = rotate(R0, X + 3 * a) - lanes::load3(X + 3 * a);
         }
         rotate_blocks(es, r, y, r0, y0, blk, rows);
+        if (nodal()) rotate_pairs(es, r, r0);
       }
       for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
     }
@@ -641,7 +730,14 @@ class CpuBackend final : public Backend {
   SimParams p_;
   std::vector<T> x_, v_;                     // (nnode x 3) state
   std::vector<Eigen::Quaternion<T>> q_;      // (ntet) element rotations, warm start
-  std::vector<T> lambda_, mu_;               // (ntet) materials in T
+  std::vector<T> lambda_, mu_;               // (ntet) materials in T (lambda 0: in the nodal term)
+  Materials mat_;                            // the materials set last (an element change rebuilds from them)
+  NodalPressurePattern np_;                  // nodal-pressure element only: its pattern,
+  std::vector<int> epair_;                   // (ntet x 16) pair offsets of each element, -1 fixed
+  std::vector<T> npb_, npw_;                 // (npair x 3) couplings b_nj, kept like K; (nnode) lambda_n / V_n
+  std::vector<T> npi_, npc_;                 // (nnode) pressures (CG scratch), rest-position part c_n
+  std::vector<T> npx_, npdiag_;              // (nfree x 3) u + damp v, (nfree x 9) diagonal blocks of B^T W B
+  cg::PressureTerm<T> npt_;
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<T> eX_;                        // (ntet x 12) rest positions about the element's centroid
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash

@@ -46,7 +46,15 @@ struct ContactParams {
   double force_filter_hz = 100.0;  // first-order low-pass cutoff of the finger force
 };
 
+/// Tetrahedral formulation. Linear: the constant-strain corotational tetrahedron, one
+/// volumetric strain per element, which locks as Poisson's ratio approaches 0.5 (too
+/// stiff). NodalPressure: the same element with its volumetric term lambda tr(eps)
+/// averaged over each node's elements (average nodal pressure, nodal_pressure.h), which
+/// does not lock; CPU backend only so far.
+enum class Element { Linear, NodalPressure };
+
 struct SimParams {
+  Element element = Element::Linear;
   SolverParams solver;
   DampingParams damping;
   ContactParams contact;
@@ -58,7 +66,7 @@ struct SimParams {
 /// them; any other change (gravity above all) must wake a resting body.
 inline bool differ_beyond_step(const SimParams& a, const SimParams& b) {
   const SolverParams &s = a.solver, &t = b.solver;
-  return s.cg_tolerance != t.cg_tolerance || s.cg_max_iterations != t.cg_max_iterations ||
+  return a.element != b.element || s.cg_tolerance != t.cg_tolerance || s.cg_max_iterations != t.cg_max_iterations ||
          s.cg_rescue_tolerance != t.cg_rescue_tolerance || s.cg_rescue_iterations != t.cg_rescue_iterations ||
          s.precision != t.precision || s.corotation_tolerance != t.corotation_tolerance ||
          a.damping.mass != b.damping.mass || a.damping.stiffness != b.damping.stiffness ||

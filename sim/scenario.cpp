@@ -141,7 +141,11 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
 
   if (j.contains("tissue")) {
     const json& t = j["tissue"];
-    rd.only_keys(t, "tissue", {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness"});
+    rd.only_keys(t, "tissue", {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness", "element"});
+    if (t.contains("element"))
+      s.params.element = rd.choice(t["element"], "tissue.element", {"linear", "nodal-pressure"}) == "nodal-pressure"
+                             ? Element::NodalPressure
+                             : Element::Linear;
     if (t.contains("young_modulus")) s.young_modulus = rd.positive(t["young_modulus"], "tissue.young_modulus");
     if (t.contains("poisson_ratio")) s.poisson_ratio = rd.poisson(t["poisson_ratio"], "tissue.poisson_ratio");
     if (t.contains("density")) s.density = rd.positive(t["density"], "tissue.density");
@@ -312,6 +316,7 @@ std::string scenario_to_json(const Scenario& s) {
                  {"density", s.density},
                  {"damping_mass", s.params.damping.mass},
                  {"damping_stiffness", s.params.damping.stiffness}};
+  if (s.params.element == Element::NodalPressure) j["tissue"]["element"] = "nodal-pressure";
   j["inclusions"] = json::array();
   for (const auto& inc : s.inclusions) {
     json ji = {{"shape", inc.shape},

@@ -20,6 +20,45 @@
 
 namespace palpation::sim::cg {
 
+/// The average-nodal-pressure volumetric term B^T W B (nodal_pressure.h), kept factored:
+/// (B x)_n = sum_j b_nj . x_j over the pressure rows n (every node), then
+/// (B^T pi)_j = sum_n b_nj pi_n over the free rows j.
+template <class T>
+struct PressureTerm {
+  int nnode = 0;
+  const int* row_ptr = nullptr;    // (nnode + 1)
+  const int* col = nullptr;        // (npair) free index
+  const int* t_row_ptr = nullptr;  // (nfree + 1)
+  const int* t_node = nullptr;     // (npair)
+  const int* t_pair = nullptr;     // (npair)
+  const T* b = nullptr;            // (npair x 3) coupling vectors b_nj
+  const T* w = nullptr;            // (nnode) lambda_n / V_n
+  T* pi = nullptr;                 // (nnode) scratch: the nodal pressures of the last product
+};
+
+/// pi_n = w_n (sum_j b_nj . x_j + c_n) for every pressure row (c: none, or per node).
+template <class T>
+void pressure_rows(const PressureTerm<T>& P, const T* __restrict x, const T* __restrict c, bool parallel) {
+#pragma omp parallel for schedule(static) if (parallel)
+  for (int n = 0; n < P.nnode; ++n) {
+    T s = c ? c[n] : T(0);
+    for (int k = P.row_ptr[n]; k < P.row_ptr[n + 1]; ++k) {
+      const T* bk = P.b + 3 * std::size_t(k);
+      const T* xj = x + 3 * std::size_t(P.col[k]);
+      s += bk[0] * xj[0] + bk[1] * xj[1] + bk[2] * xj[2];
+    }
+    P.pi[n] = P.w[n] * s;
+  }
+}
+
+/// (B^T pi)_j for free row j, from the pressures of the last pressure_rows.
+template <class T>
+lanes::V4<T> pressure_gather(const PressureTerm<T>& P, int j) {
+  lanes::V4<T> y = {0, 0, 0, 0};
+  for (int k = P.t_row_ptr[j]; k < P.t_row_ptr[j + 1]; ++k) y += lanes::load3(P.b + 3 * std::size_t(P.t_pair[k])) * P.pi[P.t_node[k]];
+  return y;
+}
+
 template <class T>
 struct BlockSystem {
   int n;                 // block rows (free nodes)
@@ -29,6 +68,10 @@ struct BlockSystem {
   T scale = 1;           // A = scale * blocks + diag
   const T* diag = nullptr;       // (n x 9) column-major extra diagonal blocks + 1 T padding, or none
   const int* diag_index = nullptr;  // (n) block index of each row's diagonal, or none (searched)
+  // Optional: B^T W B added to the stored blocks (A = scale * (blocks + B^T W B) + diag),
+  // and its 3x3 diagonal blocks (n x 9, column-major) for the preconditioner.
+  const PressureTerm<T>* pressure = nullptr;
+  const T* pressure_diag = nullptr;
 };
 
 template <class T>
@@ -66,6 +109,7 @@ void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, b
     const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
     return load4(b) * x0 + load4(b + 3) * x1 + load4(b + 6) * x2;
   };
+  if (A.pressure) pressure_rows(*A.pressure, x, static_cast<const T*>(nullptr), parallel);
   T xy = 0;
 #pragma omp parallel for schedule(static) reduction(+ : xy) if (parallel)
   for (int i = 0; i < A.n; ++i) {
@@ -81,6 +125,7 @@ void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, b
     }
     if (k < end) acc += block(b, x + 3 * c[k]);
     acc += acc2;
+    if (A.pressure) acc += pressure_gather(*A.pressure, i);
     if (A.diag) {
       acc = A.scale * acc + block(A.diag + 9 * std::size_t(i), x + 3 * i);
     } else if (A.scale != T(1)) {
@@ -115,6 +160,7 @@ void build_block_jacobi(const BlockSystem<T>& A, T* P) {
       while (A.col[k] != i) ++k;
     }
     M3 D = A.scale * Eigen::Map<const M3>(A.blocks + 9 * std::size_t(k));
+    if (A.pressure_diag) D += A.scale * Eigen::Map<const M3>(A.pressure_diag + 9 * std::size_t(i));
     if (A.diag) D += Eigen::Map<const M3>(A.diag + 9 * std::size_t(i));
     M3 Dinv = D.inverse();
     if (!Dinv.allFinite()) Dinv.setZero();

@@ -8,14 +8,29 @@
 
 namespace palpation::sim {
 
-Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector<Eigen::Matrix3d>* rotations) {
-  const int n = 3 * m.num_free();
-  std::vector<Eigen::Triplet<double>> trip;
+Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector<Eigen::Matrix3d>* rotations,
+                                               Element element) {
+  const int n = 3 * m.num_free(), nn = m.num_nodes();
+  const bool nodal = element == Element::NodalPressure;
+  std::vector<Eigen::Triplet<double>> trip, btrip;
+  std::vector<double> node_volume(nn, 0.0), node_lambda(nn, 0.0);
   trip.reserve(std::size_t(m.num_tets()) * 144);
   for (int e = 0; e < m.num_tets(); ++e) {
     const Eigen::Matrix3d R = rotations ? (*rotations)[e] : Eigen::Matrix3d::Identity();
     Eigen::Vector3d r[4];
     for (int a = 0; a < 4; ++a) r[a] = R * m.grad[e][a];
+    const double lambda = nodal ? 0.0 : m.materials.lambda[e];
+    if (nodal)
+      for (int a = 0; a < 4; ++a) {
+        const int node = m.tets[e][a];
+        node_volume[node] += m.volume[e] / 4;
+        node_lambda[node] += m.volume[e] / 4 * m.materials.lambda[e];
+        for (int b = 0; b < 4; ++b) {
+          const int ib = m.dof[m.tets[e][b]];
+          if (ib < 0) continue;
+          for (int k = 0; k < 3; ++k) btrip.emplace_back(node, 3 * ib + k, m.volume[e] / 4 * r[b][k]);
+        }
+      }
     for (int a = 0; a < 4; ++a) {
       const int ia = m.dof[m.tets[e][a]];
       if (ia < 0) continue;
@@ -23,7 +38,7 @@ Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector
         const int ib = m.dof[m.tets[e][b]];
         if (ib < 0) continue;
         const Eigen::Matrix3d K =
-            fem::stiffness_block<double>(r[a], r[b], m.grad[e][a].dot(m.grad[e][b]), m.volume[e], m.materials.lambda[e], m.materials.mu[e]);
+            fem::stiffness_block<double>(r[a], r[b], m.grad[e][a].dot(m.grad[e][b]), m.volume[e], lambda, m.materials.mu[e]);
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) trip.emplace_back(3 * ia + i, 3 * ib + j, K(i, j));
       }
@@ -31,11 +46,20 @@ Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector
   }
   Eigen::SparseMatrix<double> K(n, n);
   K.setFromTriplets(trip.begin(), trip.end());
-  return K;
+  if (!nodal) return K;
+  // B (nnode x 3 nfree), W = diag(lambda_n / V_n), lambda_n the volume-weighted mean.
+  Eigen::SparseMatrix<double> B(nn, n);
+  B.setFromTriplets(btrip.begin(), btrip.end());
+  Eigen::VectorXd w(nn);
+  for (int i = 0; i < nn; ++i) w[i] = node_volume[i] > 0 ? node_lambda[i] / (node_volume[i] * node_volume[i]) : 0.0;
+  const Eigen::SparseMatrix<double> WB = w.asDiagonal() * B;
+  const Eigen::SparseMatrix<double> Kv = Eigen::SparseMatrix<double>(B.transpose()) * WB;
+  return K + Kv;
 }
 
-std::vector<Eigen::Vector3d> solve_linear_static(const Model& m, const std::vector<Eigen::Vector3d>& loads) {
-  const Eigen::SparseMatrix<double> K = assemble_stiffness(m);
+std::vector<Eigen::Vector3d> solve_linear_static(const Model& m, const std::vector<Eigen::Vector3d>& loads,
+                                                 Element element) {
+  const Eigen::SparseMatrix<double> K = assemble_stiffness(m, nullptr, element);
   Eigen::VectorXd f(3 * m.num_free());
   for (int i = 0; i < m.num_free(); ++i) f.segment<3>(3 * i) = loads[m.free_nodes[i]];
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(K);

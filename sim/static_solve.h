@@ -9,17 +9,22 @@
 #include <Eigen/Sparse>
 
 #include "model.h"
+#include "params.h"
 
 namespace palpation::sim {
 
 /// Global stiffness over the free degrees of freedom (3 per free node), assembled with
-/// per-element rotations R (identity for the rest state). Symmetric.
-Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector<Eigen::Matrix3d>* rotations = nullptr);
+/// per-element rotations R (identity for the rest state). Symmetric. For the nodal-pressure
+/// element the volumetric term B^T W B (nodal_pressure.h) is formed here on its own, with
+/// Eigen's sparse products, as an independent check of the backends' factored form.
+Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector<Eigen::Matrix3d>* rotations = nullptr,
+                                               Element element = Element::Linear);
 
 /// Linear static displacement under nodal loads (nnode x 3, N) with the fixed nodes held:
 /// K u = f solved by SimplicialLDLT. Returns (nnode x 3) displacements, zero at fixed nodes.
 /// Throws std::runtime_error when the factorisation fails (a free rigid mode).
-std::vector<Eigen::Vector3d> solve_linear_static(const Model& m, const std::vector<Eigen::Vector3d>& loads);
+std::vector<Eigen::Vector3d> solve_linear_static(const Model& m, const std::vector<Eigen::Vector3d>& loads,
+                                                 Element element = Element::Linear);
 
 /// Nodal loads of a uniform body force b (N/m^3): lumped, rho-free (volume / 4 per node).
 std::vector<Eigen::Vector3d> body_force_loads(const Model& m, const Eigen::Vector3d& b);

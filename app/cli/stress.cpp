@@ -76,6 +76,31 @@ std::string fmt(double v, int prec = 3) {
   return b;
 }
 
+// The paper's sweep on the breast at `level`, on the CPU, cut after `until` s of its path
+// and lifted 3 cm in 0.1 s; the case runs `settle` s past the release.
+StressCase paper_sweep_case(const std::string& name, const std::string& group, const std::string& desc,
+                            const std::string& level, double until, double settle) {
+  StressCase c;
+  c.name = name;
+  c.group = group;
+  c.description = desc;
+  c.breast = true;
+  c.scenario = sim::builtin_scenario("paper-sweep");
+  c.scenario.source = "stress:" + c.name;
+  c.scenario.patient.resolution = level;
+  c.scenario.patient.edge = *sim::resolution_edge("breast", level);
+  c.scenario.backend = "cpu";
+  auto& keys = c.scenario.fingers.front().keys;
+  std::vector<std::array<double, 4>> kept;
+  for (const auto& key : keys)
+    if (key[0] <= until) kept.push_back(key);
+  kept.push_back({kept.back()[0] + 0.1, kept.back()[1], kept.back()[2], kept.back()[3] + 0.03});
+  keys = kept;
+  c.release_time = keys.back()[0];
+  c.scenario.duration = c.release_time + settle;
+  return c;
+}
+
 }  // namespace
 
 std::vector<StressCase> stress_cases(bool quick) {
@@ -216,27 +241,12 @@ std::vector<StressCase> stress_cases(bool quick) {
   // The coarse breast with the paper's tumour made 10x to 1000x stiffer than the tissue,
   // the first 3 s of the paper's sweep at dt 10 ms with the paper's solver settings.
   for (double k : {10.0, 30.0, 100.0, 1000.0, 10000.0}) {
-    StressCase c;
-    c.name = "breast-tumour-" + fmt(k, 5) + "x";
-    c.group = "contrast";
-    c.description = "coarse breast, paper sweep over the tumour at " + fmt(k, 5) + "x contrast, dt 10 ms";
-    c.breast = true;
-    c.scenario = sim::builtin_scenario("paper-sweep");
-    c.scenario.source = "stress:" + c.name;
-    c.scenario.patient.resolution = "coarse";
-    c.scenario.patient.edge = *sim::resolution_edge("breast", "coarse");
+    StressCase c = paper_sweep_case("breast-tumour-" + fmt(k, 5) + "x", "contrast",
+                                    "coarse breast, paper sweep over the tumour at " + fmt(k, 5) + "x contrast, dt 10 ms",
+                                    "coarse", 3.0, 0.5);
     for (auto& inc : c.scenario.inclusions) inc.young_modulus = k * c.scenario.young_modulus;
-    c.scenario.backend = "cpu";
     c.scenario.params.solver.dt = 0.01;
     c.scenario.params.solver.threads = 1;
-    auto& keys = c.scenario.fingers.front().keys;
-    std::vector<std::array<double, 4>> k2;
-    for (const auto& key : keys)
-      if (key[0] <= 3.0) k2.push_back(key);
-    k2.push_back({k2.back()[0] + 0.1, k2.back()[1], k2.back()[2], k2.back()[3] + 0.03});
-    keys = k2;
-    c.release_time = keys.back()[0];
-    c.scenario.duration = c.release_time + 0.5;
     cs.push_back(c);
   }
   // CG capped at 5 iterations on the paper and the 10x breast, dt 1 ms, the first 0.6 s of
@@ -244,27 +254,13 @@ std::vector<StressCase> stress_cases(bool quick) {
   // their solution (on the 10x mesh it diverged within steps); the rescue must keep every
   // step at the default tolerance.
   for (const char* level : {"paper", "xfine"}) {
-    StressCase c;
-    c.name = std::string("capped-5-") + level;
-    c.group = "capped";
-    c.description = std::string(level) + " breast, CG capped at 5 iterations (rescued to 1e-3), press onto the tumour, dt 1 ms";
-    c.breast = true;
-    c.scenario = sim::builtin_scenario("paper-sweep");
-    c.scenario.source = "stress:" + c.name;
-    c.scenario.patient.resolution = level;
-    c.scenario.patient.edge = *sim::resolution_edge("breast", level);
-    c.scenario.backend = "cpu";
+    StressCase c = paper_sweep_case(
+        std::string("capped-5-") + level, "capped",
+        std::string(level) + " breast, CG capped at 5 iterations (rescued to 1e-3), press onto the tumour, dt 1 ms", level,
+        0.6, 0.3);
     c.scenario.params.solver.dt = 0.001;
     c.scenario.params.solver.cg_tolerance = 1e-3;
     c.scenario.params.solver.cg_max_iterations = 5;
-    auto& keys = c.scenario.fingers.front().keys;
-    std::vector<std::array<double, 4>> k2;
-    for (const auto& key : keys)
-      if (key[0] <= 0.6) k2.push_back(key);
-    k2.push_back({k2.back()[0] + 0.1, k2.back()[1], k2.back()[2], k2.back()[3] + 0.03});
-    keys = k2;
-    c.release_time = keys.back()[0];
-    c.scenario.duration = c.release_time + 0.3;
     cs.push_back(c);
   }
   return cs;

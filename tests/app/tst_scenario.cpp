@@ -41,6 +41,8 @@ class TestScenario : public QObject {
                             << QString("case.json: tissue.young_modulus: must be > 0");
     QTest::newRow("nu 0.5") << QString::fromStdString(with("\"tissue\": {\"poisson_ratio\": 0.5}"))
                             << QString("case.json: tissue.poisson_ratio: must be in (-1, 0.5)");
+    QTest::newRow("unknown element") << QString::fromStdString(with("\"tissue\": {\"element\": \"quadratic\"}"))
+                                     << QString("case.json: tissue.element: must be one of");
     QTest::newRow("dt <= 0") << QString::fromStdString(with("\"solver\": {\"dt\": -0.001}")) << QString("case.json: solver.dt: must be > 0");
     QTest::newRow("radius <= 0") << QString::fromStdString(
                                         "{\"patient\": {\"phantom\": \"box\"}, \"fingers\": [{\"radius\": 0, \"path\": [[0, 0, 0, 0.1]]}]}")
@@ -86,6 +88,17 @@ class TestScenario : public QObject {
       QCOMPARE(b.fingers.size(), a.fingers.size());
       QCOMPARE(b.inclusions.size(), a.inclusions.size());
     }
+  }
+
+  // The element choice is read, written back only when not the default, and read again.
+  void elementRoundTrips() {
+    const sim::Scenario plain = sim::parse_scenario(with("\"duration\": 1"), "case.json");
+    QVERIFY(plain.params.element == sim::Element::Linear);
+    QVERIFY(sim::scenario_to_json(plain).find("\"element\"") == std::string::npos);
+    const sim::Scenario np = sim::parse_scenario(with("\"tissue\": {\"element\": \"nodal-pressure\"}"), "case.json");
+    QVERIFY(np.params.element == sim::Element::NodalPressure);
+    const sim::Scenario back = sim::parse_scenario(sim::scenario_to_json(np), "case.json");
+    QVERIFY(back.params.element == sim::Element::NodalPressure);
   }
 
   void pathIsLinearBetweenKeys() {

@@ -1,0 +1,68 @@
+#include "nodal_pressure.h"
+
+#include <algorithm>
+
+namespace palpation::sim {
+
+NodalPressurePattern build_nodal_pressure_pattern(const Model& m) {
+  const int nn = m.num_nodes(), nf = m.num_free(), ne = m.num_tets();
+  NodalPressurePattern p;
+  // Free neighbours of each node (itself included when free), sorted.
+  std::vector<std::vector<int>> adj(nn);
+  for (const auto& t : m.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        if (m.dof[t[b]] >= 0) adj[t[a]].push_back(m.dof[t[b]]);
+  p.row_ptr.assign(nn + 1, 0);
+  for (int n = 0; n < nn; ++n) {
+    auto& r = adj[n];
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    p.row_ptr[n + 1] = p.row_ptr[n] + static_cast<int>(r.size());
+  }
+  p.col.reserve(p.row_ptr[nn]);
+  for (const auto& r : adj) p.col.insert(p.col.end(), r.begin(), r.end());
+  auto pair_of = [&](int n, int j) {
+    const auto first = p.col.begin() + p.row_ptr[n], last = p.col.begin() + p.row_ptr[n + 1];
+    return static_cast<int>(std::lower_bound(first, last, j) - p.col.begin());
+  };
+  p.tet_pair.resize(ne);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        const int j = m.dof[m.tets[e][b]];
+        p.tet_pair[e][4 * a + b] = j < 0 ? -1 : pair_of(m.tets[e][a], j);
+      }
+  // Transpose: by free node j, its pressure nodes n in increasing order.
+  p.t_row_ptr.assign(nf + 1, 0);
+  for (int j : p.col) ++p.t_row_ptr[j + 1];
+  for (int j = 0; j < nf; ++j) p.t_row_ptr[j + 1] += p.t_row_ptr[j];
+  p.t_node.resize(p.col.size());
+  p.t_pair.resize(p.col.size());
+  std::vector<int> fill(p.t_row_ptr.begin(), p.t_row_ptr.end() - 1);
+  for (int n = 0; n < nn; ++n)
+    for (int k = p.row_ptr[n]; k < p.row_ptr[n + 1]; ++k) {
+      const int slot = fill[p.col[k]]++;
+      p.t_node[slot] = n;
+      p.t_pair[slot] = k;
+    }
+  p.node_volume.assign(nn, 0.0);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 4; ++a) p.node_volume[m.tets[e][a]] += 0.25 * m.volume[e];
+  return p;
+}
+
+std::vector<double> nodal_pressure_weights(const Model& m, const NodalPressurePattern& p,
+                                           const std::vector<double>& lambda) {
+  std::vector<double> w(m.num_nodes(), 0.0);
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int a = 0; a < 4; ++a) w[m.tets[e][a]] += 0.25 * m.volume[e] * lambda[e];
+  // sum (V_e / 4) lambda_e = lambda_n V_n, so w_n = lambda_n / V_n = that / V_n^2.
+  for (int n = 0; n < m.num_nodes(); ++n) {
+    const double vn = p.node_volume[n];
+    w[n] = vn > 0 ? w[n] / (vn * vn) : 0.0;
+  }
+  return w;
+}
+
+}  // namespace palpation::sim
