@@ -19,7 +19,8 @@ inline constexpr int kExitBadInput = 2;
 /// A subcommand registers its options on `sub` and returns the action to run.
 using CommandAction = std::function<int()>;
 
-/// A scenario argument (a JSON file, a built-in name or "builtin:NAME") with the
+/// A scenario argument (a JSON file, a built-in name or "builtin:NAME", or, where the
+/// build has the patient library, a built-in patient's name with its default press) with the
 /// command-line overrides of --backend and --resolution applied (empty: none).
 /// Throws sim::ScenarioError naming the argument.
 sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend = {},
@@ -39,6 +40,7 @@ CommandAction add_replay_command(CLI::App& app);
 CommandAction add_score_command(CLI::App& app);
 CommandAction add_case_command(CLI::App& app);
 CommandAction add_curriculum_command(CLI::App& app);
+CommandAction add_convergence_command(CLI::App& app);
 #ifdef PALPATION_HAVE_SQL
 CommandAction add_patient_command(CLI::App& app);
 CommandAction add_trainee_command(CLI::App& app);

@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   reg(add_score_command);
   reg(add_case_command);
   reg(add_curriculum_command);
+  reg(add_convergence_command);
 #ifdef PALPATION_HAVE_SQL
   reg(add_patient_command);
   reg(add_trainee_command);
