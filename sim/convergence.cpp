@@ -116,6 +116,43 @@ Eigen::Vector3d press_point(const Scenario& s, const Model& m) {
 
 }  // namespace
 
+std::string recommended_level(const ConvergenceStudy& st) {
+  std::string rec;
+  // A level is enough when what the trainee feels has converged on it. With a tumour that
+  // is the contrast: the device's force scale is set by a deep press on the same mesh
+  // (sim/press_probe.h, app/live/force_mapping.h), so a mesh's overall stiffness does not
+  // reach the hand, but the tumour's share of the force does. Its excess (contrast - 1)
+  // must be within 20 % of the reference's, or within 0.01 (a 1 % force change, far below
+  // the 15 % a hand can tell apart) where that excess is near 0. Without a tumour, the
+  // force itself within 5 %. The reference is the extrapolated limit; without one, the
+  // next finer level (so the finest level is never recommended without a limit: nothing
+  // shows it is converged). Every tumour must be resolved on the level.
+  const std::size_t n = st.levels.size();
+  const Extrapolation& felt = st.has_tumour ? st.contrast : st.force;
+  auto value = [&](const ConvergenceLevel& lv) { return st.has_tumour ? lv.contrast - 1.0 : lv.force; };
+  auto matches = [&](double v, double ref) {
+    return st.has_tumour ? std::fabs(v - ref) <= std::max(kContrastTolerance * std::fabs(ref), 0.01)
+                         : std::fabs(v - ref) <= kForceTolerance * std::fabs(ref);
+  };
+  for (std::size_t k = 0; k < n && rec.empty(); ++k) {
+    if (k + 1 >= n && !felt.ok) break;
+    // This level and every finer one (a level that matches by chance between two that
+    // do not is not converged).
+    bool ok = true;
+    for (std::size_t i = k; i < n && ok; ++i) {
+      const ConvergenceLevel& lv = st.levels[i];
+      ok = lv.finite;
+      for (const auto& t : lv.tumours) ok = ok && t.resolved;
+      if (felt.ok)
+        ok = ok && matches(value(lv), st.has_tumour ? felt.limit - 1.0 : felt.limit);
+      else if (i + 1 < n)
+        ok = ok && matches(value(lv), value(st.levels[i + 1]));
+    }
+    if (ok) rec = st.levels[k].name;
+  }
+  return rec;
+}
+
 ConvergenceStudy convergence_study(const Scenario& s0, const ConvergenceOptions& o) {
   if (s0.patient.phantom.empty())
     throw ScenarioError(s0.source + ": patient.mesh: a mesh file has one resolution; a convergence study needs a phantom");
@@ -185,36 +222,7 @@ ConvergenceStudy convergence_study(const Scenario& s0, const ConvergenceOptions&
   st.force = richardson(h, f);
   if (st.has_tumour) st.contrast = richardson(h, c);
 
-  // A level is enough when its force is within 5 % of the reference and its contrast
-  // excess (contrast - 1) within 20 % of the reference's, or within 0.01 (a 1 % force
-  // change, far below the 15 % a hand can tell apart) where that excess is near 0. The
-  // reference is the extrapolated limit; without one, the next finer level (so the
-  // finest level is never recommended without a limit: nothing shows it is converged).
-  const std::size_t n = st.levels.size();
-  auto within = [](double v, double ref, double tol, double floor) {
-    return std::fabs(v - ref) <= std::max(tol * std::fabs(ref), floor);
-  };
-  for (std::size_t k = 0; k < n && st.recommended.empty(); ++k) {
-    bool ok = true;
-    // This level and every finer one (a level that matches by chance between two that
-    // do not is not converged).
-    for (std::size_t i = k; i < n && ok; ++i) {
-      const ConvergenceLevel& lv = st.levels[i];
-      ok = lv.finite;
-      for (const auto& t : lv.tumours) ok = ok && t.resolved;
-      if (!st.force.ok && i + 1 >= n) continue;  // the finest level, compared by the one above it
-      const double f_ref = st.force.ok ? st.force.limit : st.levels[i + 1].force;
-      ok = ok && within(lv.force, f_ref, kForceTolerance, 0.0);
-      if (st.has_tumour) {
-        const bool c_limit = st.contrast.ok;
-        if (!c_limit && i + 1 >= n) continue;
-        const double c_ref = c_limit ? st.contrast.limit : st.levels[i + 1].contrast;
-        ok = ok && within(lv.contrast - 1.0, c_ref - 1.0, kContrastTolerance, 0.01);
-      }
-    }
-    const bool finest_only_by_itself = k + 1 >= n && !st.force.ok;
-    if (ok && !finest_only_by_itself) st.recommended = st.levels[k].name;
-  }
+  st.recommended = recommended_level(st);
   return st;
 }
 

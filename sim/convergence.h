@@ -88,14 +88,19 @@ struct ConvergenceStudy {
   bool has_tumour = false;
   std::vector<ConvergenceLevel> levels;  // coarse to fine
   Extrapolation force, contrast;
-  /// The coarsest level from which on every level's force is within 5 % of the
-  /// extrapolated limit (without one: of the next finer level's) and its contrast excess
-  /// (contrast - 1) within 20 % of the limit's (or the next level's), with every tumour
-  /// resolved; empty when no level is (the finest level needs a limit to be chosen).
+  /// The coarsest level from which on what a trainee feels has converged: the contrast
+  /// excess (contrast - 1) within 20 % of the extrapolated limit's (without a limit: of
+  /// the next finer level's), or within 0.01 near 0; without a tumour the force within
+  /// 5 %. Every tumour resolved on it. Empty when no level is (the finest level needs a
+  /// limit to be chosen). The force is not required to converge with a tumour: the
+  /// device's force scale is set per mesh by a deep press (app/live/force_mapping.h).
   std::string recommended;
 };
 inline constexpr double kForceTolerance = 0.05;
 inline constexpr double kContrastTolerance = 0.20;
+
+/// ConvergenceStudy::recommended from the levels and limits of a study.
+std::string recommended_level(const ConvergenceStudy& st);
 
 /// Runs the study. The press is over the first inclusion stiffer than the tissue, else
 /// over the highest skin node. Throws ScenarioError for a level that is not a resolution

@@ -114,12 +114,14 @@ void write_plot(const std::string& path, const sim::ConvergenceStudy& st) {
       c.y.push_back(lv.contrast);
     }
   }
-  if (st.force.ok) plot.series.push_back({"force limit", {0.0, st.levels.front().edge * 1e3}, {st.force.limit, st.force.limit}, true, false, false});
   plot.series.push_back(std::move(f));
   if (st.has_tumour) {
     plot.series.push_back(std::move(p));
     plot.series.push_back(std::move(c));
   }
+  // The extrapolated limit, drawn from h = 0 (where it lies) to the coarsest level.
+  if (st.force.ok)
+    plot.series.push_back({"force limit (Richardson)", {0.0, st.levels.front().edge * 1e3}, {st.force.limit, st.force.limit}, true, false, false});
   std::string why;
   if (!write_plot_png(path, plot, &why)) throw std::runtime_error(why);
 }
