@@ -449,7 +449,10 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
   const double a = shape.base_radius, h = shape.height, cx = shape.center_x;  // m
   // Unrefined HXT meshes of the dome have about 4.2 V / edge^3 tetrahedra (measured);
   // beyond ~10 million Gmsh needs several GB and many minutes: refuse up front.
-  const double expected_tets = 4.2 * (2.0 / 3.0 * kPi * a * a * h) / (edge * edge * edge);
+  double expected_tets = 4.2 * (2.0 / 3.0 * kPi * a * a * h) / (edge * edge * edge);
+  // A refined skin adds its layer (3 mm at skin_edge; the dome's area is at most 2 pi a max(a, h)).
+  if (shape.skin_edge > 0 && shape.skin_edge < edge)
+    expected_tets += 4.2 * (2.0 * kPi * a * std::max(a, h) * 0.003) / (shape.skin_edge * shape.skin_edge * shape.skin_edge);
   if (expected_tets > 1e7) {
     std::ostringstream o;
     o.precision(3);
@@ -542,6 +545,25 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
       gmsh::model::mesh::field::setNumber(t, "DistMax", 3.0);
       thresholds.push_back(t);
     }
+    // The skin: `skin_edge` down to 3 mm below it, graded back to `edge` by 1 cm. Depth
+    // below the skin is taken as (1 - rho) min(a, h), rho the dome's normalized radius:
+    // exact on the axis, up to a / h deeper elsewhere (the refined layer is then thicker
+    // by that ratio at the rim, never thinner).
+    if (shape.skin_edge > 0 && shape.skin_edge < edge) {
+      std::ostringstream f;
+      f.precision(17);
+      f << "(1 - Sqrt(((x - (" << cx << ")) / " << a << ")^2 + (y / " << a << ")^2 + (z / " << h << ")^2)) * "
+        << std::min(a, h);
+      const int d = gmsh::model::mesh::field::add("MathEval");
+      gmsh::model::mesh::field::setString(d, "F", f.str());
+      const int t = gmsh::model::mesh::field::add("Threshold");
+      gmsh::model::mesh::field::setNumber(t, "IField", d);
+      gmsh::model::mesh::field::setNumber(t, "LcMin", shape.skin_edge);
+      gmsh::model::mesh::field::setNumber(t, "LcMax", edge);
+      gmsh::model::mesh::field::setNumber(t, "DistMin", 0.003);
+      gmsh::model::mesh::field::setNumber(t, "DistMax", 0.01);
+      thresholds.push_back(t);
+    }
     if (!thresholds.empty()) {
       const int m = gmsh::model::mesh::field::add("Min");
       gmsh::model::mesh::field::setNumbers(m, "FieldsList", thresholds);
@@ -585,7 +607,9 @@ TetMesh gmsh_breast(const BreastShape& shape, double edge, const std::vector<Inc
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::ostringstream o;
     o.precision(3);
-    o << "gmsh: breast edge " << edge * 1000 << " mm, " << inclusions.size() << " inclusion(s): "
+    o << "gmsh: breast edge " << edge * 1000 << " mm";
+    if (shape.skin_edge > 0) o << " (skin " << shape.skin_edge * 1000 << " mm)";
+    o << ", " << inclusions.size() << " inclusion(s): "
       << mesh.num_nodes() << " nodes, " << mesh.num_tets() << " tetrahedra in " << sec << " s ("
       << (algorithm == 10 ? "HXT" : "Delaunay") << ")";
     log(o.str());

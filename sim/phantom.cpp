@@ -27,6 +27,8 @@ std::string breast_key(const BreastShape& b, double edge, const std::vector<Incl
   k << "breast/v2-delaunay c=" << b.center_x << " a=" << b.base_radius << " h=" << b.height << " edge=" << edge;
   for (const auto& i : incs)
     k << " inc(" << i.shape << ' ' << i.center.transpose() << ' ' << i.radii.transpose() << ')';
+  // Only when set, so that every mesh without it keeps its key (and its cache file).
+  if (b.skin_edge > 0) k << " skin=" << b.skin_edge;
   return k.str();
 }
 
@@ -69,6 +71,7 @@ TetMesh patient_mesh(const Scenario& s, const LogFn& log) {
   BreastShape shape;
   shape.base_radius = s.patient.base_radius;
   shape.height = s.patient.height;
+  shape.skin_edge = s.patient.skin_edge;
   const std::string key = breast_key(shape, s.patient.edge, s.inclusions);
   std::ostringstream name;
   name << "breast-" << std::hex << key_hash(key) << ".pmesh";

@@ -20,6 +20,7 @@ struct BreastShape {
   double center_x = 0.125;    // m
   double base_radius = 0.08;  // m
   double height = 0.065;      // m
+  double skin_edge = 0.0;     // m, target edge at the skin (0: the mesh's edge; PatientSpec)
   /// Height of the skin above the chest wall at (x, y); 0 outside the base.
   double surface_z(double x, double y) const;
   bool contains(const Eigen::Vector3d& p) const;

@@ -92,7 +92,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   if (!j.contains("patient")) rd.fail("patient", "is required");
   {
     const json& p = j["patient"];
-    rd.only_keys(p, "patient", {"phantom", "mesh", "resolution", "size", "grading", "base_radius", "height"});
+    rd.only_keys(p, "patient", {"phantom", "mesh", "resolution", "size", "grading", "base_radius", "height", "skin_edge"});
     if (p.contains("mesh") == p.contains("phantom")) rd.fail("patient", "give exactly one of \"phantom\" or \"mesh\"");
     if (p.contains("phantom")) s.patient.phantom = rd.choice(p["phantom"], "patient.phantom", {"breast", "box"});
     if (p.contains("mesh")) {
@@ -116,6 +116,11 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
         if (v < 0.02 || v > 0.2) rd.fail(field, "must be in [0.02, 0.2] m");
         (std::string(key) == "height" ? s.patient.height : s.patient.base_radius) = v;
       }
+    if (p.contains("skin_edge")) {
+      if (s.patient.phantom != "breast") rd.fail("patient.skin_edge", "only the breast phantom takes a skin_edge");
+      s.patient.skin_edge = rd.positive(p["skin_edge"], "patient.skin_edge");
+      if (s.patient.skin_edge < 5e-4 || s.patient.skin_edge > 0.05) rd.fail("patient.skin_edge", "must be in [0.0005, 0.05] m");
+    }
     if (p.contains("grading")) {
       if (s.patient.phantom != "box") rd.fail("patient.grading", "only the box phantom takes a grading");
       s.patient.grading = rd.number(p["grading"], "patient.grading");
@@ -304,6 +309,7 @@ std::string scenario_to_json(const Scenario& s) {
     if (s.patient.phantom == "breast") {
       if (s.patient.base_radius != PatientSpec{}.base_radius) p["base_radius"] = s.patient.base_radius;
       if (s.patient.height != PatientSpec{}.height) p["height"] = s.patient.height;
+      if (s.patient.skin_edge > 0) p["skin_edge"] = s.patient.skin_edge;
     }
   }
   if (!s.patient.resolution.empty())

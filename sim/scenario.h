@@ -40,6 +40,11 @@ struct PatientSpec {
   double grading = 1.0;               // box only: >1 concentrates cells at the top centre
   double base_radius = 0.08;          // breast only, m: radius of the base on the chest wall
   double height = 0.065;              // breast only, m: skin above the chest wall on the axis
+  /// Breast only, m: target edge length at the skin, graded back to `edge` by 1 cm below
+  /// it; 0: the skin is meshed at `edge`. The fingertip (8 mm) touches the tissue through
+  /// the skin's elements, and the force of a press converges slowly while they are about
+  /// its size (docs/simulation.md, "Mesh convergence").
+  double skin_edge = 0.0;
 };
 
 struct FingerPath {

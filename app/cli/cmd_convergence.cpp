@@ -134,7 +134,7 @@ CommandAction add_convergence_command(CLI::App& app) {
                                  "without the tumour, and the extrapolated limit");
   struct Opts {
     std::string scenario, out, levels = "coarse,paper,fine,xfine";
-    double radius = 0.008, depth_fraction = 0.3;
+    double radius = 0.008, depth_fraction = 0.3, skin_edge = 0;
     bool quiet = false;
   };
   auto o = std::make_shared<Opts>();
@@ -144,10 +144,16 @@ CommandAction add_convergence_command(CLI::App& app) {
   sub->add_option("--radius", o->radius, "Fingertip radius, m")->check(CLI::Range(0.002, 0.02));
   sub->add_option("--depth-fraction", o->depth_fraction, "Press depth as a fraction of the tissue under the site")
       ->check(CLI::Range(0.02, 0.6));
+  sub->add_option("--skin-edge", o->skin_edge, "Breast: edge length at the skin, m (patient.skin_edge) on every level")
+      ->check(CLI::Range(0.0005, 0.05));
   sub->add_option("--out", o->out, "Folder for convergence.json, convergence.csv and convergence.png");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {
-    const sim::Scenario s = load_scenario_arg(o->scenario);
+    sim::Scenario s = load_scenario_arg(o->scenario);
+    if (o->skin_edge > 0) {
+      if (s.patient.phantom != "breast") throw sim::ScenarioError("--skin-edge: only the breast phantom takes a skin edge");
+      s.patient.skin_edge = o->skin_edge;
+    }
     sim::ConvergenceOptions opt;
     opt.levels.clear();
     std::stringstream ss(o->levels);

@@ -43,6 +43,12 @@ class TestScenario : public QObject {
                             << QString("case.json: tissue.poisson_ratio: must be in (-1, 0.5)");
     QTest::newRow("unknown element") << QString::fromStdString(with("\"tissue\": {\"element\": \"quadratic\"}"))
                                      << QString("case.json: tissue.element: must be one of");
+    QTest::newRow("skin_edge on a box") << QString::fromStdString(
+                                               "{\"patient\": {\"phantom\": \"box\", \"skin_edge\": 0.002}, " + std::string(kFinger) + "}")
+                                        << QString("case.json: patient.skin_edge: only the breast phantom takes a skin_edge");
+    QTest::newRow("skin_edge too fine") << QString::fromStdString(
+                                               "{\"patient\": {\"phantom\": \"breast\", \"skin_edge\": 0.0001}, " + std::string(kFinger) + "}")
+                                        << QString("case.json: patient.skin_edge: must be in [0.0005, 0.05] m");
     QTest::newRow("dt <= 0") << QString::fromStdString(with("\"solver\": {\"dt\": -0.001}")) << QString("case.json: solver.dt: must be > 0");
     QTest::newRow("radius <= 0") << QString::fromStdString(
                                         "{\"patient\": {\"phantom\": \"box\"}, \"fingers\": [{\"radius\": 0, \"path\": [[0, 0, 0, 0.1]]}]}")
@@ -99,6 +105,18 @@ class TestScenario : public QObject {
     QVERIFY(np.params.element == sim::Element::NodalPressure);
     const sim::Scenario back = sim::parse_scenario(sim::scenario_to_json(np), "case.json");
     QVERIFY(back.params.element == sim::Element::NodalPressure);
+  }
+
+  // The skin's edge length is read, written back only when set, and read again.
+  void skinEdgeRoundTrips() {
+    const std::string breast = "{\"patient\": {\"phantom\": \"breast\"%1}, " + std::string(kFinger) + "}";
+    auto text = [&](const std::string& extra) { return QString::fromStdString(breast).arg(QString::fromStdString(extra)).toStdString(); };
+    const sim::Scenario plain = sim::parse_scenario(text(""), "case.json");
+    QCOMPARE(plain.patient.skin_edge, 0.0);
+    QVERIFY(sim::scenario_to_json(plain).find("skin_edge") == std::string::npos);
+    const sim::Scenario s = sim::parse_scenario(text(", \"skin_edge\": 0.002"), "case.json");
+    QCOMPARE(s.patient.skin_edge, 0.002);
+    QCOMPARE(sim::parse_scenario(sim::scenario_to_json(s), "case.json").patient.skin_edge, 0.002);
   }
 
   void pathIsLinearBetweenKeys() {
