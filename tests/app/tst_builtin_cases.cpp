@@ -53,6 +53,12 @@ constexpr double kFelt = 0.15;
 bool expected_felt(const std::string& name) { return name == "paper-case" || name == "tumour-2.0cm-superficial-hard"; }
 bool borderline(const std::string& name) { return name == "tumour-1.0cm-superficial-firm"; }
 
+store::PatientRecord builtin(const std::string& name) {
+  for (auto& p : store::PatientLibrary::builtin_patients())
+    if (p.name == name) return p;
+  return {};
+}
+
 struct Contrast {
   double over = 0, beside = 0, over_plain = 0;  // N
   double site() const { return over / beside - 1.0; }
@@ -119,9 +125,7 @@ class TestBuiltinCases : public QObject {
   void gradedTumoursAreResolved_data() { tumourIsFelt_data(); }
   void gradedTumoursAreResolved() {
     QFETCH(QString, name);
-    store::PatientRecord rec;
-    for (auto& p : store::PatientLibrary::builtin_patients())
-      if (p.name == name.toStdString()) rec = p;
+    const store::PatientRecord rec = builtin(name.toStdString());
     sim::Scenario s = sim::parse_scenario(store::patient_scenario(rec).dump(), rec.name);
     s.patient.resolution = "coarse";
     s.patient.edge = *sim::resolution_edge("breast", "coarse");
@@ -152,9 +156,7 @@ class TestBuiltinCases : public QObject {
 
   void tumourIsFelt() {
     QFETCH(QString, name);
-    store::PatientRecord rec;
-    for (auto& p : store::PatientLibrary::builtin_patients())
-      if (p.name == name.toStdString()) rec = p;
+    const store::PatientRecord rec = builtin(name.toStdString());
     sim::Scenario s = sim::parse_scenario(store::patient_scenario(rec).dump(), rec.name);
     s.patient.edge = kEdge;
     s.backend = "cpu";
