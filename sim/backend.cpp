@@ -28,18 +28,12 @@ std::vector<std::string> available_backends() {
   return out;
 }
 
-namespace {
-// The CUDA backends have the linear element only (params.h, Element).
-constexpr const char* kCudaNoNodalPressure = "tissue.element \"nodal-pressure\" runs on the CPU backend only so far";
-}  // namespace
-
 std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params) {
   if (name == "cpu") return make_cpu_backend(model, params);
 #ifdef PALPATION_HAVE_CUDA
   std::string why;
   if (name == "cuda" || name == "cuda-csr") {
     if (!cuda_available(&why)) throw std::runtime_error("backend " + name + ": " + why);
-    if (params.element == Element::NodalPressure) throw std::runtime_error("backend " + name + ": " + kCudaNoNodalPressure);
     return name == "cuda" ? make_cuda_backend(model, params) : make_cuda_csr_backend(model, params);
   }
 #endif
@@ -62,9 +56,7 @@ std::unique_ptr<Backend> make_backend(BackendKind kind, const Model& model, cons
                                       std::string* reason) {
   std::string why;
   if (kind == BackendKind::Cuda || kind == BackendKind::Auto) {
-    if (params.element == Element::NodalPressure) {
-      why = kCudaNoNodalPressure;
-    } else if (cuda_available(&why)) {
+    if (cuda_available(&why)) {
 #ifdef PALPATION_HAVE_CUDA
       auto b = make_cuda_backend(model, params);
       if (reason) *reason = "cuda on " + b->device_name();

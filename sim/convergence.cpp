@@ -99,7 +99,7 @@ double level_edge(const Scenario& s, const std::string& level) {
   const double v = std::strtod(level.c_str(), &end);
   if (level.empty() || end != level.c_str() + level.size() || !std::isfinite(v))
     throw ScenarioError("levels: \"" + level + "\" is neither a resolution (coarse, paper, fine, xfine) nor an edge length in m");
-  if (v < 5e-4 || v > 0.05) throw ScenarioError("levels: \"" + level + "\": an edge length must be in [0.0005, 0.05] m");
+  if (!edge_in_range(v)) throw ScenarioError("levels: \"" + level + "\": an edge length must be in " + kEdgeRange);
   return v;
 }
 

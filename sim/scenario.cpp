@@ -119,7 +119,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (p.contains("skin_edge")) {
       if (s.patient.phantom != "breast") rd.fail("patient.skin_edge", "only the breast phantom takes a skin_edge");
       s.patient.skin_edge = rd.positive(p["skin_edge"], "patient.skin_edge");
-      if (s.patient.skin_edge < 5e-4 || s.patient.skin_edge > 0.05) rd.fail("patient.skin_edge", "must be in [0.0005, 0.05] m");
+      if (!edge_in_range(s.patient.skin_edge)) rd.fail("patient.skin_edge", std::string("must be in ") + kEdgeRange);
     }
     if (p.contains("grading")) {
       if (s.patient.phantom != "box") rd.fail("patient.grading", "only the box phantom takes a grading");
@@ -136,8 +136,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       } else {
         s.patient.edge = rd.positive(r, "patient.resolution");
         s.patient.resolution.clear();
-        if (s.patient.edge < 5e-4 || s.patient.edge > 0.05)
-          rd.fail("patient.resolution", "edge length must be in [0.0005, 0.05] m");
+        if (!edge_in_range(s.patient.edge))
+          rd.fail("patient.resolution", std::string("edge length must be in ") + kEdgeRange);
       }
     } else {
       s.patient.edge = *resolution_edge(s.patient.phantom, s.patient.resolution);

@@ -97,4 +97,13 @@ Scenario builtin_scenario(const std::string& name);
 std::optional<double> resolution_edge(const std::string& phantom, const std::string& name);
 std::vector<std::string> resolution_names();
 
+/// The edge lengths a mesh may be asked for (patient.resolution, patient.skin_edge, the
+/// levels of a convergence study), m: below, Gmsh's meshes outgrow any machine here;
+/// above, a breast is a handful of elements.
+inline constexpr double kMinEdge = 5e-4;
+inline constexpr double kMaxEdge = 0.05;
+/// Whether an edge length lies in [kMinEdge, kMaxEdge], and the range as text for messages.
+inline bool edge_in_range(double v) { return v >= kMinEdge && v <= kMaxEdge; }
+inline constexpr const char* kEdgeRange = "[0.0005, 0.05] m";
+
 }  // namespace palpation::sim

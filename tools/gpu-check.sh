@@ -7,16 +7,21 @@
 # (breast meshes coarse/paper/xfine, generated on a machine with Gmsh, and the cached CPU
 # reference traces of check-backends). See docs/gpu-notes.md.
 #
-# Stages (arguments; default: build check micro bench idle sweep):
+# Stages (arguments; default: build check hertz micro bench idle sweep):
 #   build  cmake + ninja (Release, -DCMAKE_CUDA_ARCHITECTURES=90)
-#   check  palpation check-backends (paper-sweep + hertz, 1,000 steps): exit 1 on disagreement
+#   check  palpation check-backends (paper-sweep + hertz, linear and nodal-pressure element,
+#          1,000 steps): exit 1 on disagreement
+#   hertz  palpation hertz on CUDA (hertz.txt): the nodal-pressure element at Poisson's ratio
+#          0.40-0.499, two radii and moduli, 28 cells across, exit 1 beyond 5 % of Hertz; the
+#          linear element beside it on the same mesh (its locking, no limit)
 #   micro  design alternatives on the paper and xfine meshes (palpation run + env switches)
 #   ncu    Nsight Compute on one step's kernels (paper mesh, in contact)
 #   bench  palpation bench: cuda on coarse, paper, xfine in double and float; the textbook
 #          baseline cuda-csr on paper and xfine in double (the equal-error comparison)
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   sweep  the paper's Fig. 6 sweep on CUDA at SWEEP_MESHES (default paper), with and without
-#          the tumour: largest push per pass and the tumour/no-tumour ratio (sweep.txt)
+#          the tumour, with each of SWEEP_ELEMENTS (default linear nodal-pressure): step time,
+#          largest push per pass and the tumour/no-tumour ratio (sweep.txt)
 #   tests  the sim/ and device/ QtTest suites, packed here beforehand (below; tests.log,
 #          tests-summary.txt). Not a default stage; needs no build stage.
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
@@ -85,7 +90,7 @@ mkdir -p "$OUT"
 BUILD=${BUILD:-/tmp/palpation-build-gpu}
 export PALPATION_CACHE_DIR=${PALPATION_CACHE_DIR:-$ROOT/.gpu-carry/models}
 export PATH=/usr/local/cuda/bin:$PATH
-STAGES=${*:-build check micro bench idle sweep}
+STAGES=${*:-build check hertz micro bench idle sweep}
 BENCH_MESHES=${BENCH_MESHES:-coarse,paper,xfine}
 BASELINE_MESHES=${BASELINE_MESHES:-paper,xfine}
 BENCH_TIMEOUT=${BENCH_TIMEOUT:-330}
@@ -160,7 +165,7 @@ except FileNotFoundError:
 cuda = [l for l in lines if re.match(r"(PASS   |FAIL!  |SKIP   ): .*::(autoPicksCudaWithGpu|doubleAgreesWithCpu|floatAgreesWithinTolerance)", l)]
 for l in cuda:
     print("CUDA case:", l)
-if len(cuda) < 4 or not all(l.startswith("PASS") for l in cuda):
+if len(cuda) < 5 or not all(l.startswith("PASS") for l in cuda):
     print("CUDA cases of tst_backend_agreement: not all ran and passed")
     sys.exit(1)
 EOF
@@ -173,6 +178,20 @@ if has check; then
   [[ -f $OUT/check/check.json ]] && mv "$OUT/check/check.json" "$OUT/check.json" && rmdir "$OUT/check" 2>/dev/null
   say "check-backends exit $rc"
   [[ $rc -ne 0 ]] && status=1
+fi
+
+if has hertz; then
+  say "hertz: nodal-pressure within 5 % on CUDA, linear beside it (hertz.txt)"
+  : >"$OUT/hertz.txt"
+  for args in "--radius 0.01 --young 19000" "--radius 0.015 --young 60000"; do
+    # shellcheck disable=SC2086
+    timeout 240 "$P" hertz --backend cuda --elements nodal-pressure --nu 0.40,0.45,0.49,0.499 --cells 28 $args \
+      --limit 0.05 | tee -a "$OUT/hertz.txt"
+    rc=${PIPESTATUS[0]}
+    say "hertz nodal-pressure ($args) exit $rc"
+    [[ $rc -ne 0 ]] && status=1
+  done
+  timeout 240 "$P" hertz --backend cuda --elements linear --nu 0.40,0.45,0.49,0.499 --cells 28 | tee -a "$OUT/hertz.txt"
 fi
 
 if has micro; then
@@ -311,12 +330,20 @@ if has idle; then
   [[ -f /tmp/palpation-idle/bench.csv ]] && cp /tmp/palpation-idle/bench.csv "$OUT/idle.csv"
 fi
 if has sweep; then
-  for res in ${SWEEP_MESHES:-paper}; do
-    for sc in paper-sweep paper-sweep-no-tumour; do
-      say "sweep: $sc on $res"
-      timeout 200 "$P" run $sc --backend cuda --resolution "$res" --out "/tmp/palpation-sweep-$res-$sc" | tail -1
-    done
-    python3 - "/tmp/palpation-sweep-$res-paper-sweep/summary.json" "/tmp/palpation-sweep-$res-paper-sweep-no-tumour/summary.json" "$res" <<'EOF' | tee -a "$OUT/sweep.txt"
+  for el in ${SWEEP_ELEMENTS:-linear nodal-pressure}; do
+    for res in ${SWEEP_MESHES:-paper}; do
+      for sc in paper-sweep paper-sweep-no-tumour; do
+        say "sweep: $sc on $res, $el element"
+        "$P" scenario $sc | python3 -c '
+import json, sys
+s = json.load(sys.stdin)
+s.setdefault("tissue", {})["element"] = sys.argv[1]
+json.dump(s, open(sys.argv[2], "w"))' "$el" "/tmp/palpation-sweep-$el-$sc.json"
+        timeout 200 "$P" run "/tmp/palpation-sweep-$el-$sc.json" --backend cuda --resolution "$res" \
+          --out "/tmp/palpation-sweep-$el-$res-$sc" | tail -1
+      done
+      python3 - "/tmp/palpation-sweep-$el-$res-paper-sweep/summary.json" \
+        "/tmp/palpation-sweep-$el-$res-paper-sweep-no-tumour/summary.json" "$res" "$el" <<'EOF' | tee -a "$OUT/sweep.txt"
 import json, sys
 t, n = (json.load(open(f)) for f in sys.argv[1:3])
 def near(s, p):
@@ -324,11 +351,13 @@ def near(s, p):
     return max(v) if v else float("nan")
 passes = t["sweep"]["passes"]
 within = sum(abs(p["peak_x"] - 0.125) <= 0.01 for p in passes)
-print(f"{sys.argv[3]}: {t['nodes']} nodes, step {t['step_ms_median']:.3f} ms; largest push per pass at",
+print(f"{sys.argv[3]}, {sys.argv[4]}: {t['nodes']} nodes, step {t['step_ms_median']:.3f} ms median, "
+      f"{t['step_ms_p99']:.3f} ms p99, CG {t['cg_iterations_mean']:.1f} mean; largest push per pass at",
       ", ".join(f"{p['peak_x']:.4f} m ({p['peak_fz']:.2f} N)" for p in passes),
       f"-> {within} of {len(passes)} within 1 cm; tumour/no-tumour per pass",
       ", ".join(f"{near(t, p) / near(n, p):.3f}" for p in range(len(passes))))
 EOF
+    done
   done
 fi
 say "done (status $status)"

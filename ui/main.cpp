@@ -19,10 +19,12 @@
 #include "main_window.h"
 #include "review_window.h"
 #include "vtk_view.h"
+#include "cli/runtime_dir.h"
 #include "live/patient_choice.h"
 #include "live/workstation.h"
 
 int main(int argc, char** argv) {
+  palpation::app::cli::set_runtime_dir();
   // VTK's OpenGL format, before the QApplication exists (stack-notes.md).
   palpation::ui::VtkView::use_default_surface_format();
   if (!std::getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 0);

@@ -41,6 +41,7 @@ CommandAction add_score_command(CLI::App& app);
 CommandAction add_case_command(CLI::App& app);
 CommandAction add_curriculum_command(CLI::App& app);
 CommandAction add_convergence_command(CLI::App& app);
+CommandAction add_hertz_command(CLI::App& app);
 #ifdef PALPATION_HAVE_SQL
 CommandAction add_patient_command(CLI::App& app);
 CommandAction add_trainee_command(CLI::App& app);

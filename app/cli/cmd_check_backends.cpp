@@ -1,6 +1,7 @@
 // palpation check-backends: GPU against CPU on the same scenes (agreement).
 //
-// For each scenario (default: paper-sweep and hertz) the CPU backend in double precision
+// For each scenario (default: paper-sweep and hertz) and element (default: linear and
+// nodal-pressure; the cuda-csr baseline has the linear one only) the CPU backend in double precision
 // and each CUDA backend are stepped for N steps (default 1,000) with a tight CG tolerance
 // (default 1e-10 on both, so that the solvers' own tolerance does not dominate), and
 // compared:
@@ -49,6 +50,7 @@ namespace {
 struct CheckOptions {
   std::vector<std::string> scenarios{"paper-sweep", "hertz"};
   std::vector<std::string> backends;  // empty: every CUDA backend available
+  std::vector<std::string> elements{"linear", "nodal-pressure"};  // tissue.element, each scenario with each
   std::string resolution;             // empty: each scenario's own
   int steps = 1000;
   double tolerance = 1e-10;
@@ -142,96 +144,102 @@ int run_check(const CheckOptions& o) {
         all_ok = false;
       }
     }
-    sim::Scenario sd = s;
-    sd.params.solver.precision = sim::Precision::Double;
-    sd.params.solver.cg_tolerance = o.tolerance;
-    sd.params.solver.cg_max_iterations = o.max_iterations;
-    sd.params.solver.corotation_tolerance = 0;  // the CPU updates every element every step, as the GPU does
+    for (const auto& element : o.elements) {
+      const bool nodal = element == "nodal-pressure";
+      const std::string label = nodal ? name + "/nodal" : name;
+      sim::Scenario sd = s;
+      sd.params.solver.precision = sim::Precision::Double;
+      sd.params.solver.cg_tolerance = o.tolerance;
+      sd.params.solver.cg_max_iterations = o.max_iterations;
+      sd.params.solver.corotation_tolerance = 0;  // the CPU updates every element every step, as the GPU does
+      sd.params.element = nodal ? sim::Element::NodalPressure : sim::Element::Linear;
 
-    // CPU reference, cached.
-    sim::TetMesh keymesh;
-    keymesh.nodes = model.rest;
-    keymesh.tets = model.tets;
-    std::ostringstream key;
-    // v2: area-weighted contact; bump whenever the CPU step changes results.
-    key << "cpu-trace-v3-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sd)) << std::dec
-        << '-' << o.steps << ".bin";
-    const std::string path = (std::filesystem::path(sim::cache_dir()) / key.str()).string();
-    Trace cpu;
-    if (o.no_cache || !load_trace(path, cpu)) {
-      std::fprintf(stderr, "check-backends: %s: CPU reference (%d steps, CG %.0e) -> %s\n", name.c_str(), o.steps,
-                   o.tolerance, path.c_str());
-      cpu = run_trace(sd, model, "cpu", o.steps);
-      save_trace(path, cpu);
-    } else {
-      std::fprintf(stderr, "check-backends: %s: CPU reference from %s\n", name.c_str(), path.c_str());
-    }
+      // CPU reference, cached.
+      sim::TetMesh keymesh;
+      keymesh.nodes = model.rest;
+      keymesh.tets = model.tets;
+      std::ostringstream key;
+      // v2: area-weighted contact; bump whenever the CPU step changes results.
+      key << "cpu-trace-v3-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sd)) << std::dec
+          << '-' << o.steps << ".bin";
+      const std::string path = (std::filesystem::path(sim::cache_dir()) / key.str()).string();
+      Trace cpu;
+      if (o.no_cache || !load_trace(path, cpu)) {
+        std::fprintf(stderr, "check-backends: %s: CPU reference (%d steps, CG %.0e) -> %s\n", label.c_str(), o.steps,
+                     o.tolerance, path.c_str());
+        cpu = run_trace(sd, model, "cpu", o.steps);
+        save_trace(path, cpu);
+      } else {
+        std::fprintf(stderr, "check-backends: %s: CPU reference from %s\n", label.c_str(), path.c_str());
+      }
 
-    if (o.cpu_only) continue;
-    struct Run {
-      std::string backend;
-      sim::Precision prec;
-      double limit;
-    };
-    std::vector<Run> runs;
-    for (const auto& b : backends)
-      if (b != "cpu") runs.push_back({b, sim::Precision::Double, o.limit});
-    // Float on the GPU; "cpu" in --backends adds float on the CPU: the error that float
-    // arithmetic itself brings, whichever device runs it.
-    if (o.with_float)
+      if (o.cpu_only) continue;
+      struct Run {
+        std::string backend;
+        sim::Precision prec;
+        double limit;
+      };
+      std::vector<Run> runs;
       for (const auto& b : backends)
-        if (b == "cuda" || b == "cpu") runs.push_back({b, sim::Precision::Float, o.float_limit});
-    for (const auto& r : runs) {
-      sim::Scenario sg = sd;
-      sg.params.solver.precision = r.prec;
-      if (r.prec == sim::Precision::Float) {
-        sg.params.solver.cg_tolerance = o.float_cg_tolerance;
-        sg.params.solver.cg_max_iterations = 1000;
+        if (b != "cpu" && !(nodal && b == "cuda-csr"))  // the textbook baseline has the linear element only
+          runs.push_back({b, sim::Precision::Double, o.limit});
+      // Float on the GPU; "cpu" in --backends adds float on the CPU: the error that float
+      // arithmetic itself brings, whichever device runs it.
+      if (o.with_float)
+        for (const auto& b : backends)
+          if (b == "cuda" || b == "cpu") runs.push_back({b, sim::Precision::Float, o.float_limit});
+      for (const auto& r : runs) {
+        sim::Scenario sg = sd;
+        sg.params.solver.precision = r.prec;
+        if (r.prec == sim::Precision::Float) {
+          sg.params.solver.cg_tolerance = o.float_cg_tolerance;
+          sg.params.solver.cg_max_iterations = 1000;
+        }
+        Trace g;
+        std::string error;
+        try {
+          g = run_trace(sg, model, r.backend, o.steps);
+        } catch (const std::exception& e) {
+          error = e.what();
+        }
+        const char* prec = r.prec == sim::Precision::Float ? "float" : "double";
+        if (!error.empty()) {
+          std::printf("%-22s %-9s %-6s | FAILED: %s\n", label.c_str(), r.backend.c_str(), prec, error.c_str());
+          all_ok = false;
+          report["results"].push_back({{"scenario", label}, {"backend", r.backend}, {"precision", prec}, {"error", error}});
+          continue;
+        }
+        const int nfing = static_cast<int>(s.fingers.size());
+        const Comparison c = compare(g, cpu, model, nfing, r.limit);
+        const bool ok = g.finite && c.force <= r.limit && c.position <= r.limit && c.displacement <= r.limit;
+        all_ok = all_ok && ok;
+        std::printf("%-22s %-9s %-6s | %9.2e %9.2e %9.2e %9.2e | %6.1f %6.1f | %8.3f %8.3f | %s", label.c_str(),
+                    r.backend.c_str(), prec, c.force, c.force_max, c.position, c.displacement, c.its_mean, c.its_mean_ref,
+                    c.ms_median, c.ms_median_ref, ok ? "ok" : "DISAGREE");
+        if (!ok && c.first_step > 0) {
+          const int k = c.first_step - 1;
+          std::printf(" (first deviation at step %d: contacts %d/%d, iterations %d/%d)", c.first_step, g.contacts[k],
+                      cpu.contacts[k], g.iterations[k], cpu.iterations[k]);
+        }
+        std::printf("%s\n", g.finite ? "" : " NOT FINITE");
+        std::fflush(stdout);
+        report["results"].push_back({{"scenario", label},
+                                     {"nodes", model.num_nodes()},
+                                     {"tetrahedra", model.num_tets()},
+                                     {"backend", r.backend},
+                                     {"precision", prec},
+                                     {"limit", r.limit},
+                                     {"force_error", c.force},
+                                     {"force_max_error", c.force_max},
+                                     {"position_error", c.position},
+                                     {"displacement_error", c.displacement},
+                                     {"cg_iterations_mean", c.its_mean},
+                                     {"cg_iterations_mean_cpu", c.its_mean_ref},
+                                     {"step_ms_median", c.ms_median},
+                                     {"step_ms_median_cpu", c.ms_median_ref},
+                                     {"finite", g.finite},
+                                     {"ok", ok}});
       }
-      Trace g;
-      std::string error;
-      try {
-        g = run_trace(sg, model, r.backend, o.steps);
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
-      const char* prec = r.prec == sim::Precision::Float ? "float" : "double";
-      if (!error.empty()) {
-        std::printf("%-22s %-9s %-6s | FAILED: %s\n", name.c_str(), r.backend.c_str(), prec, error.c_str());
-        all_ok = false;
-        report["results"].push_back({{"scenario", name}, {"backend", r.backend}, {"precision", prec}, {"error", error}});
-        continue;
-      }
-      const int nfing = static_cast<int>(s.fingers.size());
-      const Comparison c = compare(g, cpu, model, nfing, r.limit);
-      const bool ok = g.finite && c.force <= r.limit && c.position <= r.limit && c.displacement <= r.limit;
-      all_ok = all_ok && ok;
-      std::printf("%-22s %-9s %-6s | %9.2e %9.2e %9.2e %9.2e | %6.1f %6.1f | %8.3f %8.3f | %s", name.c_str(),
-                  r.backend.c_str(), prec, c.force, c.force_max, c.position, c.displacement, c.its_mean, c.its_mean_ref,
-                  c.ms_median, c.ms_median_ref, ok ? "ok" : "DISAGREE");
-      if (!ok && c.first_step > 0) {
-        const int k = c.first_step - 1;
-        std::printf(" (first deviation at step %d: contacts %d/%d, iterations %d/%d)", c.first_step, g.contacts[k],
-                    cpu.contacts[k], g.iterations[k], cpu.iterations[k]);
-      }
-      std::printf("%s\n", g.finite ? "" : " NOT FINITE");
-      std::fflush(stdout);
-      report["results"].push_back({{"scenario", name},
-                                   {"nodes", model.num_nodes()},
-                                   {"tetrahedra", model.num_tets()},
-                                   {"backend", r.backend},
-                                   {"precision", prec},
-                                   {"limit", r.limit},
-                                   {"force_error", c.force},
-                                   {"force_max_error", c.force_max},
-                                   {"position_error", c.position},
-                                   {"displacement_error", c.displacement},
-                                   {"cg_iterations_mean", c.its_mean},
-                                   {"cg_iterations_mean_cpu", c.its_mean_ref},
-                                   {"step_ms_median", c.ms_median},
-                                   {"step_ms_median_cpu", c.ms_median_ref},
-                                   {"finite", g.finite},
-                                   {"ok", ok}});
     }
   }
   report["ok"] = all_ok;
@@ -255,6 +263,9 @@ CommandAction add_check_backends_command(CLI::App& app) {
   sub->add_option("--backends", o->backends,
                   "Backends to check (cuda, cuda-csr; cpu adds float on the CPU against double); default all GPU ones")
       ->delimiter(',');
+  sub->add_option("--elements", o->elements, "tissue.element values to check each scenario with (linear, nodal-pressure)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"linear", "nodal-pressure"}));
   sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, ...)");
   sub->add_option("--steps", o->steps, "Steps per run")->check(CLI::Range(4, 1000000));
   sub->add_option("--tolerance", o->tolerance, "CG tolerance of both (double) runs")->check(CLI::PositiveNumber);

@@ -145,7 +145,7 @@ CommandAction add_convergence_command(CLI::App& app) {
   sub->add_option("--depth-fraction", o->depth_fraction, "Press depth as a fraction of the tissue under the site")
       ->check(CLI::Range(0.02, 0.6));
   sub->add_option("--skin-edge", o->skin_edge, "Breast: edge length at the skin, m (patient.skin_edge) on every level")
-      ->check(CLI::Range(0.0005, 0.05));
+      ->check(CLI::Range(sim::kMinEdge, sim::kMaxEdge));
   sub->add_option("--out", o->out, "Folder for convergence.json, convergence.csv and convergence.png");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {

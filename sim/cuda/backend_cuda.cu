@@ -17,6 +17,8 @@
 //               search direction is formed inside the SpMV), rows held in registers when
 //               they fit; then v += dv, x += h v, the rest rule, and the finger outputs at
 //               the end state.
+//   With the nodal-pressure element (tissue.element) two small kernels between k_assemble
+//   and k_pcg form its volumetric term, and k_pcg applies it in each product (pressure.cuh).
 //   The kernels write the small result (finger sums, statistics) into mapped pinned memory:
 //   no copy is queued; the host synchronises once.
 // At rest with no contact only k_detect (contact.cu) runs (GPU detection, the result read
@@ -24,6 +26,7 @@
 // host-driven cuSPARSE/cuBLAS loop of baseline.cu, then k_detect (finish).
 // The knobs for measurements (environment) are read once per backend: tuning.h.
 #include "backend_cuda.h"
+#include "nodal_pressure.h"
 
 #include <cuda_runtime.h>
 
@@ -45,6 +48,7 @@
 #include "cuda/device_info.h"
 #include "cuda/element.cuh"
 #include "cuda/pcg.cuh"
+#include "cuda/pressure.cuh"
 #include "cuda/tuning.h"
 
 namespace palpation::sim {
@@ -196,6 +200,7 @@ class CudaBackend final : public Backend {
   CudaBackend(const Model& model, const SimParams& params, Solver solver) : m_(model), p_(params), solver_(solver) {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
+    check_element();  // before anything is allocated: a throwing constructor frees nothing
     const CudaTuning tuning = CudaTuning::from_environment();
     CU(cudaSetDevice(d.device));
     CU(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
@@ -277,18 +282,36 @@ class CudaBackend final : public Backend {
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
+    const bool element_changed = p.element != p_.element;
+    const SimParams old = p_;
     p_ = p;
+    if (element_changed) {
+      try {
+        set_materials(mat_);
+      } catch (...) {
+        p_ = old;  // the backend stays as it was
+        throw;
+      }
+    }
   }
 
   void set_materials(const Materials& mat) override {
+    const bool nodal = p_.element == Element::NodalPressure;
+    check_element();
+    if (&mat != &mat_) mat_ = mat;
     std::vector<T> l(ne_), mu(ne_);
     for (int e = 0; e < ne_; ++e) {
-      l[e] = T(mat.lambda[e]);
+      l[e] = nodal ? T(0) : T(mat.lambda[e]);  // the nodal-pressure element: lambda in its nodal term
       mu[e] = T(mat.mu[e]);
     }
     CU(cudaStreamSynchronize(stream_));
     lambda_.upload(l, stream_);
     mu_.upload(mu, stream_);
+    if (nodal) {
+      upload_pressure_pattern();
+      const std::vector<double> w = nodal_pressure_weights(m_, np_, mat.lambda);
+      npw_.upload(std::vector<T>(w.begin(), w.end()), stream_);
+    }
     rested_ = false;
   }
 
@@ -356,6 +379,7 @@ class CudaBackend final : public Backend {
     launch_element(F, k, !detected);
     prof_.mark(1, stream_);
     launch_assemble(k);
+    if (nodal()) launch_pressure();
     prof_.mark(2, stream_);
     int iterations = 0;
     double residual = 0;
@@ -404,6 +428,103 @@ class CudaBackend final : public Backend {
 
   void fetch_result() { CU(cudaStreamSynchronize(stream_)); }
 
+  bool nodal() const { return p_.element == Element::NodalPressure; }
+
+  /// The textbook baseline (baseline.cu) has the linear element only.
+  void check_element() const {
+    if (nodal() && solver_ != Solver::Persistent)
+      throw std::runtime_error("backend " + name() + ": tissue.element \"nodal-pressure\" runs on the cpu and cuda backends");
+  }
+
+  /// The nodal-pressure term's pattern (once), its element incidences over every node and
+  /// its scratch, on the device.
+  void upload_pressure_pattern() {
+    if (!np_.row_ptr.empty()) return;
+    np_ = build_nodal_pressure_pattern(m_);
+    np_row_ptr_.upload(np_.row_ptr, stream_);
+    np_col_.upload(np_.col, stream_);
+    np_t_row_ptr_.upload(np_.t_row_ptr, stream_);
+    np_t_node_.upload(np_.t_node, stream_);
+    np_t_pair_.upload(np_.t_pair, stream_);
+    // Incidence lists in CSR form: count, prefix-sum, fill.
+    auto incidences = [](int rows, auto each, std::vector<int>& ptr, std::vector<int>& list) {
+      ptr.assign(rows + 1, 0);
+      each([&](int row, int) { ++ptr[row + 1]; });
+      for (int r = 0; r < rows; ++r) ptr[r + 1] += ptr[r];
+      list.resize(ptr[rows]);
+      std::vector<int> fill(ptr.begin(), ptr.end() - 1);
+      each([&](int row, int v) { list[fill[row]++] = v; });
+    };
+    std::vector<int> ptr, list;
+    // The elements holding each pair (n, j): e << 2 | b, j element e's node b.
+    incidences(
+        np_.num_pairs(),
+        [&](auto add) {
+          for (int e = 0; e < ne_; ++e)
+            for (int k = 0; k < 16; ++k)
+              if (np_.tet_pair[e][k] >= 0) add(np_.tet_pair[e][k], (e << 2) | (k & 3));
+        },
+        ptr, list);
+    np_pinc_ptr_.upload(ptr, stream_);
+    np_pinc_.upload(list, stream_);
+    incidences(
+        nn_,
+        [&](auto add) {
+          for (int e = 0; e < ne_; ++e)
+            for (int a = 0; a < 4; ++a) add(m_.tets[e][a], e);
+        },
+        ptr, list);
+    np_inc_ptr_.upload(ptr, stream_);
+    np_inc_.upload(list, stream_);
+    diag_block_.upload(m_.diag_block, stream_);
+    npb_.alloc(3 * std::size_t(np_.num_pairs()));
+    npi_.alloc(nn_);
+    np_rest_part_.alloc(ne_);
+  }
+
+  PressureDev<T> pressure_dev() {
+    PressureDev<T> P;
+    if (!nodal()) return P;
+    const T h = T(p_.solver.dt);
+    P.row_ptr = np_row_ptr_.get();
+    P.col = np_col_.get();
+    P.t_row_ptr = np_t_row_ptr_.get();
+    P.t_node = np_t_node_.get();
+    P.t_pair = np_t_pair_.get();
+    P.b = npb_.get();
+    P.w = npw_.get();
+    P.pi = npi_.get();
+    P.scale = h * h + h * T(p_.damping.stiffness);
+    return P;
+  }
+
+  void launch_pressure() {
+    PressureArgs<T> a{};
+    a.P = pressure_dev();
+    a.nnode = nn_;
+    a.nf = nf_;
+    a.npair = np_.num_pairs();
+    a.pinc_ptr = np_pinc_ptr_.get();
+    a.pinc = np_pinc_.get();
+    a.ninc_ptr = np_inc_ptr_.get();
+    a.ninc = np_inc_.get();
+    a.rec = rec_.get();
+    a.vol = vol_.get();
+    a.rest_part = np_rest_part_.get();
+    a.free_nodes = free_nodes_.get();
+    a.x = x_.get();
+    a.v = v_.get();
+    a.rest = rest_dev_.get();
+    a.h = T(p_.solver.dt);
+    a.damp = T(p_.damping.stiffness) + a.h;
+    a.row_ptr = row_ptr_.get();
+    a.diag_block = diag_block_.get();
+    a.vals = vals_.get();
+    a.b = b_.get();
+    a.precond = precond_.get();
+    cuda::launch_pressure(stream_, a);
+  }
+
   DetectArgs<T> detect_args() {
     return DetectArgs<T>{nt_,      tri_.get(), node_surf_.get(), dof_.get(), ns_,     x_.get(),
                          v_.get(), cA_.get(), cb_.get(),        scratch_.get(), dev_res_};
@@ -417,6 +538,7 @@ class CudaBackend final : public Backend {
   void launch_element(const FingersArg& F, const StepConsts& k, bool detect) {
     ElementArgs<T> a{ne_, tets_.get(), grad_.get(), vol_.get(), lambda_.get(), mu_.get(), quat_.get(), x_.get(), v_.get(),
                      rec_.get(), T(k.h), T(k.beta), 0};  // elem_blocks: set by launch_element
+    if (nodal()) a.rest_part = np_rest_part_.get();
     cuda::launch_element(stream_, a, detect_args(), F, k, detect);
   }
 
@@ -475,6 +597,7 @@ class CudaBackend final : public Backend {
     a.rescue_tol = T(p_.solver.cg_rescue_tolerance);
     a.rescue_it = p_.solver.cg_rescue_iterations;
     a.fused = fused_ ? 1 : 0;
+    a.pres = pressure_dev();
     a.scr = scratch_.get();
     a.res = dev_res_;
     return a;
@@ -529,6 +652,12 @@ class CudaBackend final : public Backend {
   bool rested_ = true;
   Profiler prof_;
   std::unique_ptr<CsrBaseline<T>> csr_;  // the baseline's solver ("cuda-csr" only)
+  Materials mat_;                        // the materials set last (an element change rebuilds from them)
+  // The nodal-pressure element only (pressure.cuh): its pattern, on the host and the device.
+  NodalPressurePattern np_;
+  DeviceArray<int> np_row_ptr_, np_col_, np_t_row_ptr_, np_t_node_, np_t_pair_, np_pinc_ptr_, np_pinc_, np_inc_ptr_, np_inc_,
+      diag_block_;
+  DeviceArray<T> npb_, npw_, npi_, np_rest_part_;
 };
 
 }  // namespace

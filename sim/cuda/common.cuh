@@ -120,6 +120,30 @@ struct DevResult {
 // ---------------------------------------------------------------------------------------
 // Small device helpers.
 
+/// Inverse of a 3x3 matrix (row-major).
+template <class T>
+__device__ __forceinline__ void invert3(const T m[9], T inv[9]) {
+  // Cofactor inverse (as Eigen's 3x3 inverse); a non-finite result becomes zero.
+  const T c00 = m[4] * m[8] - m[5] * m[7];
+  const T c01 = m[5] * m[6] - m[3] * m[8];
+  const T c02 = m[3] * m[7] - m[4] * m[6];
+  const T det = m[0] * c00 + m[1] * c01 + m[2] * c02;
+  const T id = T(1) / det;
+  inv[0] = c00 * id;
+  inv[1] = (m[2] * m[7] - m[1] * m[8]) * id;
+  inv[2] = (m[1] * m[5] - m[2] * m[4]) * id;
+  inv[3] = c01 * id;
+  inv[4] = (m[0] * m[8] - m[2] * m[6]) * id;
+  inv[5] = (m[2] * m[3] - m[0] * m[5]) * id;
+  inv[6] = c02 * id;
+  inv[7] = (m[1] * m[6] - m[0] * m[7]) * id;
+  inv[8] = (m[0] * m[4] - m[1] * m[3]) * id;
+  bool finite = true;
+  for (int j = 0; j < 9; ++j) finite = finite && isfinite(inv[j]);
+  if (!finite)
+    for (int j = 0; j < 9; ++j) inv[j] = T(0);
+}
+
 __device__ __forceinline__ double warp_sum(double v) {
   for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
   return v;

@@ -136,6 +136,7 @@ __global__ void __launch_bounds__(kElemBlock) k_element(ElementArgs<T> a, Detect
   T R[9];
   quat_to_mat(q, R);
   const T V = a.vol[e], lam = a.lambda[e], mu = a.mu[e];
+  if (a.rest_part) a.rest_part[e] = T(0.25) * V * (R[0] + R[4] + R[8] - T(3));
   // H = R^T F - I, S = 2 mu sym(H) + lambda tr(H) I.
   T H[9];
 #pragma unroll

@@ -31,6 +31,7 @@ struct ElementArgs {
   T* rec;           // (ne x kRec)
   T h, beta;
   int elem_blocks;  // blocks [0, elem_blocks) do elements, the others detect contacts; set by launch_element
+  T* rest_part = nullptr;  // (ne) (V / 4) (tr R - 3), for the nodal-pressure term (pressure.cuh); none: not written
 };
 
 /// Launches k_element in stream s: ceil(ne / kElemBlock) blocks of elements, plus, when

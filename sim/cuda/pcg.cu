@@ -103,6 +103,7 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<
         y1 += __ldg(bv + len3) * u0 + __ldg(bv + len3 + 1) * u1 + __ldg(bv + len3 + 2) * u2;
         y2 += __ldg(bv + 2 * len3) * u0 + __ldg(bv + 2 * len3 + 1) * u1 + __ldg(bv + 2 * len3 + 2) * u2;
       }
+      if (a.pres.b) pressure_gather<T, G>(a.pres, i, gl, y0, y1, y2);  // + kscale B^T W B u, pressures formed before
     }
     first_pass = false;
 #pragma unroll
@@ -148,7 +149,8 @@ struct Ring {
 /// breakdown test) in one persistent cooperative kernel, then the state update, the rest
 /// rule and the finger outputs. Per iteration two grid barriers: the search direction
 /// p = z + beta p is formed inside the SpMV from z and the previous p (double-buffered),
-/// so its own barrier disappears. B > 0: the first row of each lane group is held in
+/// so its own barrier disappears. With the nodal-pressure term one more: the pressures of
+/// p over every node before the SpMV adds B^T of them to each row. B > 0: the first row of each lane group is held in
 /// registers (k_pcg is then launched with at most two blocks per multiprocessor).
 template <class T, int B>
 __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
@@ -158,6 +160,12 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   RowCache<T, B> rc;
   load_row_cache(a, rc);
 
+  // The nodal pressures of x (pressure.cuh) for its product below.
+  if (a.pres.b) {
+    pressure_rows<T, kGroup>(a.pres, a.nnode, [&](int j, int c) { return a.x[3 * j + c]; }, tid, nthreads);
+    grid.sync();
+    ring.skip(a.scr);
+  }
   // r = b - A x (warm start), ||b||^2, ||r||^2.
   {
     double acc[2] = {0, 0};
@@ -217,6 +225,11 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         const bool fst = first;
         const T bt = beta;
         auto pfly = [=](int j, int c) { return fst ? z[3 * j + c] : fma(bt, po[3 * j + c], z[3 * j + c]); };
+        if (a.pres.b) {  // the pressures of p, from z and the previous p as the SpMV forms it
+          pressure_rows<T, kGroup>(a.pres, a.nnode, pfly, tid, nthreads);
+          grid.sync();
+          ring.skip(a.scr);
+        }
         spmv_groups<T, B>(a, rc, pfly, [&](int i, int c, T y) {
           const T pi = pfly(i, c);
           pn[3 * i + c] = pi;
@@ -225,6 +238,11 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         });
       } else {
         const T* pn = pnew;
+        if (a.pres.b) {
+          pressure_rows<T, kGroup>(a.pres, a.nnode, [=](int j, int c) { return pn[3 * j + c]; }, tid, nthreads);
+          grid.sync();
+          ring.skip(a.scr);
+        }
         spmv_groups<T, B>(
             a, rc, [=](int j, int c) { return pn[3 * j + c]; },
             [&](int i, int c, T y) {

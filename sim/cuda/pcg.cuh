@@ -8,6 +8,7 @@
 
 #include "cuda/common.cuh"
 #include "cuda/contact.cuh"
+#include "cuda/pressure.cuh"
 #include "cuda/tuning.h"
 
 namespace palpation::sim::cuda {
@@ -39,6 +40,7 @@ struct PcgArgs {
   T rescue_tol;   // past max_it: on while above rescue_tol, up to rescue_it in all
   int rescue_it;
   int fused;  // 1: search direction updated inside the SpMV (2 barriers per iteration)
+  PressureDev<T> pres;  // the nodal-pressure term (pressure.cuh); off when pres.b is null
   DevScratch* scr;
   DevResult* res;
 };
