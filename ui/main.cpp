@@ -51,8 +51,10 @@ int main(int argc, char** argv) {
   QCommandLineOption mode(QStringLiteral("mode"), QStringLiteral("Training mode to start in: instructor (default), guided-practice or exam."),
                           QStringLiteral("MODE"));
   QCommandLineOption stereo(QStringLiteral("stereo"), QStringLiteral("mono, anaglyph, side-by-side or interlaced."), QStringLiteral("MODE"));
-  QCommandLineOption resolution(QStringLiteral("resolution"), QStringLiteral("Breast resolution: coarse (default), paper, fine."),
-                                QStringLiteral("NAME"), QStringLiteral("coarse"));
+  QCommandLineOption resolution(QStringLiteral("resolution"),
+                                QStringLiteral("Breast resolution: coarse, paper or fine (default: paper where a GPU steps the "
+                                               "simulation, else coarse)."),
+                                QStringLiteral("NAME"));
   QCommandLineOption device(QStringLiteral("device"),
                             QStringLiteral("simulated (default: scripted hand, mouse palpation), emulator (HandHIRO protocol to an "
                                            "in-process emulator over loopback UDP) or handhiro (the robot, see --robot)."),
@@ -120,7 +122,7 @@ int main(int argc, char** argv) {
 
   palpation::app::live::WorkstationOptions opt;
   opt.scenario = palpation::app::live::default_workstation_scenario();
-  const std::string res = cli.value(resolution).toStdString();
+  const std::string res = cli.isSet(resolution) ? cli.value(resolution).toStdString() : palpation::app::live::default_resolution();
   if (!palpation::app::live::set_phantom_resolution(opt.scenario, res)) {
     std::fprintf(stderr, "palpation-trainer: --resolution: unknown level \"%s\" (coarse, paper, fine)\n", res.c_str());
     return 2;

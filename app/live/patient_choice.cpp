@@ -24,6 +24,10 @@ std::optional<double> resolution_edge(const std::string& phantom, const std::str
   return sim::resolution_edge(phantom, level);
 }
 
+std::string default_resolution(bool gpu_usable) { return gpu_usable ? "paper" : "coarse"; }
+
+std::string default_resolution() { return default_resolution(sim::cuda_available()); }
+
 bool set_phantom_resolution(sim::Scenario& s, const std::string& level) {
   if (s.patient.phantom.empty()) return false;
   const auto e = sim::resolution_edge(s.patient.phantom, level);

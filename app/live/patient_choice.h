@@ -32,6 +32,13 @@ sim::Scenario case_patient(const std::string& path, const std::string& level);
 /// `source` names it in messages and the recording.
 sim::Scenario case_patient(const sim::Scenario& file, const std::string& source, const std::string& level);
 
+/// The workstation's resolution level when none is asked for: "paper" where a usable GPU
+/// steps the simulation (the paper mesh runs there at the haptic rate, 0.5-0.8 ms a step:
+/// docs/benchmarks.md), else "coarse" (the finest a 2-core CPU steps in about 1 ms).
+std::string default_resolution(bool gpu_usable);
+/// The same for this machine (sim::cuda_available: the backend "auto" picks).
+std::string default_resolution();
+
 /// Sets a phantom patient's resolution level and its edge length. False, and `s`
 /// unchanged, for a patient with its own mesh or an unknown level.
 bool set_phantom_resolution(sim::Scenario& s, const std::string& level);

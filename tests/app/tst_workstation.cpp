@@ -13,6 +13,7 @@
 #include "fault_backend.h"
 #include "live/sim_fingers.h"
 #include "simulation.h"
+#include "live/patient_choice.h"
 #include "live/workstation.h"
 
 using namespace palpation;
@@ -70,6 +71,19 @@ class TstWorkstation : public QObject {
   Q_OBJECT
 
  private slots:
+  // With a GPU the workstation opens the paper mesh, without one the coarse breast; both
+  // name a level the breast has.
+  void defaultResolutionFollowsTheGpu() {
+    QCOMPARE(QString::fromStdString(app::live::default_resolution(true)), QString("paper"));
+    QCOMPARE(QString::fromStdString(app::live::default_resolution(false)), QString("coarse"));
+    QCOMPARE(app::live::default_resolution(), app::live::default_resolution(sim::cuda_available()));
+    for (bool gpu : {true, false}) {
+      sim::Scenario s = app::live::default_workstation_scenario();
+      QVERIFY(app::live::set_phantom_resolution(s, app::live::default_resolution(gpu)));
+      QCOMPARE(s.patient.edge, *sim::resolution_edge("breast", app::live::default_resolution(gpu)));
+    }
+  }
+
   void runs_and_applies_materials() {
     app::live::WorkstationOptions opt;
     opt.scenario = app::live::default_workstation_scenario();
