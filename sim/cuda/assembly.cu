@@ -114,6 +114,9 @@ __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
         const int s = a.free_surf[i];
         if (s >= 0) bc += T(a.cb[3 * s + lane]);
         a.b[3 * i + lane] = bc;
+        const T cur = a.dv[3 * i + lane];
+        if (a.extrapolate) a.dv[3 * i + lane] = T(2) * cur - a.dv_prev[3 * i + lane];
+        a.dv_prev[3 * i + lane] = cur;
       }
     }
   }

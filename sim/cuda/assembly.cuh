@@ -30,6 +30,12 @@ struct AssembleArgs {
   T* vals;               // (9 nb) system matrix, CSR-compatible layout
   T* precond;            // (nf x 9)
   T* b;                  // (nf x 3)
+  // The PCG's warm start (backend_cpu.cpp's rule): after a converged solve the last two
+  // solutions extrapolated, dv = 2 dv - dv_prev; else dv as it is. dv_prev takes the
+  // last solution either way.
+  T* dv;                 // (nf x 3)
+  T* dv_prev;            // (nf x 3)
+  int extrapolate;
   T kscale, mscale, h, alpha;
   T g0, g1, g2;
 };
