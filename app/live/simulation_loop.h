@@ -38,8 +38,9 @@ struct SimulationLoopOptions {
   std::vector<double> radius;
   device::RigidFrame registration;     // device frame <-> world frame
   double dt = 0.001;                   // s, the shortest step
-  /// true: the tissue keeps wall-clock time, dt = time since the previous step, at least
-  /// `dt` (never faster than real time), at most max_dt (implicit Euler is stable at any dt;
+  /// true: the tissue keeps wall-clock time: steps start on a grid of `dt` (never faster
+  /// than real time) and each covers its slot; a step that overran starts a new grid and
+  /// the next covers the time it took, at most max_dt (implicit Euler is stable at any dt;
   /// the cap bounds the latency one step adds). false: fixed dt, paced to real time when
   /// the FEM is faster.
   bool realtime = true;
@@ -117,6 +118,7 @@ class SimulationLoop {
   std::array<device::FingerContactModel, device::kMaxFingers> last_{};  // newest published, device frame
   std::vector<Eigen::Vector3d> prev_force_;  // previous step's simulated force per finger (spike guard, settling)
   std::int64_t prev_start_ = 0, first_step_ns_ = 0, published_ns_ = 0;
+  std::int64_t prev_slot_ = 0, next_due_ = 0;  // real time: the grid of step starts (run())
   std::uint64_t seq_ = 0;
   double sim_time_ = 0;
   // The recovery after a fallback or reset.

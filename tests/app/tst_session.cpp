@@ -99,6 +99,13 @@ class TestSession : public QObject {
     check_forces(r, opt.config.hand.capabilities.max_force);
     QCOMPARE(r.loop["device_received"]["nonfinite"].get<int>(), 0);
     QCOMPARE(r.loop["device_received"]["over_limit"].get<int>(), 0);
+    // Real-time steps start on a grid of dt (app/live/simulation_loop.h): a step shorter
+    // than dt covers exactly dt, so the median step of this small block (tens of
+    // microseconds) is dt itself, not dt plus the wake-up's lateness (the rate fell to
+    // 0.87-0.94 steps a millisecond when each period began at the last start).
+    QCOMPARE(r.loop["simulation"]["dt_mode"].get<std::string>(), std::string("realtime"));
+    const double dt_median = r.loop["simulation"]["dt_ms_median"].get<double>();
+    QVERIFY2(std::abs(dt_median - 1e3 * s.params.solver.dt) < 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
     // Positions are the scenario's path (the script clock starts one tick before the
     // first record: allow that tick's motion, 10 mm/s x 1 ms).
     for (const auto& smp : r.samples) {
