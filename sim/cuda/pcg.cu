@@ -150,8 +150,9 @@ struct Ring {
 /// rule and the finger outputs. Per iteration two grid barriers: the search direction
 /// p = z + beta p is formed inside the SpMV from z and the previous p (double-buffered),
 /// so its own barrier disappears. With the nodal-pressure term one more: the pressures of
-/// p over every node before the SpMV adds B^T of them to each row. B > 0: the first row of each lane group is held in
-/// registers (k_pcg is then launched with at most two blocks per multiprocessor).
+/// p over every node, before the SpMV adds B^T of them to each row. B > 0: the first row
+/// of each lane group is held in registers (k_pcg is then launched with at most two
+/// blocks per multiprocessor).
 template <class T, int B>
 __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
   coop::grid_group grid = coop::this_grid();
