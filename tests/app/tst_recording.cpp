@@ -1000,9 +1000,13 @@ class TestRecording : public QObject {
   //    safety filter) against the recorded ticks. Not exact: the replay hands a step's
   //    contact model to the loop at the next step's start, the workstation when the step
   //    ended (up to a step earlier), so for a tick or two per step the loop fades from
-  //    another model. Measured 0.18 N of 1.94 N sent (9 %); bounded by 25 % of the largest
-  //    force sent, which a replay sending the simulated force unscaled (the scale is 0.6
-  //    on this patient) exceeds, as checked below. The headless re-simulation before this
+  //    another model. Measured 0.18 N of 1.94 N sent (9 %), and 0.4-2 % in the release and
+  //    sanitizer builds of 2026-11-25; bounded by 25 % of the largest force sent. A replay
+  //    sending the simulated force unscaled (the scale is 0.6 on this patient) differs
+  //    by 21-48 % of it in the same builds (the coupling, rate limit and device limit take
+  //    part of the scale's 65 %), so it is told apart below by more than 15 % and more
+  //    than twice the scaled replay's difference, not by the 25 % bound, which it fell
+  //    under in about half the sanitizer runs. The headless re-simulation before this
   //    comparison existed reported 8.9 N on a workstation recording.
   void workstationRecordingReplays() {
     const std::string p = tmpdir("workstation") + "/ws.palrec";
@@ -1074,15 +1078,16 @@ class TestRecording : public QObject {
     const auto& js = r.run.summary["replay"];
     QCOMPARE(js["compared_force"].get<std::string>(), std::string("simulated"));
     QVERIFY(js["sent"]["max_force_diff_n"].get<double>() == r.sent.max_diff);
-    // The bound tells a force path from none: the same replay sending the simulated force
-    // unscaled (scale 1 instead of the recorded one) is far outside it.
+    // The comparison tells a force path from another: the same replay sending the
+    // simulated force unscaled (scale 1 instead of the recorded one) is far off.
     Recording unscaled = rec;
     for (auto& e : unscaled.events)
       if (e.value("event", "") == "force_scale") e["scale"] = 1.0;
     const ReplayResult r3 = replay_recording(unscaled, {});
     qInfo("unscaled: sent difference %.3g N", r3.sent.max_diff);
     QVERIFY(r3.max_force_diff <= 1e-9);  // the simulated comparison does not involve the scale
-    QVERIFY2(r3.sent.max_diff > 0.25 * r.sent.max_recorded_force, qPrintable(QString::number(r3.sent.max_diff)));
+    QVERIFY2(r3.sent.max_diff > 0.15 * r.sent.max_recorded_force && r3.sent.max_diff > 2 * r.sent.max_diff,
+             qPrintable(QString("%1 unscaled, %2 scaled, of %3").arg(r3.sent.max_diff).arg(r.sent.max_diff).arg(r.sent.max_recorded_force)));
     // A recording made before the scale was recorded: the scale is measured again as the
     // workstation chose it, the same value.
     Recording old = rec;
