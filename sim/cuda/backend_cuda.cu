@@ -17,8 +17,9 @@
 //               search direction is formed inside the SpMV), rows held in registers when
 //               they fit; then v += dv, x += h v, the rest rule, and the finger outputs at
 //               the end state.
-//   With the nodal-pressure element (tissue.element) two small kernels between k_assemble
-//   and k_pcg form its volumetric term, and k_pcg applies it in each product (pressure.cuh).
+//   With the nodal-pressure element (tissue.element) three small kernels between
+//   k_assemble and k_pcg form its volumetric term, and k_pcg applies it in each product
+//   (pressure.cuh).
 //   The kernels write the small result (finger sums, statistics) into mapped pinned memory:
 //   no copy is queued; the host synchronises once.
 // At rest with no contact only k_detect (contact.cu) runs (GPU detection, the result read
