@@ -434,19 +434,25 @@ void PatientLibrary::migrate(bool seed) {
   // IMMEDIATE, waiting as long as the busy timeout; PostgreSQL: the migration lock) and
   // reads the version again: stations opening a new or older library at once migrate it
   // once, a failed step leaves the previous version intact.
+  bool open = false;  // a transaction begun and not yet ended: rollback() runs once
   auto begin = [&](const std::string& doing) {
     QSqlQuery b(db);
     if (!b.exec(pg_ ? "BEGIN" : "BEGIN IMMEDIATE")) throw LibraryError(where_ + ": " + doing + ": " + reason(b.lastError()));
+    open = true;
     if (pg_) {
       QSqlQuery l(db);
       if (!l.exec(kPgMigrationLock)) {
         const std::string why = reason(l.lastError());
         QSqlQuery(db).exec("ROLLBACK");
+        open = false;
         throw LibraryError(where_ + ": " + doing + ": " + why);
       }
     }
   };
-  auto rollback = [&] { QSqlQuery(db).exec("ROLLBACK"); };
+  auto rollback = [&] {
+    if (open) QSqlQuery(db).exec("ROLLBACK");
+    open = false;
+  };
   auto commit = [&](const std::string& doing) {
     QSqlQuery c(db);
     if (!c.exec("COMMIT")) {
@@ -454,6 +460,7 @@ void PatientLibrary::migrate(bool seed) {
       rollback();
       throw LibraryError(where_ + ": " + doing + ": " + why);
     }
+    open = false;
   };
   auto current_version = [&]() {
     QSqlQuery query(db);
@@ -505,7 +512,7 @@ void PatientLibrary::migrate(bool seed) {
           for (const auto& p : builtin_patients()) {
             const auto have = find(p.name);
             if (!have) {
-              if (first != kSchemaVersion) insert_patient(p);
+              if (first != kSchemaVersion) insert_patient(p, rollback);
             } else if (have->builtin && (have->body != p.body || have->description != p.description)) {
               QSqlQuery up(QSqlDatabase::database(q(conn_), false));
               up.prepare("UPDATE patients SET scenario = ?, description = ? WHERE name = ? AND builtin = 1");
@@ -529,7 +536,7 @@ void PatientLibrary::migrate(bool seed) {
       // The built-ins come with the last step: a station that sees the current version sees them.
       if (seed && version + 1 == kSchemaVersion)
         for (const auto& p : builtin_patients())
-          if (!find(p.name)) insert_patient(p);
+          if (!find(p.name)) insert_patient(p, rollback);
     } catch (...) {
       rollback();
       throw;
@@ -590,9 +597,10 @@ std::optional<PatientRecord> PatientLibrary::find(const std::string& name) const
   });
 }
 
-void PatientLibrary::insert_patient(const PatientRecord& p) {
+void PatientLibrary::insert_patient(const PatientRecord& p, const std::function<void()>& abort) {
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
   auto fail = [&](const QSqlError& e) {
+    abort();
     if (is_duplicate(e))  // another station added the name at the same moment
       throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
     throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(e) + " (nothing was added)");
@@ -629,10 +637,15 @@ void PatientLibrary::add(const PatientRecord& p) {
     QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
     if (find(p.name)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
     if (!db.transaction()) throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(db.lastError()));
+    bool open = true;
+    auto abort = [&] {
+      if (open) db.rollback();
+      open = false;
+    };
     try {
-      insert_patient(p);
+      insert_patient(p, abort);
     } catch (...) {
-      db.rollback();
+      abort();
       throw;
     }
     if (!db.commit()) {

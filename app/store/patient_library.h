@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -194,8 +195,10 @@ class PatientLibrary {
   auto with_server(F&& op) const -> decltype(op());
   void reconnect() const;
   bool connection_alive() const;
-  /// One patient's rows, inside the caller's transaction.
-  void insert_patient(const PatientRecord& p);
+  /// One patient's rows, inside the caller's transaction. On failure it calls `abort` (the
+  /// caller's rollback) before its statements are freed: PostgreSQL refuses to free a
+  /// prepared statement inside an aborted transaction, and Qt warns of it.
+  void insert_patient(const PatientRecord& p, const std::function<void()>& abort);
   /// Checks a result's values; LibraryError naming the field.
   void check_result(const ExamResult& r) const;
   /// Inserts a result in one transaction; with `once`, not when the same result (trainee,
