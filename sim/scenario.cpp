@@ -158,6 +158,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (t.contains("damping_stiffness"))
       s.params.damping.stiffness = rd.non_negative(t["damping_stiffness"], "tissue.damping_stiffness");
   }
+  // No element named: the one that does not lock at this Poisson's ratio.
+  if (!j.contains("tissue") || !j["tissue"].contains("element")) s.params.element = default_element(s.poisson_ratio);
 
   if (j.contains("inclusions")) {
     const json& arr = j["inclusions"];
@@ -322,7 +324,7 @@ std::string scenario_to_json(const Scenario& s) {
                  {"density", s.density},
                  {"damping_mass", s.params.damping.mass},
                  {"damping_stiffness", s.params.damping.stiffness}};
-  if (s.params.element == Element::NodalPressure) j["tissue"]["element"] = "nodal-pressure";
+  j["tissue"]["element"] = s.params.element == Element::NodalPressure ? "nodal-pressure" : "linear";
   j["inclusions"] = json::array();
   for (const auto& inc : s.inclusions) {
     json ji = {{"shape", inc.shape},

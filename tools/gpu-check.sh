@@ -269,9 +269,10 @@ if has bench; then
   timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BENCH_MESHES" --backends cuda --precisions double,float \
     --out /tmp/palpation-bench-a
   say "bench (cuda) exit $?"
-  timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BASELINE_MESHES" --backends cuda-csr --precisions double \
-    --out /tmp/palpation-bench-b
-  say "bench (cuda-csr) exit $?"
+  # The baseline has the linear element only: it is compared with cuda on the same element.
+  timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BASELINE_MESHES" --backends cuda,cuda-csr --precisions double \
+    --element linear --out /tmp/palpation-bench-b
+  say "bench (cuda, cuda-csr; linear element) exit $?"
   python3 - /tmp/palpation-bench-a/bench.csv /tmp/palpation-bench-b/bench.csv "$OUT/bench.csv" <<'EOF'
 import os, sys
 rows, header = [], None
@@ -296,14 +297,14 @@ import matplotlib.pyplot as plt
 rows = list(csv.DictReader(open(sys.argv[1])))
 curves = {}
 for r in rows:
-    curves.setdefault((r["mesh"], r["backend"], r["precision"]), []).append(
+    curves.setdefault((r["mesh"], r["backend"] + ("" if r.get("element", "linear") == "linear" else " nodal"), r["precision"]), []).append(
         (max(float(r["force_error"]), 1e-12), float(r["step_ms_median"])))
 fig, ax = plt.subplots(figsize=(11, 6.5))
 colours = {"coarse": "tab:green", "paper": "tab:blue", "fine": "tab:purple", "xfine": "tab:red"}
 for (mesh, backend, prec), pts in sorted(curves.items()):
     pts.sort()
     ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o" if prec == "double" else "s",
-            linestyle="-" if backend == "cuda" else (":" if backend == "cpu" else "--"),
+            linestyle="-" if backend.startswith("cuda") and "csr" not in backend else (":" if backend.startswith("cpu") else "--"),
             color=colours.get(mesh, "black"), label=f"{mesh} {backend} {prec}")
 ax.axvline(1e-2, color="grey", lw=0.8)
 ax.axhline(0.2, color="tab:blue", lw=0.8, ls="-.")
@@ -325,9 +326,12 @@ fi
 
 if has idle; then
   say "idle: no contact, at rest"
-  timeout 120 "$P" bench --scenario idle --meshes paper,xfine --backends cuda,cuda-csr,cpu --precisions double,float \
+  timeout 120 "$P" bench --scenario idle --meshes paper,xfine --backends cuda,cpu --precisions double,float \
     --steps 1000 --out /tmp/palpation-idle
   [[ -f /tmp/palpation-idle/bench.csv ]] && cp /tmp/palpation-idle/bench.csv "$OUT/idle.csv"
+  timeout 120 "$P" bench --scenario idle --meshes paper,xfine --backends cuda-csr --precisions double,float \
+    --element linear --steps 1000 --out /tmp/palpation-idle-csr
+  [[ -f /tmp/palpation-idle-csr/bench.csv ]] && tail -n +2 /tmp/palpation-idle-csr/bench.csv >>"$OUT/idle.csv"
 fi
 if has sweep; then
   for el in ${SWEEP_ELEMENTS:-linear nodal-pressure}; do

@@ -62,6 +62,9 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
   report["date"] = now_iso();
   report["commit"] = PALPATION_GIT_COMMIT;
   report["scenario"] = opt.scenario;
+  report["element"] = !opt.element.empty() ? opt.element
+                      : sim::builtin_scenario(opt.scenario).params.element == sim::Element::NodalPressure ? "nodal-pressure"
+                                                                                                           : "linear";
   report["steps"] = opt.steps;
   report["warmup"] = opt.warmup;
   report["reference"] = {{"backend", ref_backend}, {"precision", "double"}, {"cg_tolerance", 1e-10}};
@@ -78,6 +81,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     s.patient.resolution = level;
     s.patient.edge = *edge;
     s.params.solver.dt = 0.001;
+    if (!opt.element.empty())
+      s.params.element = opt.element == "nodal-pressure" ? sim::Element::NodalPressure : sim::Element::Linear;
     const auto t0 = clock_type::now();
     sim::Model model = sim::build_scenario_model(s, sim::patient_mesh(s));
     const double mesh_s = std::chrono::duration<double>(clock_type::now() - t0).count();
@@ -194,14 +199,15 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     {
       std::ofstream csv(out.path("bench.csv"));
       csv << "mesh,nodes,tetrahedra,backend,device,precision,cg_tolerance,cg_max_iterations,step_ms_median,step_ms_p99,"
-             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit,floor_ms,x_floor\n";
+             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit,floor_ms,x_floor,element\n";
       for (const auto& p : report["points"])
         csv << p["mesh"].get<std::string>() << ',' << p["nodes"] << ',' << p["tetrahedra"] << ',' << p["backend"].get<std::string>()
             << ",\"" << p["device"].get<std::string>() << "\"," << p["precision"].get<std::string>() << ',' << p["cg_tolerance"]
             << ',' << p["cg_max_iterations"] << ',' << p["step_ms_median"] << ',' << p["step_ms_p99"] << ','
             << p["cg_iterations_median"] << ',' << p["cg_iterations_max"] << ',' << p["force_error"] << ','
             << p["displacement_error"] << ',' << (p["finite"].get<bool>() ? "true" : "false") << ',' << report["date"].get<std::string>()
-            << ',' << PALPATION_GIT_COMMIT << ',' << p["floor_ms"] << ',' << p["x_floor"] << '\n';
+            << ',' << PALPATION_GIT_COMMIT << ',' << p["floor_ms"] << ',' << p["x_floor"] << ','
+            << report["element"].get<std::string>() << '\n';
     }
     if (can_plot()) {
       PlotSpec plot;

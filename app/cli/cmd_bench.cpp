@@ -16,6 +16,10 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_option("--precisions", o->precisions, "double, float")->delimiter(',');
   sub->add_option("--steps", o->steps, "Steps per point")->check(CLI::Range(20, 1000000));
   sub->add_option("--scenario", o->scenario, "Built-in scenario to step (paper-sweep, idle, hertz)");
+  sub->add_option("--element", o->element,
+                  "Tetrahedral element (linear, nodal-pressure; default: the scenario's, nodal-pressure at Poisson's ratio 0.45 "
+                  "and above). The cuda-csr baseline has the linear one only")
+      ->check(CLI::IsMember({"linear", "nodal-pressure"}));
   auto score = std::make_shared<bool>(false);
   sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
   auto review = std::make_shared<std::string>();

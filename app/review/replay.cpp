@@ -15,6 +15,7 @@
 #include "live/simulation_loop.h"
 #include "live/workstation.h"
 #include "scripted_device.h"
+#include "store/recorded_scenario.h"
 #include "simulation.h"
 #include "triple_buffer.h"
 
@@ -54,7 +55,7 @@ void ForceDiff::add(double t, int k, const Eigen::Vector3d& replayed, const Eige
 sim::Scenario replay_scenario(const Recording& rec) {
   if (rec.ticks() < 2) throw sim::ScenarioError(rec.path + ": fewer than 2 ticks recorded: nothing to replay");
   const nlohmann::json& js = rec.header["scenario"];
-  sim::Scenario s = sim::parse_scenario(js.dump(), rec.path + ": header.scenario");
+  sim::Scenario s = store::parse_recorded_scenario(js, rec.path + ": header.scenario");
   if (int(s.fingers.size()) != rec.fingers)
     throw sim::ScenarioError(rec.path + ": header.scenario.fingers: " + std::to_string(s.fingers.size()) +
                              " fingers, the recording has " + std::to_string(rec.fingers));
@@ -122,7 +123,7 @@ ReplayResult replay_steps(const Recording& rec, const ReplayOptions& opt) {
   if (nf < 1 || nf > dv::kMaxFingers)
     throw sim::ScenarioError(rec.path + ": " + std::to_string(nf) + " fingers: a workstation recording has at most " +
                              std::to_string(dv::kMaxFingers));
-  sim::Scenario s = sim::parse_scenario(rec.header["scenario"].dump(), rec.path + ": header.scenario");
+  sim::Scenario s = store::parse_recorded_scenario(rec.header["scenario"], rec.path + ": header.scenario");
   if (!opt.backend.empty()) s.backend = opt.backend;
   live::DeviceConfig cfg = live::default_device_config();
   if (rec.header.contains("device_config") && rec.header["device_config"].is_object())
@@ -216,11 +217,11 @@ ReplayResult replay_steps(const Recording& rec, const ReplayOptions& opt) {
     while (ci < commands.size() && commands[ci].index < st.commands_applied) {
       const RecordedCommand& c = commands[ci++];
       if (c.kind == "young") live::apply_element_young(*simulation, c.young);
-      else if (c.kind == "params") live::apply_params(*simulation, sim::parse_scenario(c.scenario.dump(), rec.path + ": params change").params);
+      else if (c.kind == "params") live::apply_params(*simulation, store::parse_recorded_scenario(c.scenario, rec.path + ": params change").params);
       else if (c.kind == "patient") swap = &c.scenario;
     }
     if (swap) {
-      sim::Scenario s2 = sim::parse_scenario(swap->dump(), rec.path + ": patient change");
+      sim::Scenario s2 = store::parse_recorded_scenario(*swap, rec.path + ": patient change");
       if (!opt.backend.empty()) s2.backend = opt.backend;
       simulation = build(s2);
       std::fill(prev_force.begin(), prev_force.end(), Eigen::Vector3d::Zero());

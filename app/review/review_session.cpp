@@ -10,6 +10,7 @@
 
 #include "review/replay.h"
 #include "simulation.h"
+#include "store/recorded_scenario.h"
 #include "live/simulation_loop.h"
 
 namespace palpation::app::review {
@@ -245,7 +246,7 @@ ReviewSession::Memory ReviewSession::memory() const {
 
 void ReviewSession::run_steps(const std::string& backend) {
   const std::string where = rec_.path + ": header.scenario";
-  sim::Scenario s = sim::parse_scenario(rec_.header["scenario"].dump(), where);
+  sim::Scenario s = store::parse_recorded_scenario(rec_.header["scenario"], where);
   if (!backend.empty()) s.backend = backend;
   auto build = [&](const sim::Scenario& sc) {
     auto sim = std::make_unique<sim::Simulation>(sc);
@@ -280,11 +281,11 @@ void ReviewSession::run_steps(const std::string& backend) {
     while (ci < commands_.size() && commands_[ci].index < st.commands_applied) {
       const RecordedCommand& c = commands_[ci++];
       if (c.kind == "young") apply_element_young(*simulation, c.young);
-      else if (c.kind == "params") apply_params(*simulation, sim::parse_scenario(c.scenario.dump(), rec_.path + ": params change").params);
+      else if (c.kind == "params") apply_params(*simulation, store::parse_recorded_scenario(c.scenario, rec_.path + ": params change").params);
       else if (c.kind == "patient") swap = &c.scenario;
     }
     if (swap) {
-      sim::Scenario s2 = sim::parse_scenario(swap->dump(), rec_.path + ": patient change");
+      sim::Scenario s2 = store::parse_recorded_scenario(*swap, rec_.path + ": patient change");
       if (!backend.empty()) s2.backend = backend;
       simulation = build(s2);
       geometry = make_patient_geometry(*simulation, ++generation);

@@ -8,6 +8,7 @@
 #include "phantom.h"
 #include "scenario.h"
 #include "simulation.h"
+#include "store/recorded_scenario.h"
 
 namespace palpation::app::train {
 
@@ -64,12 +65,12 @@ ScoredExam score_any(const Rec& rec, const PressureThresholds& thresholds) {
   std::uint64_t swap_index = 0;
   bool swapped = false;
   try {
-    sc = sim::parse_scenario(rec.header["scenario"].dump(), rec.path + ": header scenario");
+    sc = store::parse_recorded_scenario(rec.header["scenario"], rec.path + ": header scenario");
     // The exam is on the last patient the session loaded.
     for (const json& e : rec.events)
       if (e.is_object() && e.value("kind", "") == "parameter" && e.value("command", "") == "patient" && e.contains("scenario") &&
           e.contains("index") && e["index"].is_number_unsigned()) {
-        sc = sim::parse_scenario(e["scenario"].dump(), rec.path + ": patient change");
+        sc = store::parse_recorded_scenario(e["scenario"], rec.path + ": patient change");
         swap_index = e["index"].get<std::uint64_t>();
         swapped = true;
       }

@@ -103,7 +103,7 @@ class TestCases : public QObject {
     for (unsigned char ch : j) h = (h ^ ch) * 1099511628211ull;
     qInfo("seed 1234: %zu tumours, difficulty %d, base radius %.4f, height %.4f, JSON hash %llu", c.scenario.inclusions.size(),
           c.difficulty, c.scenario.patient.base_radius, c.scenario.patient.height, static_cast<unsigned long long>(h));
-    QCOMPARE(h, 14539426644389490023ull);
+    QCOMPARE(h, 2491436305401873305ull);
     // Different seeds, different cases.
     std::set<std::string> distinct;
     for (std::uint64_t seed = 0; seed < 20; ++seed) distinct.insert(sim::scenario_to_json(train::generate_case(seed).scenario));

@@ -96,15 +96,26 @@ class TestScenario : public QObject {
     }
   }
 
-  // The element choice is read, written back only when not the default, and read again.
+  // No element named: nodal pressure from Poisson's ratio 0.45 (the tissue default), the
+  // linear element below it; a named element is kept at any ratio, and every element is
+  // written back by name so a scenario reads back as it was.
   void elementRoundTrips() {
     const sim::Scenario plain = sim::parse_scenario(with("\"duration\": 1"), "case.json");
-    QVERIFY(plain.params.element == sim::Element::Linear);
-    QVERIFY(sim::scenario_to_json(plain).find("\"element\"") == std::string::npos);
-    const sim::Scenario np = sim::parse_scenario(with("\"tissue\": {\"element\": \"nodal-pressure\"}"), "case.json");
+    QCOMPARE(plain.poisson_ratio, 0.45);
+    QVERIFY(plain.params.element == sim::Element::NodalPressure);
+    const sim::Scenario soft = sim::parse_scenario(with("\"tissue\": {\"poisson_ratio\": 0.449}"), "case.json");
+    QVERIFY(soft.params.element == sim::Element::Linear);
+    const sim::Scenario pinned = sim::parse_scenario(with("\"tissue\": {\"poisson_ratio\": 0.49, \"element\": \"linear\"}"), "case.json");
+    QVERIFY(pinned.params.element == sim::Element::Linear);
+    QVERIFY(sim::scenario_to_json(pinned).find("\"element\": \"linear\"") != std::string::npos);
+    QVERIFY(sim::parse_scenario(sim::scenario_to_json(pinned), "case.json").params.element == sim::Element::Linear);
+    const sim::Scenario np = sim::parse_scenario(with("\"tissue\": {\"poisson_ratio\": 0.3, \"element\": \"nodal-pressure\"}"), "case.json");
     QVERIFY(np.params.element == sim::Element::NodalPressure);
     const sim::Scenario back = sim::parse_scenario(sim::scenario_to_json(np), "case.json");
     QVERIFY(back.params.element == sim::Element::NodalPressure);
+    for (const auto& name : sim::builtin_scenario_names())
+      QVERIFY2(sim::builtin_scenario(name).params.element == sim::Element::NodalPressure, name.c_str());
+    QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, sim::parse_scenario(with("\"tissue\": {\"element\": \"quadratic\"}"), "case.json"));
   }
 
   // The skin's edge length is read, written back only when set, and read again.

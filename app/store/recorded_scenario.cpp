@@ -1,0 +1,14 @@
+#include "store/recorded_scenario.h"
+
+namespace palpation::app::store {
+
+sim::Scenario parse_recorded_scenario(const nlohmann::json& scenario, const std::string& where) {
+  if (!scenario.is_object()) return sim::parse_scenario(scenario.dump(), where);  // its own message
+  nlohmann::json s = scenario;
+  nlohmann::json& tissue = s["tissue"];
+  if (tissue.is_null()) tissue = nlohmann::json::object();
+  if (tissue.is_object() && !tissue.contains("element")) tissue["element"] = "linear";
+  return sim::parse_scenario(s.dump(), where);
+}
+
+}  // namespace palpation::app::store
