@@ -88,7 +88,7 @@ class CpuBackend final : public Backend {
   using M3 = fem::Mat3<T>;
   using V4 = lanes::V4<T>;
 
-  CpuBackend(const Model& model, const SimParams& params) : m_(model), p_(params) {
+  CpuBackend(const Model& model, const SimParams& params) : m_(model), p_(resolved_for(model, params)) {
     const int nn = m_.num_nodes(), ne = m_.num_tets(), nf = m_.num_free();
     x_.resize(3 * nn + 1);  // + 1: four-lane loads of the last node (element())
     v_.resize(3 * nn);
@@ -119,7 +119,8 @@ class CpuBackend final : public Backend {
     return std::is_same_v<T, double> ? Precision::Double : Precision::Float;
   }
   const SimParams& params() const override { return p_; }
-  void set_params(const SimParams& p) override {
+  void set_params(const SimParams& given) override {
+    const SimParams p = resolved_for(m_, given);
     // The kept K and b0 belong to the tolerance they were built under: at 0 b0 is not
     // kept at all, so a switch to above 0 would lose every still element's rotation term
     // until the next full assembly. Any change of tolerance assembles afresh.

@@ -5,7 +5,7 @@
 #pragma once
 
 #include <cmath>
-#include <initializer_list>
+#include <vector>
 #include <set>
 #include <sstream>
 #include <string>
@@ -101,12 +101,12 @@ class JsonReader {
     if (!v.is_string()) fail(field, "must be a string");
     return v.get<std::string>();
   }
-  std::string choice(const json& v, const std::string& field, std::initializer_list<const char*> options) const {
+  std::string choice(const json& v, const std::string& field, const std::vector<std::string>& options) const {
     const std::string s = string(v, field);
     std::string list;
-    for (const char* o : options) {
+    for (const auto& o : options) {
       if (s == o) return s;
-      list += std::string(list.empty() ? "" : ", ") + o;
+      list += (list.empty() ? "" : ", ") + o;
     }
     fail(field, "must be one of " + list + ", got \"" + s + "\"");
   }

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "mesh.h"
+#include "params.h"
 
 namespace palpation::sim {
 
@@ -99,6 +100,13 @@ using FixedPredicate = std::function<bool(const Eigen::Vector3d&)>;
 /// Builds a model from a mesh. Every element gets `tissue`; inclusions are applied
 /// afterwards with set_element_material. Throws std::invalid_argument on a bad mesh.
 Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed);
+
+/// Parameters as a backend of this model runs them: Element::Auto resolved from the
+/// tissue's Poisson's ratio (params.h). Both backends apply it to what they are given.
+inline SimParams resolved_for(const Model& m, SimParams p) {
+  p.element = resolve_element(p.element, m.tissue.poisson_ratio);
+  return p;
+}
 
 /// Fixed predicate for the chest wall: z below `height` (m).
 FixedPredicate fix_base(double height = 1e-9);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -50,19 +51,38 @@ struct ContactParams {
 /// volumetric strain per element, which locks as Poisson's ratio approaches 0.5 (too
 /// stiff). NodalPressure: the same element with its volumetric term lambda tr(eps)
 /// averaged over each node's elements (average nodal pressure, nodal_pressure.h), which
-/// does not lock; on the cpu and cuda backends (not the cuda-csr baseline).
-enum class Element { Linear, NodalPressure };
+/// does not lock; on the cpu and cuda backends (not the cuda-csr baseline). Auto: the one
+/// default_element picks for the model's tissue, resolved where a backend is made, so a
+/// scenario built in code gets the same element as one parsed from a file.
+enum class Element { Auto, Linear, NodalPressure };
 
-/// Poisson's ratio from which a scenario that names no element gets NodalPressure: at
-/// 0.45 the linear element is already 14 % too stiff in the Hertz indentation (28 across;
-/// docs/simulation.md) against 2.5 % for the nodal one, and breast tissue lies at 0.45-0.499.
+/// Poisson's ratio from which Auto means NodalPressure: at 0.45 the linear element is
+/// already 14 % too stiff in the Hertz indentation (28 across; docs/simulation.md) against
+/// 2.5 % for the nodal one, and breast tissue lies at 0.45-0.499.
 inline constexpr double kNodalPressureFromPoisson = 0.45;
 inline Element default_element(double poisson_ratio) {
   return poisson_ratio >= kNodalPressureFromPoisson ? Element::NodalPressure : Element::Linear;
 }
+/// The element that runs for tissue of this Poisson's ratio: e itself unless it is Auto.
+inline Element resolve_element(Element e, double poisson_ratio) {
+  return e == Element::Auto ? default_element(poisson_ratio) : e;
+}
+
+/// The names of the elements in scenarios (tissue.element) and on the command line.
+inline const char* element_name(Element e) {
+  return e == Element::NodalPressure ? "nodal-pressure" : e == Element::Linear ? "linear" : "auto";
+}
+/// The element a name means; Auto for a name that is not one (callers validate against
+/// element_names()).
+inline Element parse_element(const std::string& name) {
+  return name == "nodal-pressure" ? Element::NodalPressure : name == "linear" ? Element::Linear : Element::Auto;
+}
+/// The names a scenario or a command may give (Auto is never written: a scenario names
+/// the element it resolved to).
+inline std::vector<std::string> element_names() { return {"linear", "nodal-pressure"}; }
 
 struct SimParams {
-  Element element = Element::Linear;
+  Element element = Element::Auto;
   SolverParams solver;
   DampingParams damping;
   ContactParams contact;

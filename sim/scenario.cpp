@@ -148,9 +148,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     const json& t = j["tissue"];
     rd.only_keys(t, "tissue", {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness", "element"});
     if (t.contains("element"))
-      s.params.element = rd.choice(t["element"], "tissue.element", {"linear", "nodal-pressure"}) == "nodal-pressure"
-                             ? Element::NodalPressure
-                             : Element::Linear;
+      s.params.element = parse_element(rd.choice(t["element"], "tissue.element", element_names()));
     if (t.contains("young_modulus")) s.young_modulus = rd.positive(t["young_modulus"], "tissue.young_modulus");
     if (t.contains("poisson_ratio")) s.poisson_ratio = rd.poisson(t["poisson_ratio"], "tissue.poisson_ratio");
     if (t.contains("density")) s.density = rd.positive(t["density"], "tissue.density");
@@ -158,8 +156,6 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (t.contains("damping_stiffness"))
       s.params.damping.stiffness = rd.non_negative(t["damping_stiffness"], "tissue.damping_stiffness");
   }
-  // No element named: the one that does not lock at this Poisson's ratio.
-  if (!j.contains("tissue") || !j["tissue"].contains("element")) s.params.element = default_element(s.poisson_ratio);
 
   if (j.contains("inclusions")) {
     const json& arr = j["inclusions"];
@@ -324,7 +320,7 @@ std::string scenario_to_json(const Scenario& s) {
                  {"density", s.density},
                  {"damping_mass", s.params.damping.mass},
                  {"damping_stiffness", s.params.damping.stiffness}};
-  j["tissue"]["element"] = s.params.element == Element::NodalPressure ? "nodal-pressure" : "linear";
+  j["tissue"]["element"] = element_name(resolve_element(s.params.element, s.poisson_ratio));
   j["inclusions"] = json::array();
   for (const auto& inc : s.inclusions) {
     json ji = {{"shape", inc.shape},

@@ -20,7 +20,6 @@ Scenario paper_sweep(bool tumour) {
   s.patient.edge = *resolution_edge("breast", "paper");
   s.young_modulus = 19000.0;  // Krouskop (paper 4.1)
   s.poisson_ratio = 0.45;
-  s.params.element = default_element(s.poisson_ratio);
   s.density = 1000.0;
   // Without the tumour the same region keeps the tissue's modulus: the mesh (refined
   // around the tumour) is identical, so the two sweeps differ only in stiffness.
@@ -81,7 +80,6 @@ Scenario hertz() {
   s.patient.edge = *resolution_edge("box", "paper");
   s.young_modulus = 19000.0;
   s.poisson_ratio = 0.45;
-  s.params.element = default_element(s.poisson_ratio);
   s.params.contact.stiffness = 200000.0;  // stiff penalty: penetration ~5 um << 1 mm
   s.params.contact.damping = 5.0;
   const double R = 0.01, top = 0.05, d = 0.001;

@@ -11,7 +11,7 @@ namespace palpation::sim {
 Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector<Eigen::Matrix3d>* rotations,
                                                Element element) {
   const int n = 3 * m.num_free(), nn = m.num_nodes();
-  const bool nodal = element == Element::NodalPressure;
+  const bool nodal = resolve_element(element, m.tissue.poisson_ratio) == Element::NodalPressure;
   std::vector<Eigen::Triplet<double>> trip, btrip;
   std::vector<double> node_volume(nn, 0.0), node_lambda(nn, 0.0);
   trip.reserve(std::size_t(m.num_tets()) * 144);

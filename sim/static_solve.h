@@ -16,7 +16,8 @@ namespace palpation::sim {
 /// Global stiffness over the free degrees of freedom (3 per free node), assembled with
 /// per-element rotations R (identity for the rest state). Symmetric. For the nodal-pressure
 /// element the volumetric term B^T W B (nodal_pressure.h) is formed here on its own, with
-/// Eigen's sparse products, as an independent check of the backends' factored form.
+/// Eigen's sparse products, as an independent check of the backends' factored form. Auto:
+/// the element the model's tissue gets (resolve_element).
 Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector<Eigen::Matrix3d>* rotations = nullptr,
                                                Element element = Element::Linear);
 

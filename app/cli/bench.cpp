@@ -62,9 +62,6 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
   report["date"] = now_iso();
   report["commit"] = PALPATION_GIT_COMMIT;
   report["scenario"] = opt.scenario;
-  report["element"] = !opt.element.empty() ? opt.element
-                      : sim::builtin_scenario(opt.scenario).params.element == sim::Element::NodalPressure ? "nodal-pressure"
-                                                                                                           : "linear";
   report["steps"] = opt.steps;
   report["warmup"] = opt.warmup;
   report["reference"] = {{"backend", ref_backend}, {"precision", "double"}, {"cg_tolerance", 1e-10}};
@@ -82,7 +79,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     s.patient.edge = *edge;
     s.params.solver.dt = 0.001;
     if (!opt.element.empty())
-      s.params.element = opt.element == "nodal-pressure" ? sim::Element::NodalPressure : sim::Element::Linear;
+      s.params.element = sim::parse_element(opt.element);
+    report["element"] = sim::element_name(sim::resolve_element(s.params.element, s.poisson_ratio));
     const auto t0 = clock_type::now();
     sim::Model model = sim::build_scenario_model(s, sim::patient_mesh(s));
     const double mesh_s = std::chrono::duration<double>(clock_type::now() - t0).count();

@@ -19,7 +19,7 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_option("--element", o->element,
                   "Tetrahedral element (linear, nodal-pressure; default: the scenario's, nodal-pressure at Poisson's ratio 0.45 "
                   "and above). The cuda-csr baseline has the linear one only")
-      ->check(CLI::IsMember({"linear", "nodal-pressure"}));
+      ->check(CLI::IsMember(sim::element_names()));
   auto score = std::make_shared<bool>(false);
   sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
   auto review = std::make_shared<std::string>();

@@ -50,7 +50,7 @@ namespace {
 struct CheckOptions {
   std::vector<std::string> scenarios{"paper-sweep", "hertz"};
   std::vector<std::string> backends;  // empty: every CUDA backend available
-  std::vector<std::string> elements{"linear", "nodal-pressure"};  // tissue.element, each scenario with each
+  std::vector<std::string> elements = sim::element_names();  // tissue.element, each scenario with each
   std::string resolution;             // empty: each scenario's own
   int steps = 1000;
   double tolerance = 1e-10;
@@ -145,14 +145,14 @@ int run_check(const CheckOptions& o) {
       }
     }
     for (const auto& element : o.elements) {
-      const bool nodal = element == "nodal-pressure";
+      const bool nodal = sim::parse_element(element) == sim::Element::NodalPressure;
       const std::string label = nodal ? name + "/nodal" : name;
       sim::Scenario sd = s;
       sd.params.solver.precision = sim::Precision::Double;
       sd.params.solver.cg_tolerance = o.tolerance;
       sd.params.solver.cg_max_iterations = o.max_iterations;
       sd.params.solver.corotation_tolerance = 0;  // the CPU updates every element every step, as the GPU does
-      sd.params.element = nodal ? sim::Element::NodalPressure : sim::Element::Linear;
+      sd.params.element = sim::parse_element(element);
 
       // CPU reference, cached.
       sim::TetMesh keymesh;
@@ -265,7 +265,7 @@ CommandAction add_check_backends_command(CLI::App& app) {
       ->delimiter(',');
   sub->add_option("--elements", o->elements, "tissue.element values to check each scenario with (linear, nodal-pressure)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"linear", "nodal-pressure"}));
+      ->check(CLI::IsMember(sim::element_names()));
   sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, ...)");
   sub->add_option("--steps", o->steps, "Steps per run")->check(CLI::Range(4, 1000000));
   sub->add_option("--tolerance", o->tolerance, "CG tolerance of both (double) runs")->check(CLI::PositiveNumber);

@@ -22,7 +22,7 @@ CommandAction add_hertz_command(CLI::App& app) {
                                  "corrected) per element, Poisson's ratio and mesh");
   struct Opts {
     std::string backend = "cpu", precision = "double", out;
-    std::vector<std::string> elements{"linear", "nodal-pressure"};
+    std::vector<std::string> elements = sim::element_names();
     std::vector<double> nu{0.45, 0.49, 0.499};
     std::vector<int> cells{28};
     double radius = 0.01, young = 19000, depth = 0.001, cg_tolerance = 1e-8, limit = 0;
@@ -31,7 +31,7 @@ CommandAction add_hertz_command(CLI::App& app) {
   sub->add_option("--backend", o->backend, "cpu, cuda or cuda-csr")->capture_default_str();
   sub->add_option("--elements", o->elements, "tissue.element values: linear, nodal-pressure")
       ->delimiter(',')
-      ->check(CLI::IsMember({"linear", "nodal-pressure"}));
+      ->check(CLI::IsMember(sim::element_names()));
   sub->add_option("--nu", o->nu, "Poisson's ratios")->delimiter(',')->check(CLI::Range(0.0, 0.4999));
   sub->add_option("--cells", o->cells, "Cells across the block (its thickness gets half)")
       ->delimiter(',')
@@ -53,7 +53,7 @@ CommandAction add_hertz_command(CLI::App& app) {
       for (double nu : o->nu)
         for (int n : o->cells) {
           sim::HertzCase c;
-          c.element = el == "nodal-pressure" ? sim::Element::NodalPressure : sim::Element::Linear;
+          c.element = sim::parse_element(el);
           c.nu = nu;
           c.cells = n;
           c.radius = o->radius;

@@ -33,7 +33,6 @@ sim::Scenario box_scenario(const std::string& name, const Eigen::Vector3d& size 
   s.patient.size = size;
   s.young_modulus = 19000;
   s.poisson_ratio = 0.45;
-  s.params.element = sim::default_element(s.poisson_ratio);
   s.backend = "cpu";
   s.params.solver.dt = 0.001;
   s.params.solver.cg_tolerance = 1e-6;

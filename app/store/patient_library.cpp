@@ -258,6 +258,58 @@ std::string PatientLibrary::default_location() {
 
 namespace {
 
+// One transaction on a connection, ended once: rollback() after a commit or a rollback
+// does nothing, and one still open when the guard goes (a throw) is rolled back, so a
+// failed change leaves what was saved as it was. Begun by Qt (QSqlDatabase::transaction)
+// or by a statement of the caller's (SQLite's BEGIN IMMEDIATE takes the write lock at
+// once); it then ends by statements too, since Qt's driver did not see it begin.
+class Transaction {
+ public:
+  explicit Transaction(QSqlDatabase db) : db_(std::move(db)) {}
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  ~Transaction() { rollback(); }
+  /// False (error() says why) when it did not begin.
+  bool begin(const QString& statement = {}) {
+    by_statement_ = !statement.isEmpty();
+    if (by_statement_) {
+      QSqlQuery b(db_);
+      open_ = b.exec(statement);
+      if (!open_) error_ = b.lastError();
+    } else {
+      open_ = db_.transaction();
+      if (!open_) error_ = db_.lastError();
+    }
+    return open_;
+  }
+  /// False (error() says why, and the transaction is rolled back) when it did not commit.
+  bool commit() {
+    QSqlQuery c(db_);
+    const bool ok = by_statement_ ? c.exec("COMMIT") : db_.commit();
+    if (ok) {
+      open_ = false;
+      return true;
+    }
+    error_ = by_statement_ ? c.lastError() : db_.lastError();
+    rollback();
+    return false;
+  }
+  void rollback() {
+    if (!open_) return;
+    open_ = false;
+    if (by_statement_)
+      QSqlQuery(db_).exec("ROLLBACK");
+    else
+      db_.rollback();
+  }
+  const QSqlError& error() const { return error_; }
+
+ private:
+  QSqlDatabase db_;
+  bool open_ = false, by_statement_ = false;
+  QSqlError error_;
+};
+
 // A PostgreSQL URL as messages show it: without the password.
 std::string hide_password(const std::string& url) {
   QUrl u(q(url));
@@ -434,33 +486,19 @@ void PatientLibrary::migrate(bool seed) {
   // IMMEDIATE, waiting as long as the busy timeout; PostgreSQL: the migration lock) and
   // reads the version again: stations opening a new or older library at once migrate it
   // once, a failed step leaves the previous version intact.
-  bool open = false;  // a transaction begun and not yet ended: rollback() runs once
-  auto begin = [&](const std::string& doing) {
-    QSqlQuery b(db);
-    if (!b.exec(pg_ ? "BEGIN" : "BEGIN IMMEDIATE")) throw LibraryError(where_ + ": " + doing + ": " + reason(b.lastError()));
-    open = true;
+  auto begin = [&](Transaction& tx, const std::string& doing) {
+    if (!tx.begin(pg_ ? "BEGIN" : "BEGIN IMMEDIATE")) throw LibraryError(where_ + ": " + doing + ": " + reason(tx.error()));
     if (pg_) {
       QSqlQuery l(db);
       if (!l.exec(kPgMigrationLock)) {
         const std::string why = reason(l.lastError());
-        QSqlQuery(db).exec("ROLLBACK");
-        open = false;
+        tx.rollback();
         throw LibraryError(where_ + ": " + doing + ": " + why);
       }
     }
   };
-  auto rollback = [&] {
-    if (open) QSqlQuery(db).exec("ROLLBACK");
-    open = false;
-  };
-  auto commit = [&](const std::string& doing) {
-    QSqlQuery c(db);
-    if (!c.exec("COMMIT")) {
-      const std::string why = reason(c.lastError());
-      rollback();
-      throw LibraryError(where_ + ": " + doing + ": " + why);
-    }
-    open = false;
+  auto commit = [&](Transaction& tx, const std::string& doing) {
+    if (!tx.commit()) throw LibraryError(where_ + ": " + doing + ": " + reason(tx.error()));
   };
   auto current_version = [&]() {
     QSqlQuery query(db);
@@ -486,17 +524,12 @@ void PatientLibrary::migrate(bool seed) {
   const auto steps = schema_steps(pg_);
   int first = -1;
   for (;;) {
-    begin("opening");
-    int version = 0;
-    try {
-      version = current_version();
-    } catch (...) {
-      rollback();
-      throw;
-    }
+    Transaction tx(db);  // a throw below rolls the step back
+    const auto rollback = [&tx] { tx.rollback(); };
+    begin(tx, "opening");
+    const int version = current_version();
     if (first < 0) first = version;
     if (version > kSchemaVersion) {
-      rollback();
       throw LibraryError(where_ + ": the patient library has schema version " + std::to_string(version) +
                          ", newer than this program's (" + std::to_string(kSchemaVersion) +
                          "): use a newer palpation, or another library (--db / PALPATION_DB); nothing was changed");
@@ -508,40 +541,34 @@ void PatientLibrary::migrate(bool seed) {
       // paper case's tumour moved to the paper sweep's depth) takes this program's
       // definition; one the user removed stays removed.
       if (seed) {
-        try {
-          for (const auto& p : builtin_patients()) {
-            const auto have = find(p.name);
-            if (!have) {
-              if (first != kSchemaVersion) insert_patient(p, rollback);
-            } else if (have->builtin && (have->body != p.body || have->description != p.description)) {
-              QSqlQuery up(QSqlDatabase::database(q(conn_), false));
-              up.prepare("UPDATE patients SET scenario = ?, description = ? WHERE name = ? AND builtin = 1");
-              up.addBindValue(q(p.body.dump()));
-              up.addBindValue(q(p.description));
-              up.addBindValue(q(p.name));
-              if (!up.exec()) throw LibraryError(where_ + ": updating the built-in patient \"" + p.name + "\": " + reason(up.lastError()));
+        for (const auto& p : builtin_patients()) {
+          const auto have = find(p.name);
+          if (!have) {
+            if (first != kSchemaVersion) insert_patient(p, rollback);
+          } else if (have->builtin && (have->body != p.body || have->description != p.description)) {
+            QSqlQuery up(QSqlDatabase::database(q(conn_), false));
+            up.prepare("UPDATE patients SET scenario = ?, description = ? WHERE name = ? AND builtin = 1");
+            up.addBindValue(q(p.body.dump()));
+            up.addBindValue(q(p.description));
+            up.addBindValue(q(p.name));
+            if (!up.exec()) {
+              const std::string why = reason(up.lastError());
+              tx.rollback();  // before `up` is freed: PostgreSQL frees no statement in an aborted transaction
+              throw LibraryError(where_ + ": updating the built-in patient \"" + p.name + "\": " + why);
             }
           }
-        } catch (...) {
-          rollback();
-          throw;
         }
       }
-      commit("adding the built-in patients");
+      commit(tx, "adding the built-in patients");
       break;
     }
     const std::string doing = "migrating to schema " + std::to_string(version + 1);
-    try {
-      for (const auto& sql : steps[std::size_t(version)]) exec(sql, doing.c_str());
-      // The built-ins come with the last step: a station that sees the current version sees them.
-      if (seed && version + 1 == kSchemaVersion)
-        for (const auto& p : builtin_patients())
-          if (!find(p.name)) insert_patient(p, rollback);
-    } catch (...) {
-      rollback();
-      throw;
-    }
-    commit(doing);
+    for (const auto& sql : steps[std::size_t(version)]) exec(sql, doing.c_str());
+    // The built-ins come with the last step: a station that sees the current version sees them.
+    if (seed && version + 1 == kSchemaVersion)
+      for (const auto& p : builtin_patients())
+        if (!find(p.name)) insert_patient(p, rollback);
+    commit(tx, doing);
   }
   opened_as_ = first == 0 ? "created" : first == kSchemaVersion ? "opened" : "migrated from " + std::to_string(first);
 }
@@ -636,21 +663,11 @@ void PatientLibrary::add(const PatientRecord& p) {
   with_server([&] {
     QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
     if (find(p.name)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
-    if (!db.transaction()) throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(db.lastError()));
-    bool open = true;
-    auto abort = [&] {
-      if (open) db.rollback();
-      open = false;
-    };
-    try {
-      insert_patient(p, abort);
-    } catch (...) {
-      abort();
-      throw;
-    }
-    if (!db.commit()) {
-      const QSqlError e = db.lastError();
-      db.rollback();
+    Transaction tx(db);
+    if (!tx.begin()) throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(tx.error()));
+    insert_patient(p, [&tx] { tx.rollback(); });
+    if (!tx.commit()) {
+      const QSqlError e = tx.error();
       if (is_duplicate(e)) throw LibraryError(where_ + ": patient \"" + p.name + "\" already exists (choose another --name)");
       throw LibraryError(where_ + ": adding \"" + p.name + "\": " + reason(e) + " (nothing was added)");
     }
@@ -660,7 +677,8 @@ void PatientLibrary::add(const PatientRecord& p) {
 bool PatientLibrary::remove(const std::string& name) {
   return with_server([&] {
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
-  if (!db.transaction()) throw LibraryError(where_ + ": removing \"" + name + "\": " + reason(db.lastError()));
+  Transaction tx(db);
+  if (!tx.begin()) throw LibraryError(where_ + ": removing \"" + name + "\": " + reason(tx.error()));
   QSqlQuery a(db), b(db);
   a.prepare("DELETE FROM meshes WHERE patient_id IN (SELECT id FROM patients WHERE name = ?)");
   a.addBindValue(q(name));
@@ -668,15 +686,11 @@ bool PatientLibrary::remove(const std::string& name) {
   b.addBindValue(q(name));
   if (!a.exec() || !b.exec()) {
     const std::string why = reason(a.lastError().isValid() ? a.lastError() : b.lastError());
-    db.rollback();
+    tx.rollback();
     throw LibraryError(where_ + ": removing \"" + name + "\": " + why);
   }
   const bool any = b.numRowsAffected() > 0;
-  if (!db.commit()) {
-    const std::string why = reason(db.lastError());
-    db.rollback();
-    throw LibraryError(where_ + ": removing \"" + name + "\": " + why);
-  }
+  if (!tx.commit()) throw LibraryError(where_ + ": removing \"" + name + "\": " + reason(tx.error()));
   return any;
   });
 }
@@ -794,15 +808,16 @@ bool PatientLibrary::remove_trainee(const std::string& name) {
   return with_server([&] {
     if (!find_trainee(name)) return false;
     QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
-    if (!db.transaction()) throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(db.lastError()));
+    Transaction tx(db);
+    if (!tx.begin()) throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(tx.error()));
     QSqlQuery a(db), b(db);
     a.prepare("DELETE FROM exam_results WHERE trainee_id IN (SELECT id FROM trainees WHERE name = ?)");
     a.addBindValue(q(name));
     b.prepare("DELETE FROM trainees WHERE name = ?");
     b.addBindValue(q(name));
-    if (!a.exec() || !b.exec() || !db.commit()) {
-      const QSqlError e = a.lastError().isValid() ? a.lastError() : b.lastError().isValid() ? b.lastError() : db.lastError();
-      db.rollback();
+    if (!a.exec() || !b.exec() || !tx.commit()) {
+      const QSqlError e = a.lastError().isValid() ? a.lastError() : b.lastError().isValid() ? b.lastError() : tx.error();
+      tx.rollback();
       throw LibraryError(where_ + ": removing trainee \"" + name + "\": " + reason(e) + " (nothing was removed)");
     }
     return true;
@@ -843,10 +858,11 @@ std::int64_t PatientLibrary::insert_result(const ExamResult& r, bool once) {
   const std::int64_t trainee = trainee_id(r.trainee, "recording a result of");
   const QString started = q(r.started.empty() ? utc_now() : r.started);
   QSqlDatabase db = QSqlDatabase::database(q(conn_), false);
-  if (!db.transaction()) throw LibraryError(what + ": " + reason(db.lastError()));
+  Transaction tx(db);
+  if (!tx.begin()) throw LibraryError(what + ": " + reason(tx.error()));
   auto fail = [&](const QSqlError& e) {
     const std::string why = reason(e);
-    db.rollback();
+    tx.rollback();
     throw LibraryError(what + ": " + why + " (nothing was recorded)");
   };
   if (once) {
@@ -864,7 +880,7 @@ std::int64_t PatientLibrary::insert_result(const ExamResult& r, bool once) {
     if (!same.exec() || !same.next()) fail(same.lastError());
     if (!same.value(0).isNull()) {
       const std::int64_t id = same.value(0).toLongLong();
-      if (!db.commit()) fail(db.lastError());
+      if (!tx.commit()) fail(tx.error());
       return id;
     }
   }
@@ -894,7 +910,7 @@ std::int64_t PatientLibrary::insert_result(const ExamResult& r, bool once) {
   id.addBindValue(QVariant::fromValue<qlonglong>(trainee));
   if (!id.exec() || !id.next()) fail(id.lastError());
   const std::int64_t rid = id.value(0).toLongLong();
-  if (!db.commit()) fail(db.lastError());
+  if (!tx.commit()) fail(tx.error());
   return rid;
 }
 

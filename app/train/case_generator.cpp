@@ -285,7 +285,6 @@ GeneratedCase generate_case(std::uint64_t seed, const CaseRanges& ranges, const 
   s.patient.height = double(h) / 1e4;
   s.young_modulus = double(tissue);
   s.poisson_ratio = 0.45;
-  s.params.element = sim::default_element(s.poisson_ratio);
   s.density = 1000.0;
 
   // Clearances in whole micrometres.

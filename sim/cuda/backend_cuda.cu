@@ -198,7 +198,8 @@ struct Profiler {
 template <class T>
 class CudaBackend final : public Backend {
  public:
-  CudaBackend(const Model& model, const SimParams& params, Solver solver) : m_(model), p_(params), solver_(solver) {
+  CudaBackend(const Model& model, const SimParams& params, Solver solver)
+      : m_(model), p_(resolved_for(model, params)), solver_(solver) {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
     check_element();  // before anything is allocated: a throwing constructor frees nothing
@@ -279,7 +280,8 @@ class CudaBackend final : public Backend {
   std::string device_name() const override { return device_info().name; }
   Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
   const SimParams& params() const override { return p_; }
-  void set_params(const SimParams& p) override {
+  void set_params(const SimParams& given) override {
+    const SimParams p = resolved_for(m_, given);
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;

@@ -6,7 +6,9 @@
 #include <fstream>
 
 #include "store/output_dir.h"
+#include "backend.h"
 #include "scenario.h"
+#include "simulation.h"
 
 using namespace palpation;
 
@@ -100,21 +102,43 @@ class TestScenario : public QObject {
   // linear element below it; a named element is kept at any ratio, and every element is
   // written back by name so a scenario reads back as it was.
   void elementRoundTrips() {
+    const auto runs = [](const sim::Scenario& s) { return sim::resolve_element(s.params.element, s.poisson_ratio); };
     const sim::Scenario plain = sim::parse_scenario(with("\"duration\": 1"), "case.json");
     QCOMPARE(plain.poisson_ratio, 0.45);
-    QVERIFY(plain.params.element == sim::Element::NodalPressure);
+    QVERIFY(runs(plain) == sim::Element::NodalPressure);
+    QVERIFY(sim::scenario_to_json(plain).find("\"element\": \"nodal-pressure\"") != std::string::npos);
     const sim::Scenario soft = sim::parse_scenario(with("\"tissue\": {\"poisson_ratio\": 0.449}"), "case.json");
-    QVERIFY(soft.params.element == sim::Element::Linear);
+    QVERIFY(runs(soft) == sim::Element::Linear);
+    QVERIFY(sim::parse_scenario(sim::scenario_to_json(soft), "case.json").params.element == sim::Element::Linear);
     const sim::Scenario pinned = sim::parse_scenario(with("\"tissue\": {\"poisson_ratio\": 0.49, \"element\": \"linear\"}"), "case.json");
-    QVERIFY(pinned.params.element == sim::Element::Linear);
+    QVERIFY(runs(pinned) == sim::Element::Linear);
     QVERIFY(sim::scenario_to_json(pinned).find("\"element\": \"linear\"") != std::string::npos);
     QVERIFY(sim::parse_scenario(sim::scenario_to_json(pinned), "case.json").params.element == sim::Element::Linear);
     const sim::Scenario np = sim::parse_scenario(with("\"tissue\": {\"poisson_ratio\": 0.3, \"element\": \"nodal-pressure\"}"), "case.json");
-    QVERIFY(np.params.element == sim::Element::NodalPressure);
+    QVERIFY(runs(np) == sim::Element::NodalPressure);
     const sim::Scenario back = sim::parse_scenario(sim::scenario_to_json(np), "case.json");
     QVERIFY(back.params.element == sim::Element::NodalPressure);
     for (const auto& name : sim::builtin_scenario_names())
-      QVERIFY2(sim::builtin_scenario(name).params.element == sim::Element::NodalPressure, name.c_str());
+      QVERIFY2(runs(sim::builtin_scenario(name)) == sim::Element::NodalPressure, name.c_str());
+    // A scenario put together in code names no element either: the backend that runs it
+    // resolves it from the tissue it is given, at 0.49 and at 0.3 alike.
+    for (const double nu : {0.49, 0.3}) {
+      sim::Scenario coded;
+      coded.patient.phantom = "box";
+      coded.patient.size = Eigen::Vector3d(0.04, 0.04, 0.02);
+      coded.patient.resolution.clear();
+      coded.patient.edge = 0.01;
+      coded.poisson_ratio = nu;
+      coded.backend = "cpu";
+      QVERIFY(coded.params.element == sim::Element::Auto);
+      const sim::Model m = sim::build_scenario_model(coded, sim::patient_mesh(coded));
+      const auto b = sim::make_backend(sim::BackendKind::Cpu, m, coded.params);
+      QVERIFY(b->params().element == sim::default_element(nu));
+      sim::SimParams p = b->params();
+      p.element = sim::Element::Auto;
+      b->set_params(p);
+      QVERIFY(b->params().element == sim::default_element(nu));
+    }
     QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, sim::parse_scenario(with("\"tissue\": {\"element\": \"quadratic\"}"), "case.json"));
   }
 
