@@ -201,7 +201,7 @@ ConvergenceStudy convergence_study(const Scenario& s0, const ConvergenceOptions&
     lv.finite = over.finite;
     if (st.has_tumour) {
       Materials plain = m.materials;
-      std::fill(plain.young.begin(), plain.young.end(), s.young_modulus);
+      plain.young = m.tissue_young;  // every element its own tissue (its layer's): no tumour
       const PressResult p2 = press_probe(s, m, plain, *site, o.radius, st.depth, o.schedule);
       lv.force_plain = p2.force_normal;
       lv.finite = lv.finite && p2.finite;

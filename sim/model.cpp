@@ -39,6 +39,7 @@ Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is
 
   m.materials.young.assign(ne, tissue.young_modulus);
   m.materials.poisson.assign(ne, tissue.poisson_ratio);
+  m.tissue_young.assign(ne, tissue.young_modulus);
   m.materials.lambda.resize(ne);
   m.materials.mu.resize(ne);
   m.volume.resize(ne);

@@ -40,8 +40,9 @@ inline void lame(double E, double nu, double& lambda, double& mu) {
 /// Per-element materials: what painting a tumour changes. A Model holds those it was built
 /// with; a running Simulation holds the current ones and hands them to its backend.
 /// The tumour rule: an element is tumour tissue when its Young's modulus is above 1.2 x
-/// the bulk tissue's (a patient's inclusions are 2x to 25x stiffer than fat; the factor
-/// keeps a tissue modulus edited by a few percent from reading as a tumour). The tumour
+/// its tissue's (Model::tissue_young: the bulk tissue's, or its layer's; a patient's
+/// inclusions are 2x to 25x stiffer than fat; the factor keeps a tissue modulus edited by
+/// a few percent from reading as a tumour). The tumour
 /// editor, the 3-D view and the exam scorer all read it here.
 inline constexpr double kTumourFactor = 1.2;
 inline bool is_tumour_modulus(double young, double tissue_young) { return young > kTumourFactor * tissue_young; }
@@ -64,6 +65,9 @@ struct Model {
   std::vector<int> surface_nodes;           // (nsurfnode) nodes on the boundary
   // Elements ------------------------------------------------------------------
   Materials materials;                      // (ntet) as built: tissue and inclusions
+  /// (ntet) Pa: each element's tissue without tumours, the tissue's modulus or its
+  /// layer's (tissue_layers.h). The tumour rule compares with it; erasing restores it.
+  std::vector<double> tissue_young;
   std::vector<double> volume;               // (ntet) m^3
   std::vector<std::array<Eigen::Vector3d, 4>> grad;  // (ntet x 4) shape gradients, 1/m
   std::vector<Eigen::Matrix3d> dm_inv;      // (ntet) inverse rest edge matrix

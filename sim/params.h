@@ -81,6 +81,14 @@ inline Element parse_element(const std::string& name) {
 /// the element it resolved to).
 inline std::vector<std::string> element_names() { return {"linear", "nodal-pressure"}; }
 
+/// One band of tissue below the skin (tissue_layers.h). Layers are listed from the skin
+/// inward; the last one (the core) takes everything deeper and has no thickness.
+struct TissueLayer {
+  std::string name;                // "skin", "fat", "glandular": reports and messages
+  double thickness = 0.0;          // m, > 0; 0 for the last layer
+  double young_modulus = 19000.0;  // Pa
+};
+
 struct SimParams {
   Element element = Element::Auto;
   SolverParams solver;

@@ -108,10 +108,15 @@ DeepPress deep_press(const Scenario& s, const Model& m, const Materials& materia
   std::vector<Eigen::Vector3d> points;
   for (const auto& inc : s.inclusions)
     if (inc.young_modulus > s.young_modulus) points.push_back(inc.center);
-  if (materials.size() == m.num_tets() && m.num_tets() > 0) {
-    const auto it = std::max_element(materials.young.begin(), materials.young.end());
-    if (*it > s.young_modulus) {
-      const int e = int(it - materials.young.begin());
+  if (materials.size() == m.num_tets() && int(m.tissue_young.size()) == m.num_tets() && m.num_tets() > 0) {
+    // The stiffest tumour element (the tumour rule against each element's own tissue: a
+    // layered breast's skin and glandular tissue are stiffer than the reference and no tumour).
+    int e = -1;
+    for (int k = 0; k < m.num_tets(); ++k)
+      if (is_tumour_modulus(materials.young[std::size_t(k)], m.tissue_young[std::size_t(k)]) &&
+          (e < 0 || materials.young[std::size_t(k)] > materials.young[std::size_t(e)]))
+        e = k;
+    if (e >= 0) {
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
       for (int a = 0; a < 4; ++a) c += m.rest[std::size_t(m.tets[std::size_t(e)][a])];
       c /= 4.0;

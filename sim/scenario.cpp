@@ -146,7 +146,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
 
   if (j.contains("tissue")) {
     const json& t = j["tissue"];
-    rd.only_keys(t, "tissue", {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness", "element"});
+    rd.only_keys(t, "tissue",
+                 {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness", "element", "layers"});
     if (t.contains("element"))
       s.params.element = parse_element(rd.choice(t["element"], "tissue.element", element_names()));
     if (t.contains("young_modulus")) s.young_modulus = rd.positive(t["young_modulus"], "tissue.young_modulus");
@@ -155,7 +156,51 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (t.contains("damping_mass")) s.params.damping.mass = rd.non_negative(t["damping_mass"], "tissue.damping_mass");
     if (t.contains("damping_stiffness"))
       s.params.damping.stiffness = rd.non_negative(t["damping_stiffness"], "tissue.damping_stiffness");
+    if (t.contains("layers")) {
+      // Bands below the skin, from the skin inward; the last (the core) has no thickness.
+      const json& arr = t["layers"];
+      if (!arr.is_array() || arr.empty() || arr.size() > kMaxLayers)
+        rd.fail("tissue.layers", "must be an array of 1 to " + std::to_string(kMaxLayers) + " layers");
+      for (std::size_t i = 0; i < arr.size(); ++i) {
+        const std::string f = "tissue.layers[" + std::to_string(i) + "]";
+        const json& l = arr[i];
+        rd.only_keys(l, f, {"name", "thickness", "young_modulus"});
+        TissueLayer layer;
+        if (!l.contains("name")) rd.fail(f + ".name", "is required");
+        layer.name = rd.string(l["name"], f + ".name");
+        if (layer.name.empty() || layer.name.size() > 64) rd.fail(f + ".name", "must be 1 to 64 characters");
+        for (const auto& other : s.layers)
+          if (other.name == layer.name) rd.fail(f + ".name", "\"" + layer.name + "\" names two layers");
+        const bool core = i + 1 == arr.size();
+        if (core && l.contains("thickness"))
+          rd.fail(f + ".thickness", "the last layer takes all that lies deeper: it has no thickness");
+        if (!core) {
+          if (!l.contains("thickness")) rd.fail(f + ".thickness", "is required (m) for every layer but the last");
+          layer.thickness = rd.positive(l["thickness"], f + ".thickness");
+          if (!(layer.thickness <= kMaxEdge)) rd.fail(f + ".thickness", "must be at most " + Reader::fmt(kMaxEdge) + " m");
+        }
+        if (!l.contains("young_modulus")) rd.fail(f + ".young_modulus", "is required (Pa)");
+        layer.young_modulus = rd.positive(l["young_modulus"], f + ".young_modulus");
+        s.layers.push_back(layer);
+      }
+    }
   }
+  // Stiffness contrast bound (docs/stability.md, `palpation stress`): beyond it the CG solve
+  // of a step no longer converges within the iteration budget. Between the tissue, its
+  // layers and the tumours.
+  const auto check_contrast = [&](double E, const std::string& field) {
+    const auto within = [&](double other, const std::string& of) {
+      const double contrast = std::max(E / other, other / E);
+      if (!(contrast <= kMaxStiffnessContrast))
+        rd.fail(field, "must be within " + Reader::fmt(kMaxStiffnessContrast) + "x of " + of + " (" + Reader::fmt(other) +
+                           " Pa), got " + Reader::fmt(contrast) + "x (docs/stability.md)");
+    };
+    within(s.young_modulus, "tissue.young_modulus");
+    for (std::size_t i = 0; i < s.layers.size(); ++i)
+      within(s.layers[i].young_modulus, "tissue.layers[" + std::to_string(i) + "].young_modulus");
+  };
+  for (std::size_t i = 0; i < s.layers.size(); ++i)
+    check_contrast(s.layers[i].young_modulus, "tissue.layers[" + std::to_string(i) + "].young_modulus");
 
   if (j.contains("inclusions")) {
     const json& arr = j["inclusions"];
@@ -181,13 +226,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       }
       inc.young_modulus = in.contains("young_modulus") ? rd.positive(in["young_modulus"], f + ".young_modulus") : 107000.0;
       inc.poisson_ratio = in.contains("poisson_ratio") ? rd.poisson(in["poisson_ratio"], f + ".poisson_ratio") : s.poisson_ratio;
-      // Stiffness contrast bound (docs/stability.md, `palpation stress`): beyond it the CG
-      // solve of a step no longer converges within the iteration budget.
-      const double contrast = std::max(inc.young_modulus / s.young_modulus, s.young_modulus / inc.young_modulus);
-      if (!(contrast <= kMaxStiffnessContrast))
-        rd.fail(f + ".young_modulus", "must be within " + Reader::fmt(kMaxStiffnessContrast) + "x of tissue.young_modulus (" +
-                                          Reader::fmt(s.young_modulus) + " Pa), got " + Reader::fmt(contrast) +
-                                          "x (docs/stability.md)");
+      check_contrast(inc.young_modulus, f + ".young_modulus");
       s.inclusions.push_back(inc);
     }
   }
@@ -321,6 +360,15 @@ std::string scenario_to_json(const Scenario& s) {
                  {"damping_mass", s.params.damping.mass},
                  {"damping_stiffness", s.params.damping.stiffness}};
   j["tissue"]["element"] = element_name(resolve_element(s.params.element, s.poisson_ratio));
+  if (!s.layers.empty()) {
+    json layers = json::array();
+    for (std::size_t i = 0; i < s.layers.size(); ++i) {
+      json l = {{"name", s.layers[i].name}, {"young_modulus", s.layers[i].young_modulus}};
+      if (i + 1 < s.layers.size()) l["thickness"] = s.layers[i].thickness;
+      layers.push_back(l);
+    }
+    j["tissue"]["layers"] = layers;
+  }
   j["inclusions"] = json::array();
   for (const auto& inc : s.inclusions) {
     json ji = {{"shape", inc.shape},

@@ -68,6 +68,10 @@ struct Scenario {
   double young_modulus = 19000.0;     // tissue, Pa
   double poisson_ratio = 0.45;
   double density = 1000.0;            // kg/m^3
+  /// tissue.layers: skin, fat, glandular tissue... from the skin inward (tissue_layers.h);
+  /// empty: the tissue is uniform. With layers each element takes its layers' modulus and
+  /// young_modulus is the reference modulus of reports.
+  std::vector<TissueLayer> layers;
   std::vector<Inclusion> inclusions;
   std::string backend = "auto";       // "auto" | "cpu" | "cuda"
   SimParams params;
@@ -79,6 +83,8 @@ struct Scenario {
 /// Largest tumour/tissue Young's modulus ratio (either way) a scenario may ask for: the
 /// stability bound measured by `palpation stress` (docs/stability.md).
 inline constexpr double kMaxStiffnessContrast = 10000.0;
+/// Most layers a tissue may have.
+inline constexpr std::size_t kMaxLayers = 8;
 
 /// Parses and validates. Throws ScenarioError("FILE: FIELD: reason").
 Scenario parse_scenario(const std::string& json_text, const std::string& source_name);
@@ -87,7 +93,9 @@ Scenario load_scenario(const std::string& path);
 /// Serialises (round-trips through parse_scenario).
 std::string scenario_to_json(const Scenario& s);
 
-/// Built-in scenarios: "paper-sweep", "paper-sweep-no-tumour", "hertz", "idle".
+/// Built-in scenarios: "paper-sweep", "paper-sweep-no-tumour", their layered twins
+/// "paper-sweep-layered" and "paper-sweep-layered-no-tumour" (skin, fat, glandular tissue:
+/// tissue_layers.h), "hertz", "idle".
 std::vector<std::string> builtin_scenario_names();
 /// Throws ScenarioError for an unknown name.
 Scenario builtin_scenario(const std::string& name);

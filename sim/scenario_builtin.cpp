@@ -3,6 +3,7 @@
 
 #include "phantom.h"
 #include "scenario.h"
+#include "tissue_layers.h"
 
 namespace palpation::sim {
 
@@ -11,10 +12,12 @@ namespace {
 // The paper's Fig. 6: the index finger pushes and releases along z periodically while
 // the hand sweeps along x over the tumour, left to right and back, twice.
 // Pushes follow the skin (z of the dome at the current x) so every push reaches the same
-// depth below the surface; the sweep spans 6 cm centred on the tumour.
-Scenario paper_sweep(bool tumour) {
+// depth below the surface; the sweep spans 6 cm centred on the tumour. Layered: the same
+// breast as skin, fat and glandular tissue (breast_layers), the tumour in the gland.
+Scenario paper_sweep(bool tumour, bool layered = false) {
   Scenario s;
-  s.source = tumour ? "paper-sweep" : "paper-sweep-no-tumour";
+  s.source = std::string(layered ? "paper-sweep-layered" : "paper-sweep") + (tumour ? "" : "-no-tumour");
+  if (layered) s.layers = breast_layers();
   s.patient.phantom = "breast";
   s.patient.resolution = "paper";
   s.patient.edge = *resolution_edge("breast", "paper");
@@ -102,11 +105,15 @@ Scenario idle() {
 
 }  // namespace
 
-std::vector<std::string> builtin_scenario_names() { return {"paper-sweep", "paper-sweep-no-tumour", "hertz", "idle"}; }
+std::vector<std::string> builtin_scenario_names() {
+  return {"paper-sweep", "paper-sweep-no-tumour", "paper-sweep-layered", "paper-sweep-layered-no-tumour", "hertz", "idle"};
+}
 
 Scenario builtin_scenario(const std::string& name) {
   if (name == "paper-sweep") return paper_sweep(true);
   if (name == "paper-sweep-no-tumour") return paper_sweep(false);
+  if (name == "paper-sweep-layered") return paper_sweep(true, true);
+  if (name == "paper-sweep-layered-no-tumour") return paper_sweep(false, true);
   if (name == "hertz") return hertz();
   if (name == "idle") return idle();
   std::string list;

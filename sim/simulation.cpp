@@ -1,5 +1,7 @@
 #include "simulation.h"
 
+#include "tissue_layers.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,7 +17,10 @@ int apply_inclusions(Model& m, const std::vector<Inclusion>& inclusions) {
     const Eigen::Vector3d c = 0.25 * (m.rest[t[0]] + m.rest[t[1]] + m.rest[t[2]] + m.rest[t[3]]);
     for (const auto& inc : inclusions)
       if (inc.contains(c)) {
-        m.set_element_material(e, inc.young_modulus, inc.poisson_ratio);
+        // An inclusion of the tissue itself (the paper sweep's no-tumour twin: the same
+        // refined mesh, no tumour) keeps each element's tissue, its layer's in a layered one.
+        const bool tissue = inc.young_modulus == m.tissue.young_modulus && inc.poisson_ratio == m.tissue.poisson_ratio;
+        if (!tissue) m.set_element_material(e, inc.young_modulus, inc.poisson_ratio);
         ++changed;
         break;
       }
@@ -60,6 +65,7 @@ Model build_scenario_model(const Scenario& s, TetMesh mesh) {
   double zmin = std::numeric_limits<double>::max();
   for (const auto& p : mesh.nodes) zmin = std::min(zmin, p.z());
   Model m = build_model(std::move(mesh), tissue, fix_base(zmin + 1e-6));
+  apply_layers(m, s.layers);
   apply_inclusions(m, s.inclusions);
   return m;
 }

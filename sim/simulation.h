@@ -34,7 +34,10 @@ double min_tet_quality(const TetMesh& m, int* worst = nullptr);
 /// 0.0011: residual 6e-3 after 500 iterations; sliver-2%, quality 0.022, converges).
 inline constexpr double kMinTetQuality = 0.001;
 
-/// Applies inclusions to a model's elements (centroid test). Returns elements changed.
+/// Applies inclusions to a model's elements (centroid test; the first that contains an
+/// element's centroid gives it its material). An inclusion of the tissue's own material
+/// leaves its elements' tissue as it is (their layer's in a layered tissue). Returns the
+/// elements inside an inclusion.
 int apply_inclusions(Model& m, const std::vector<Inclusion>& inclusions);
 
 BackendKind parse_backend_kind(const std::string& name);

@@ -10,7 +10,7 @@
 # Stages (arguments; default: build check hertz micro bench idle sweep):
 #   build  cmake + ninja (Release, -DCMAKE_CUDA_ARCHITECTURES=90)
 #   check  palpation check-backends (paper-sweep + hertz, linear and nodal-pressure element,
-#          1,000 steps): exit 1 on disagreement
+#          1,000 steps; then paper-sweep-layered, nodal-pressure): exit 1 on disagreement
 #   hertz  palpation hertz on CUDA (hertz.txt): the nodal-pressure element at Poisson's ratio
 #          0.40-0.499, two radii and moduli, 28 cells across, exit 1 beyond 5 % of Hertz; the
 #          linear element beside it on the same mesh (its locking, no limit)
@@ -20,8 +20,10 @@
 #          baseline cuda-csr on paper and xfine in double (the equal-error comparison)
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   sweep  the paper's Fig. 6 sweep on CUDA at SWEEP_MESHES (default paper), with and without
-#          the tumour, with each of SWEEP_ELEMENTS (default linear nodal-pressure): step time,
-#          largest push per pass and the tumour/no-tumour ratio (sweep.txt)
+#          the tumour, with each of SWEEP_ELEMENTS (default linear nodal-pressure), on each of
+#          SWEEP_SCENARIOS (default paper-sweep, the paper's uniform tissue, and
+#          paper-sweep-layered, skin, fat and glandular tissue): step time, largest push per
+#          pass and the tumour/no-tumour ratio (sweep.txt)
 #   tests  the sim/ and device/ QtTest suites, packed here beforehand (below; tests.log,
 #          tests-summary.txt). Not a default stage; needs no build stage.
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
@@ -177,6 +179,15 @@ if has check; then
   timeout 300 "$P" check-backends --out "$OUT/check" ; rc=$?
   [[ -f $OUT/check/check.json ]] && mv "$OUT/check/check.json" "$OUT/check.json" && rmdir "$OUT/check" 2>/dev/null
   say "check-backends exit $rc"
+  [[ $rc -ne 0 ]] && status=1
+  # The layered breast (fat over glandular tissue: per-element tissue moduli) with the
+  # default element, its own file: check-layered.json.
+  say "check-backends, layered breast (paper-sweep-layered, nodal-pressure)"
+  timeout 240 "$P" check-backends --scenarios paper-sweep-layered --elements nodal-pressure --out "$OUT/check-layered"
+  rc=$?
+  [[ -f $OUT/check-layered/check.json ]] && mv "$OUT/check-layered/check.json" "$OUT/check-layered.json" &&
+    rmdir "$OUT/check-layered" 2>/dev/null
+  say "check-backends (layered) exit $rc"
   [[ $rc -ne 0 ]] && status=1
 fi
 
@@ -334,9 +345,10 @@ if has idle; then
   [[ -f /tmp/palpation-idle-csr/bench.csv ]] && tail -n +2 /tmp/palpation-idle-csr/bench.csv >>"$OUT/idle.csv"
 fi
 if has sweep; then
+  for base in ${SWEEP_SCENARIOS:-paper-sweep paper-sweep-layered}; do
   for el in ${SWEEP_ELEMENTS:-linear nodal-pressure}; do
     for res in ${SWEEP_MESHES:-paper}; do
-      for sc in paper-sweep paper-sweep-no-tumour; do
+      for sc in $base $base-no-tumour; do
         say "sweep: $sc on $res, $el element"
         "$P" scenario $sc | python3 -c '
 import json, sys
@@ -346,8 +358,8 @@ json.dump(s, open(sys.argv[2], "w"))' "$el" "/tmp/palpation-sweep-$el-$sc.json"
         timeout 200 "$P" run "/tmp/palpation-sweep-$el-$sc.json" --backend cuda --resolution "$res" \
           --out "/tmp/palpation-sweep-$el-$res-$sc" | tail -1
       done
-      python3 - "/tmp/palpation-sweep-$el-$res-paper-sweep/summary.json" \
-        "/tmp/palpation-sweep-$el-$res-paper-sweep-no-tumour/summary.json" "$res" "$el" <<'EOF' | tee -a "$OUT/sweep.txt"
+      python3 - "/tmp/palpation-sweep-$el-$res-$base/summary.json" \
+        "/tmp/palpation-sweep-$el-$res-$base-no-tumour/summary.json" "$res" "$el" "$base" <<'EOF' | tee -a "$OUT/sweep.txt"
 import json, sys
 t, n = (json.load(open(f)) for f in sys.argv[1:3])
 def near(s, p):
@@ -355,13 +367,14 @@ def near(s, p):
     return max(v) if v else float("nan")
 passes = t["sweep"]["passes"]
 within = sum(abs(p["peak_x"] - 0.125) <= 0.01 for p in passes)
-print(f"{sys.argv[3]}, {sys.argv[4]}: {t['nodes']} nodes, step {t['step_ms_median']:.3f} ms median, "
+print(f"{sys.argv[5]}, {sys.argv[3]}, {sys.argv[4]}: {t['nodes']} nodes, step {t['step_ms_median']:.3f} ms median, "
       f"{t['step_ms_p99']:.3f} ms p99, CG {t['cg_iterations_mean']:.1f} mean; largest push per pass at",
       ", ".join(f"{p['peak_x']:.4f} m ({p['peak_fz']:.2f} N)" for p in passes),
       f"-> {within} of {len(passes)} within 1 cm; tumour/no-tumour per pass",
       ", ".join(f"{near(t, p) / near(n, p):.3f}" for p in range(len(passes))))
 EOF
     done
+  done
   done
 fi
 say "done (status $status)"

@@ -7,7 +7,9 @@
 namespace palpation::app::cli {
 
 CommandAction add_scenario_command(CLI::App& app) {
-  auto* sub = app.add_subcommand("scenario", "Print a built-in scenario as JSON (paper-sweep, paper-sweep-no-tumour, hertz, idle)");
+  auto* sub = app.add_subcommand("scenario",
+                                 "Print a built-in scenario as JSON (paper-sweep, paper-sweep-no-tumour, their layered twins "
+                                 "paper-sweep-layered and paper-sweep-layered-no-tumour, hertz, idle)");
   auto name = std::make_shared<std::string>();
   auto list = std::make_shared<bool>(false);
   sub->add_option("name", *name, "Built-in scenario name");

@@ -66,7 +66,7 @@ std::array<double, train::kLevels> LiveExam::coverage() const {
 train::ScoredExam LiveExam::score(const std::vector<double>& young, double now, const std::string& patient) const {
   train::ScoredExam e;
   if (!tracker_ || !g_) return e;
-  const auto tumours = train::find_tumours(g_->rest, g_->tets, young, g_->tissue_young, *skin_, train::kPadRadius);
+  const auto tumours = train::find_tumours(g_->rest, g_->tets, young, g_->base_moduli(), *skin_, train::kPadRadius);
   e.score = train::score_exam(*tracker_, tumours, marks_, std::max(0.0, now - t0_));
   e.skin = skin_;
   e.face_level = tracker_->face_level();

@@ -35,7 +35,7 @@ std::uint64_t TumourDocument::generation() const { return g_ ? g_->generation : 
 double TumourDocument::tissue_young() const { return g_ ? g_->tissue_young : 0.0; }
 
 bool TumourDocument::is_tumour(int e) const {
-  return g_ && e >= 0 && e < int(young_.size()) && is_tumour_modulus(young_[std::size_t(e)], g_->tissue_young);
+  return g_ && e >= 0 && e < int(young_.size()) && is_tumour_modulus(young_[std::size_t(e)], g_->base_of(e));
 }
 
 int TumourDocument::tumour_element_count() const {
@@ -84,7 +84,7 @@ MaterialChange TumourDocument::removal(int i) const {
   for (int e : tumours_[std::size_t(i)].elements) {
     if (e < 0 || e >= int(young_.size())) continue;
     c.before[e] = young_[std::size_t(e)];
-    c.after[e] = g_->tissue_young;
+    c.after[e] = g_->base_of(e);
   }
   return c;
 }
@@ -103,9 +103,10 @@ std::vector<int> TumourDocument::elements_under_brush(const Eigen::Vector3d& poi
 Moduli TumourDocument::dab(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, const Brush& b, bool erase) const {
   Moduli m;
   if (!g_) return m;
-  const double target = erase ? g_->tissue_young : b.young;
-  for (int e : elements_under_brush(point, normal, b))
+  for (int e : elements_under_brush(point, normal, b)) {
+    const double target = erase ? g_->base_of(e) : b.young;
     if (young_[std::size_t(e)] != target) m[e] = target;
+  }
   return m;
 }
 

@@ -25,8 +25,8 @@ namespace dv = palpation::device;
 // Defaults
 
 sim::Scenario default_workstation_scenario() {
-  sim::Scenario s = sim::builtin_scenario("paper-sweep");
-  s.source = "default patient (paper breast, coarse)";
+  sim::Scenario s = sim::builtin_scenario("paper-sweep-layered");
+  s.source = "default patient (paper breast, layered, coarse)";
   s.patient.resolution = "coarse";
   s.patient.edge = *sim::resolution_edge("breast", "coarse");
   s.backend = "auto";
@@ -85,6 +85,7 @@ std::shared_ptr<PatientGeometry> make_patient_geometry(sim::Simulation& simulati
     g->centroid[e] = c / 4.0;
   }
   g->tissue_young = simulation.scenario().young_modulus;
+  g->base_young = m.tissue_young;
   g->tissue_poisson = simulation.scenario().poisson_ratio;
   g->skin = std::make_shared<const train::SkinMap>(train::build_skin_map(m));
   auto& be = simulation.backend();

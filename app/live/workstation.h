@@ -144,7 +144,17 @@ struct PatientGeometry {
   std::vector<std::array<int, 3>> surface;      // (nsurf) outward
   std::vector<Eigen::Vector3d> centroid;        // (ntet) rest centroid, m
   std::vector<double> young;                    // (ntet) Pa at load time
-  double tissue_young = 19000;                  // Pa, bulk tissue
+  double tissue_young = 19000;                  // Pa, bulk tissue (the scenario's reference)
+  /// (ntet) Pa: each element's tissue without tumours (sim::Model::tissue_young: its
+  /// layer's in a layered breast); empty: tissue_young everywhere.
+  std::vector<double> base_young;
+  double base_of(int e) const {
+    return e >= 0 && std::size_t(e) < base_young.size() ? base_young[std::size_t(e)] : tissue_young;
+  }
+  /// base_young, or tissue_young for every element when it is empty.
+  std::vector<double> base_moduli() const {
+    return base_young.size() == tets.size() ? base_young : std::vector<double>(tets.size(), tissue_young);
+  }
   double tissue_poisson = 0.45;
   /// The skin (boundary off the chest wall) with its thickness: coverage and scoring.
   std::shared_ptr<const train::SkinMap> skin;

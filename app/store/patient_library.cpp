@@ -26,6 +26,9 @@
 #include <QUrl>
 #include <QVariant>
 
+#include "scenario.h"
+#include "tissue_layers.h"
+
 namespace palpation::app::store {
 
 using nlohmann::json;
@@ -89,8 +92,17 @@ std::string reason(const QSqlError& e) {
   return t.empty() ? std::string("unknown database error") : t;
 }
 
+// The built-in breasts' tissue layers (skin, fat, glandular: sim::breast_layers) as the
+// scenario contract writes them.
+json breast_layers_json() {
+  sim::Scenario s;
+  s.layers = sim::breast_layers();
+  return json::parse(sim::scenario_to_json(s))["tissue"]["layers"];
+}
+
 json fragment(const json& patient, double e = 19000.0, json inclusions = json::array()) {
-  return {{"patient", patient}, {"tissue", {{"young_modulus", e}, {"poisson_ratio", 0.45}, {"density", 1000}}},
+  return {{"patient", patient},
+          {"tissue", {{"young_modulus", e}, {"poisson_ratio", 0.45}, {"density", 1000}, {"layers", breast_layers_json()}}},
           {"inclusions", inclusions}};
 }
 
@@ -160,8 +172,9 @@ std::vector<Builtin> make_builtins() {
     v.push_back({std::move(p), desc});
   };
   // Breast sizes and shapes: half-ellipsoid domes, volume 2/3 pi a^2 h (facts.md: about
-  // 250 mL small to 1,250 mL large, 560-975 mL typical). Fat-like tissue 19 kPa (the
-  // paper's value; Krouskop 1998 fat at 5% precompression 18-20 kPa).
+  // 250 mL small to 1,250 mL large, 560-975 mL typical). Layered tissue (fragment): skin,
+  // fat at 19 kPa (the paper's value; Krouskop 1998 fat at 5% precompression 18-20 kPa)
+  // and glandular tissue, where the tumours lie.
   struct Shape {
     const char* name;
     double a, h;

@@ -254,9 +254,10 @@ Eigen::Vector3d SkinMap::skin_above(const Eigen::Vector3d& p) const {
 }
 
 std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, const std::vector<std::array<int, 4>>& tets,
-                                      const std::vector<double>& young, double tissue_young, const SkinMap& skin,
+                                      const std::vector<double>& young, const std::vector<double>& tissue_young,
+                                      const SkinMap& skin,
                                       double pad_radius) {
-  const int ne = int(std::min(young.size(), tets.size()));
+  const int ne = int(std::min({young.size(), tissue_young.size(), tets.size()}));
   std::vector<int> parent(rest.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](int v) {
@@ -265,7 +266,7 @@ std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, 
   };
   std::vector<int> stiff;
   for (int e = 0; e < ne; ++e) {
-    if (!sim::is_tumour_modulus(young[std::size_t(e)], tissue_young)) continue;
+    if (!sim::is_tumour_modulus(young[std::size_t(e)], tissue_young[std::size_t(e)])) continue;
     stiff.push_back(e);
     const auto& t = tets[std::size_t(e)];
     for (int k = 1; k < 4; ++k) parent[std::size_t(root(t[std::size_t(k)]))] = root(t[0]);
@@ -275,7 +276,7 @@ std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, 
   std::vector<TumourTruth> out;
   for (const auto& [r, els] : groups) {
     TumourTruth t;
-    double vol = 0, ey = 0;
+    double vol = 0, ey = 0, et = 0;
     for (int e : els) {
       const auto& q = tets[std::size_t(e)];
       const Eigen::Vector3d c = 0.25 * (rest[std::size_t(q[0])] + rest[std::size_t(q[1])] + rest[std::size_t(q[2])] +
@@ -286,10 +287,11 @@ std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, 
       t.centre += v * c;
       vol += v;
       ey += v * young[std::size_t(e)];
+      et += v * tissue_young[std::size_t(e)];
     }
     t.centre /= vol;
     t.young = ey / vol;
-    t.contrast = tissue_young > 0 ? t.young / tissue_young : 0;
+    t.contrast = et > 0 ? ey / et : 0;  // against the tissue it replaced
     t.elements = int(els.size());
     double top = -1e300;
     for (int e : els)

@@ -99,17 +99,18 @@ struct TumourTruth {
   double lateral_radius = 0;                          // m, extent across the skin (x-y)
   double depth = 0;                                   // m, skin above the centre to the tumour's top
   double young = 0;                                   // Pa, mean
-  double contrast = 0;                                // young / tissue
+  double contrast = 0;                                // young / the tissue it replaced
   int elements = 0;
   Eigen::Vector3d skin_point = Eigen::Vector3d::Zero(); // projection on the skin (skin_above)
   /// A mark within this distance of skin_point finds the tumour (m): the tumour's lateral
   /// radius plus a finger pad radius (docs/training.md, "Hit tolerance").
   double tolerance = 0;
 };
-/// Tumours from per-element moduli: elements above the tumour rule (E > 1.2 x tissue),
-/// grouped by shared nodes.
+/// Tumours from per-element moduli: elements above the tumour rule (E > 1.2 x the element's
+/// tissue, `tissue_young`, sim::Model::tissue_young), grouped by shared nodes.
 std::vector<TumourTruth> find_tumours(const std::vector<Eigen::Vector3d>& rest, const std::vector<std::array<int, 4>>& tets,
-                                      const std::vector<double>& young, double tissue_young, const SkinMap& skin,
+                                      const std::vector<double>& young, const std::vector<double>& tissue_young,
+                                      const SkinMap& skin,
                                       double pad_radius);
 inline constexpr double kPadRadius = 0.008;  // m, the fingertip's (the paper's index finger)
 

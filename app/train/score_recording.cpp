@@ -157,7 +157,7 @@ ScoredExam score_any(const Rec& rec, const PressureThresholds& thresholds) {
                        " mm from the skin; at most " + std::to_string(int(kMarkMaxDistance * 1000)) + " mm)");
   }
   const double pad = sc.fingers.empty() ? kPadRadius : sc.fingers.front().radius;
-  const auto tumours = find_tumours(model->rest, model->tets, young, sc.young_modulus, *skin, pad);
+  const auto tumours = find_tumours(model->rest, model->tets, young, model->tissue_young, *skin, pad);
   double duration = rec.duration();
   if constexpr (std::is_same_v<Rec, store::CompactRecording>) {
     if (rec.step_count() > 0) duration = std::max(duration, rec.step_times().back());

@@ -166,10 +166,12 @@ class TestBuiltinCases : public QObject {
     sim::Simulation body(s);
     const sim::Model& m = body.model();
     int tumour_elements = 0;
-    for (int e = 0; e < m.num_tets(); ++e) tumour_elements += m.materials.young[std::size_t(e)] != s.young_modulus;
+    for (int e = 0; e < m.num_tets(); ++e)
+      tumour_elements += sim::is_tumour_modulus(m.materials.young[std::size_t(e)], m.tissue_young[std::size_t(e)]);
     QVERIFY2(tumour_elements > 0, "the mesh has tumour elements");
+    // Without the tumour: every element its own tissue (its layer's).
     sim::Materials plain = m.materials;
-    std::fill(plain.young.begin(), plain.young.end(), s.young_modulus);
+    for (int e = 0; e < m.num_tets(); ++e) plain.set(e, m.tissue_young[std::size_t(e)], m.materials.poisson[std::size_t(e)]);
 
     const auto over = sim::skin_site_above(m, inc.center, kRadius);
     const auto beside = sim::skin_site_above(m, inc.center - Eigen::Vector3d(kBeside, 0, 0), kRadius);

@@ -194,7 +194,7 @@ class TestCases : public QObject {
     QVERIFY(tissue > m.materials.size() / 2);
     // The scorer sees three separate tumours (they do not touch), each under the skin.
     const train::SkinMap skin = train::build_skin_map(m);
-    const auto truth = train::find_tumours(m.rest, m.tets, m.materials.young, s.young_modulus, skin, train::kPadRadius);
+    const auto truth = train::find_tumours(m.rest, m.tets, m.materials.young, m.tissue_young, skin, train::kPadRadius);
     QCOMPARE(truth.size(), std::size_t(3));
     for (const auto& t : truth) QVERIFY(t.depth > 0);
   }

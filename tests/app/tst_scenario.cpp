@@ -45,6 +45,23 @@ class TestScenario : public QObject {
                             << QString("case.json: tissue.poisson_ratio: must be in (-1, 0.5)");
     QTest::newRow("unknown element") << QString::fromStdString(with("\"tissue\": {\"element\": \"quadratic\"}"))
                                      << QString("case.json: tissue.element: must be one of");
+    QTest::newRow("layers not an array") << QString::fromStdString(with("\"tissue\": {\"layers\": {}}"))
+                                         << QString("case.json: tissue.layers: must be an array of 1 to 8 layers");
+    QTest::newRow("layer without thickness")
+        << QString::fromStdString(with(R"("tissue": {"layers": [{"name": "skin", "young_modulus": 56000}, {"name": "core", "young_modulus": 19000}]})"))
+        << QString("case.json: tissue.layers[0].thickness: is required (m) for every layer but the last");
+    QTest::newRow("core with thickness")
+        << QString::fromStdString(with(R"("tissue": {"layers": [{"name": "core", "thickness": 0.01, "young_modulus": 19000}]})"))
+        << QString("case.json: tissue.layers[0].thickness: the last layer takes all that lies deeper: it has no thickness");
+    QTest::newRow("layer names twice")
+        << QString::fromStdString(with(R"("tissue": {"layers": [{"name": "fat", "thickness": 0.01, "young_modulus": 19000}, {"name": "fat", "young_modulus": 19000}]})"))
+        << QString("case.json: tissue.layers[1].name: \"fat\" names two layers");
+    QTest::newRow("layer too stiff")
+        << QString::fromStdString(with(R"("tissue": {"layers": [{"name": "skin", "thickness": 0.002, "young_modulus": 1e9}, {"name": "core", "young_modulus": 19000}]})"))
+        << QString("case.json: tissue.layers[0].young_modulus: must be within 10000x of tissue.young_modulus");
+    QTest::newRow("tumour too stiff for a layer")
+        << QString::fromStdString(with(R"("tissue": {"layers": [{"name": "skin", "thickness": 0.002, "young_modulus": 1000}, {"name": "core", "young_modulus": 19000}]}, "inclusions": [{"center": [0, 0, 0.01], "radius": 0.005, "young_modulus": 1.5e7}])"))
+        << QString("case.json: inclusions[0].young_modulus: must be within 10000x of tissue.layers[0].young_modulus (1000 Pa)");
     QTest::newRow("skin_edge on a box") << QString::fromStdString(
                                                "{\"patient\": {\"phantom\": \"box\", \"skin_edge\": 0.002}, " + std::string(kFinger) + "}")
                                         << QString("case.json: patient.skin_edge: only the breast phantom takes a skin_edge");
@@ -140,6 +157,36 @@ class TestScenario : public QObject {
       QVERIFY(b->params().element == sim::default_element(nu));
     }
     QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, sim::parse_scenario(with("\"tissue\": {\"element\": \"quadratic\"}"), "case.json"));
+  }
+
+  // Tissue layers read, write and read back as they were; the layered built-in sweep has
+  // the built-in breasts' layers and its no-tumour twin differs only in the tumour.
+  void layersRoundTrip() {
+    const sim::Scenario s = sim::parse_scenario(
+        with(R"("tissue": {"layers": [{"name": "skin", "thickness": 0.0015, "young_modulus": 56000}, )"
+             R"({"name": "fat", "thickness": 0.01, "young_modulus": 19000}, {"name": "glandular", "young_modulus": 31500}]})"),
+        "case.json");
+    QCOMPARE(int(s.layers.size()), 3);
+    QCOMPARE(s.layers[0].name, std::string("skin"));
+    QCOMPARE(s.layers[1].thickness, 0.01);
+    QCOMPARE(s.layers[2].thickness, 0.0);
+    const sim::Scenario back = sim::parse_scenario(sim::scenario_to_json(s), "case.json");
+    QCOMPARE(int(back.layers.size()), 3);
+    for (std::size_t i = 0; i < 3; ++i) {
+      QCOMPARE(back.layers[i].name, s.layers[i].name);
+      QCOMPARE(back.layers[i].thickness, s.layers[i].thickness);
+      QCOMPARE(back.layers[i].young_modulus, s.layers[i].young_modulus);
+    }
+    QVERIFY(sim::parse_scenario(with("\"duration\": 1"), "case.json").layers.empty());
+    QVERIFY(sim::scenario_to_json(sim::parse_scenario(with("\"duration\": 1"), "case.json")).find("layers") == std::string::npos);
+    const sim::Scenario layered = sim::builtin_scenario("paper-sweep-layered");
+    const sim::Scenario twin = sim::builtin_scenario("paper-sweep-layered-no-tumour");
+    QCOMPARE(int(layered.layers.size()), 2);
+    QCOMPARE(layered.layers.front().name, std::string("fat"));
+    QCOMPARE(layered.layers.back().name, std::string("glandular"));
+    QCOMPARE(int(twin.layers.size()), 2);
+    QVERIFY(layered.inclusions.at(0).young_modulus > twin.inclusions.at(0).young_modulus);
+    QVERIFY(sim::builtin_scenario("paper-sweep").layers.empty());
   }
 
   // The skin's edge length is read, written back only when set, and read again.

@@ -38,7 +38,7 @@ Patient make_patient(sim::Scenario s) {
   p.scenario = s;
   p.model = std::make_shared<sim::Model>(sim::build_scenario_model(s, sim::patient_mesh(s)));
   p.skin = std::make_shared<const SkinMap>(build_skin_map(*p.model));
-  p.tumours = find_tumours(p.model->rest, p.model->tets, p.model->materials.young, s.young_modulus, *p.skin, kPadRadius);
+  p.tumours = find_tumours(p.model->rest, p.model->tets, p.model->materials.young, p.model->tissue_young, *p.skin, kPadRadius);
   return p;
 }
 
@@ -301,6 +301,7 @@ class TestTraining : public QObject {
     g->surface = paper_.model->surface;
     g->young = paper_.model->materials.young;
     g->tissue_young = paper_.scenario.young_modulus;
+    g->base_young = paper_.model->tissue_young;
     g->skin = paper_.skin;
     app::live::LiveExam ex;
     ex.set_patient(g);

@@ -99,6 +99,40 @@ class TstTumourDocument : public QObject {
     QCOMPARE(healthy.tumour_element_count(), 0);
   }
 
+  // A layered patient: glandular tissue (31.5 kPa, 1.66 x the reference tissue) below
+  // z = 0.02 m is its elements' own tissue, no tumour; a tumour there is judged against it,
+  // and removing or erasing one gives each element its own tissue back.
+  void the_tumour_rule_in_layered_tissue() {
+    int stiff = 0;
+    auto g = box_patient(107000, &stiff);
+    constexpr double kGland = 31500;
+    g->base_young.assign(g->tets.size(), kTissue);
+    int gland = -1, soft_lump = -1;
+    for (std::size_t e = 0; e < g->tets.size(); ++e)
+      if (g->centroid[e].z() < 0.02 && std::abs(g->centroid[e].x()) > 0.015) {
+        g->base_young[e] = kGland;
+        if (g->young[e] == kTissue) g->young[e] = kGland;
+        if (gland < 0) gland = int(e);
+        else if (soft_lump < 0 && g->young[e] == kGland && g->centroid[e].x() > 0.02) soft_lump = int(e);
+      }
+    QVERIFY(gland >= 0 && soft_lump >= 0);
+    g->young[std::size_t(soft_lump)] = 38000;  // 1.21 x the gland: a (soft) tumour there
+    TumourDocument doc(g);
+    QVERIFY(!doc.is_tumour(gland));
+    QVERIFY(doc.is_tumour(soft_lump));
+    // The patient's tumours, one entry: the top one and the soft lump.
+    QCOMPARE(doc.tumours().size(), std::size_t(1));
+    QCOMPARE(doc.tumour_element_count(), stiff + 1);
+    const auto c = doc.removal(0);
+    QCOMPARE(int(c.after.size()), stiff + 1);
+    for (const auto& [e, after] : c.after) QCOMPARE(after, g->base_young[std::size_t(e)]);
+    QCOMPARE(c.after.at(soft_lump), kGland);
+    const Brush b{0.03, 0.0, 107000};
+    const Moduli erase = doc.dab(g->centroid[std::size_t(soft_lump)], Eigen::Vector3d::UnitZ(), b, true);
+    QVERIFY(erase.count(soft_lump));
+    for (const auto& [e, E] : erase) QCOMPARE(E, g->base_young[std::size_t(e)]);
+  }
+
   void shapes() {
     TumourDocument doc(box_patient(kTissue));
     const auto& g = *doc.patient();
