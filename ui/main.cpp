@@ -4,8 +4,12 @@
 //                                           palpation, saves the main window, exits
 //   palpation-trainer --mode exam           starts in a training mode (instructor,
 //                                           guided-practice, exam: docs/gui.md)
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -13,6 +17,7 @@
 #include <QElapsedTimer>
 #include <QFileInfo>
 #include <QSettings>
+#include <QSocketNotifier>
 #include <QTimer>
 #include <QTranslator>
 
@@ -22,6 +27,43 @@
 #include "cli/runtime_dir.h"
 #include "live/patient_choice.h"
 #include "live/workstation.h"
+
+namespace {
+
+// SIGTERM, SIGINT and SIGHUP (`kill`, Ctrl-C in the terminal, a logout) end the workstation
+// as its window's close button does: the session recording gets its end chunk and the
+// settings are saved, where the default action would cut the recording's last quarter
+// second off. A signal handler may only do async-signal-safe things, so it writes a byte to
+// a socket pair and the event loop, woken by it, closes the windows.
+int g_signal_fds[2] = {-1, -1};
+
+void on_termination_signal(int) {
+  const char byte = 1;
+  [[maybe_unused]] const ssize_t n = ::write(g_signal_fds[0], &byte, 1);
+}
+
+void close_on_termination_signals(QCoreApplication& app) {
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0, g_signal_fds) != 0) {
+    std::perror("palpation-trainer: socketpair (SIGTERM will not save the session)");
+    return;
+  }
+  auto* notifier = new QSocketNotifier(g_signal_fds[1], QSocketNotifier::Read, &app);
+  QObject::connect(notifier, &QSocketNotifier::activated, &app, [] {
+    char byte;
+    while (::read(g_signal_fds[1], &byte, 1) > 0) {
+    }
+    std::fprintf(stderr, "palpation-trainer: ending on a termination signal\n");
+    QApplication::closeAllWindows();
+    QCoreApplication::quit();
+  });
+  struct sigaction sa {};
+  sa.sa_handler = on_termination_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  for (const int s : {SIGTERM, SIGINT, SIGHUP}) ::sigaction(s, &sa, nullptr);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   palpation::app::cli::set_runtime_dir();
@@ -33,6 +75,7 @@ int main(int argc, char** argv) {
   QApplication::setOrganizationName(QStringLiteral("palpation-trainer"));
   QApplication::setApplicationName(QStringLiteral("palpation-trainer"));
   QApplication::setApplicationVersion(QStringLiteral(PALPATION_VERSION_STRING));
+  close_on_termination_signals(app);
 
   QCommandLineParser cli;
   cli.setApplicationDescription(QStringLiteral("Breast-cancer palpation training workstation"));
