@@ -5,7 +5,6 @@
 // and `trainee` do what docs/training.md says.
 #include <QtTest>
 
-#include <QProcess>
 #include <QTemporaryDir>
 
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "cli_run.h"
 #include "phantom.h"
 #include "scenario.h"
 #include "simulation.h"
@@ -69,18 +69,6 @@ train::ExamScore score(int tumours, int found, int deep, int false_positives, st
   s.coverage = coverage;
   s.exam_time = exam_time;
   return s;
-}
-
-struct Run {
-  int rc = -1;
-  QString out, err;
-};
-Run run_cli(const QStringList& args) {
-  QProcess p;
-  p.start(PALPATION_EXE, args);
-  p.waitForFinished(120000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
-          QString::fromUtf8(p.readAllStandardError())};
 }
 
 }  // namespace
@@ -434,38 +422,38 @@ class TestCases : public QObject {
     QTemporaryDir dir;
     const QString d = dir.path();
     // case generate: the same file twice, a scenario `palpation run` accepts.
-    Run r = run_cli({"case", "generate", "--seed", "42", "--out", d + "/a.json"});
-    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    CliRun r = run_palpation({"case", "generate", "--seed", "42", "--out", d + "/a.json"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.out.startsWith("Generated case 42: difficulty "), qPrintable(r.out));
     QVERIFY(!r.out.contains("tumour"));  // the answer only with --answer
-    r = run_cli({"case", "generate", "--seed", "42", "--out", d + "/b.json"});
+    r = run_palpation({"case", "generate", "--seed", "42", "--out", d + "/b.json"});
     QCOMPARE(read((d + "/a.json").toStdString()), read((d + "/b.json").toStdString()));
     QCOMPARE(QString::fromStdString(read((d + "/a.json").toStdString())).trimmed().toStdString(),
              sim::scenario_to_json(train::generate_case(42).scenario));
-    r = run_cli({"case", "generate", "--seed", "-1", "--out", d + "/c.json"});
-    QCOMPARE(r.rc, 2);
+    r = run_palpation({"case", "generate", "--seed", "-1", "--out", d + "/c.json"});
+    QCOMPARE(r.code, 2);
     QVERIFY(!QFile::exists(d + "/c.json"));
     // curriculum check: the default one against a new library; a bad one exits 2 naming the field.
     const QString db = backend == "sqlite" ? d + "/lib.sqlite" : QString::fromStdString(test_db::new_library(backend, "cli"));
     QVERIFY(!db.isEmpty());
-    r = run_cli({"curriculum", "check", PALPATION_SOURCE_DIR "/resources/curricula/cbe-basics.json", "--db", db});
-    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    r = run_palpation({"curriculum", "check", PALPATION_SOURCE_DIR "/resources/curricula/cbe-basics.json", "--db", db});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.out.contains("valid") && r.out.contains("Generated case 1") && r.out.contains("breast-medium"), qPrintable(r.out));
     {
       std::ofstream(d.toStdString() + "/bad.json") << R"({"cases": [{"patient": "paper-case", "pass": {"min_sensitivity": 2}}]})";
       std::ofstream(d.toStdString() + "/unknown.json") << R"({"cases": [{"patient": "paper-case"}, {"patient": "nobody"}]})";
     }
-    r = run_cli({"curriculum", "check", d + "/bad.json", "--db", db});
-    QCOMPARE(r.rc, 2);
+    r = run_palpation({"curriculum", "check", d + "/bad.json", "--db", db});
+    QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains(d + "/bad.json: cases[0].pass.min_sensitivity: must be within 0..1, got 2"), qPrintable(r.err));
-    r = run_cli({"curriculum", "check", d + "/unknown.json", "--db", db});
-    QCOMPARE(r.rc, 2);
+    r = run_palpation({"curriculum", "check", d + "/unknown.json", "--db", db});
+    QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("cases[1].patient: no patient named \"nobody\""), qPrintable(r.err));
     // trainee add / list / progress.
-    r = run_cli({"trainee", "add", "Ada Lovelace", "--db", db});
-    QVERIFY2(r.rc == 0, qPrintable(r.err));
-    r = run_cli({"trainee", "add", "Ada Lovelace", "--db", db});
-    QCOMPARE(r.rc, 2);
+    r = run_palpation({"trainee", "add", "Ada Lovelace", "--db", db});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
+    r = run_palpation({"trainee", "add", "Ada Lovelace", "--db", db});
+    QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("trainee \"Ada Lovelace\" already exists"), qPrintable(r.err));
     {
       store::PatientLibrary lib({db.toStdString()});
@@ -486,22 +474,22 @@ class TestCases : public QObject {
       x.sensitivity = 0.0;
       lib.record_result(x);
     }
-    r = run_cli({"trainee", "progress", "Ada Lovelace", "--db", db, "--curriculum",
+    r = run_palpation({"trainee", "progress", "Ada Lovelace", "--db", db, "--curriculum",
                    PALPATION_SOURCE_DIR "/resources/curricula/cbe-basics.json"});
-    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.out.contains("2026-11-20 09:00") && r.out.indexOf("Generated case 1") < r.out.indexOf("tumour-1.0cm") &&
                  r.out.contains("1 of 8 cases passed; next: 2. tumour-1.0cm-superficial-firm"),
              qPrintable(r.out));
-    r = run_cli({"trainee", "progress", "Ada Lovelace", "--db", db, "--json"});
+    r = run_palpation({"trainee", "progress", "Ada Lovelace", "--db", db, "--json"});
     const auto j = nlohmann::json::parse(r.out.toStdString());
     QCOMPARE(j["results"].size(), std::size_t(2));
     QCOMPARE(j["results"][0]["case"].get<std::string>(), std::string("Generated case 1"));
     QCOMPARE(j["results"][1]["passed"].get<bool>(), false);
-    r = run_cli({"trainee", "list", "--db", db});
-    QVERIFY2(r.rc == 0 && r.out.contains("Ada Lovelace") && r.out.contains(": 1 trainee\n"), qPrintable(r.out + r.err));
+    r = run_palpation({"trainee", "list", "--db", db});
+    QVERIFY2(r.code == 0 && r.out.contains("Ada Lovelace") && r.out.contains(": 1 trainee\n"), qPrintable(r.out + r.err));
     QVERIFY2(r.err.isEmpty(), qPrintable(r.err));  // nothing from Qt or the database driver either
-    r = run_cli({"trainee", "progress", "Nobody", "--db", db});
-    QCOMPARE(r.rc, 2);
+    r = run_palpation({"trainee", "progress", "Nobody", "--db", db});
+    QCOMPARE(r.code, 2);
     QVERIFY2(r.err.contains("no trainee named \"Nobody\""), qPrintable(r.err));
   }
 
@@ -523,20 +511,13 @@ class TestCases : public QObject {
     env.remove("XDG_RUNTIME_DIR");
     env.remove("QT_QPA_PLATFORM");
     env.insert("TMPDIR", d + "/tmp");  // where Qt makes the folder it falls back to
-    auto run = [&](const QStringList& args) {
-      QProcess p;
-      p.setProcessEnvironment(env);
-      p.start(PALPATION_EXE, args);
-      p.waitForFinished(120000);
-      return Run{p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
-                 QString::fromUtf8(p.readAllStandardError())};
-    };
-    Run r = run({"run", d + "/box.json", "--out", d + "/out"});
-    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    auto run = [&](const QStringList& args) { return run_palpation(args, env); };
+    CliRun r = run({"run", d + "/box.json", "--out", d + "/out"});
+    QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY(QFile::exists(d + "/out/forces.png"));
     QVERIFY2(!r.err.contains("QStandardPaths") && !r.err.contains("XDG_RUNTIME_DIR"), qPrintable(r.err));
     r = run({"trainee", "list", "--db", d + "/lib.sqlite"});
-    QVERIFY2(r.rc == 0, qPrintable(r.err));
+    QVERIFY2(r.code == 0, qPrintable(r.err));
     QVERIFY2(r.err.isEmpty(), qPrintable(r.err));
     // The folder it used is the user's own and private, as Qt wants it.
     const QStringList made = QDir(d + "/tmp").entryList({"runtime-*"}, QDir::Dirs);

@@ -7,26 +7,10 @@
 
 #include <QDir>
 #include <QFile>
-#include <QProcess>
 
 #include <nlohmann/json.hpp>
 
-namespace {
-
-struct Run {
-  int code;
-  QString out, err;
-};
-
-Run palpation(const QStringList& args) {
-  QProcess p;
-  p.start(PALPATION_EXE, args);
-  p.waitForFinished(600000);
-  return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, QString::fromUtf8(p.readAllStandardOutput()),
-          QString::fromUtf8(p.readAllStandardError())};
-}
-
-}  // namespace
+#include "cli_run.h"
 
 class TestHertzCommand : public QObject {
   Q_OBJECT
@@ -36,10 +20,10 @@ class TestHertzCommand : public QObject {
     QDir(dir).removeRecursively();
     const QStringList base{"hertz", "--cells", "12", "--nu", "0.45,0.49", "--elements", "linear,nodal-pressure"};
     // Tens of percent off Hertz: a 5 % limit fails, a 500 % one passes.
-    const Run off = palpation(base + QStringList{"--limit", "0.05"});
+    const CliRun off = run_palpation(base + QStringList{"--limit", "0.05"});
     QCOMPARE(off.code, 1);
     QVERIFY2(off.out.contains("OFF"), qPrintable(off.out));
-    const Run ok = palpation(base + QStringList{"--limit", "5", "--out", dir});
+    const CliRun ok = run_palpation(base + QStringList{"--limit", "5", "--out", dir});
     QVERIFY2(ok.code == 0, qPrintable(ok.err));
     QFile f(dir + "/hertz.json");
     QVERIFY(f.open(QIODevice::ReadOnly));
@@ -62,7 +46,7 @@ class TestHertzCommand : public QObject {
   void badInputIsRefused() {
     for (const QStringList& args : {QStringList{"hertz", "--nu", "0.5"}, QStringList{"hertz", "--elements", "quadratic"},
                                     QStringList{"hertz", "--cells", "2"}}) {
-      const Run r = palpation(args);
+      const CliRun r = run_palpation(args);
       QVERIFY2(r.code == 2, qPrintable(args.join(' ') + ": " + QString::number(r.code)));
       QVERIFY2(!r.err.trimmed().isEmpty(), qPrintable(args.join(' ')));
     }
