@@ -11,6 +11,9 @@
 #   build  cmake + ninja (Release, -DCMAKE_CUDA_ARCHITECTURES=90)
 #   check  palpation check-backends (paper-sweep + hertz, linear and nodal-pressure element,
 #          1,000 steps; then paper-sweep-layered, nodal-pressure): exit 1 on disagreement
+#   levels check-backends on the other mesh levels (LEVELS, default coarse:1000 fine:300
+#          xfine:300, level:steps), nodal-pressure element: check-coarse.json, ... Not a
+#          default stage (xfine's CPU reference takes minutes); exit 1 on disagreement
 #   hertz  palpation hertz on CUDA (hertz.txt): the nodal-pressure element at Poisson's ratio
 #          0.40-0.499, two radii and moduli, 28 cells across, exit 1 beyond 5 % of Hertz; the
 #          linear element beside it on the same mesh (its locking, no limit)
@@ -189,6 +192,24 @@ if has check; then
     rmdir "$OUT/check-layered" 2>/dev/null
   say "check-backends (layered) exit $rc"
   [[ $rc -ne 0 ]] && status=1
+fi
+
+if has levels; then
+  # GPU against CPU on every mesh level of the breast, the default (nodal-pressure) element:
+  # coarse over 1,000 steps, fine and xfine over 300 (their CPU references take 46 s and
+  # 4.6 minutes on the GPU machine's 16 cores); paper is the check stage's. Needs the fine
+  # and xfine meshes in the carried model cache (the GPU machine has no Gmsh).
+  for rs in ${LEVELS:-coarse:1000 fine:300 xfine:300}; do
+    r=${rs%%:*}
+    n=${rs##*:}
+    say "levels: check-backends on $r, $n steps"
+    timeout 560 "$P" check-backends --scenarios paper-sweep --elements nodal-pressure --resolution "$r" --steps "$n" \
+      --out "$OUT/check-$r"
+    rc=$?
+    [[ -f $OUT/check-$r/check.json ]] && mv "$OUT/check-$r/check.json" "$OUT/check-$r.json" && rmdir "$OUT/check-$r" 2>/dev/null
+    say "levels: $r exit $rc"
+    [[ $rc -ne 0 ]] && status=1
+  done
 fi
 
 if has hertz; then
