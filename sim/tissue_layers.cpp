@@ -129,9 +129,15 @@ std::vector<int> apply_layers(Model& m, const std::vector<TissueLayer>& layers) 
   if (layers.empty()) return count;
   double banded = 0;  // depth of the last layer's top
   for (std::size_t i = 0; i + 1 < layers.size(); ++i) banded += layers[i].thickness;
-  // Twice the banded depth: an element reaching below it is interpolated from node depths
-  // that are exact where they matter (within the bands).
-  const std::vector<double> depth = skin_depths(m, 2.0 * banded);
+  // The search reaches the banded depth plus the longest edge: the depth changes by at most
+  // an edge's length along it, so every node of an element that reaches into the bands gets
+  // its exact depth, and an element with a node beyond the reach lies wholly in the core.
+  double edge2 = 0;
+  for (const auto& t : m.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        edge2 = std::max(edge2, (m.rest[std::size_t(t[std::size_t(a)])] - m.rest[std::size_t(t[std::size_t(b)])]).squaredNorm());
+  const std::vector<double> depth = skin_depths(m, banded + std::sqrt(edge2));
   const double nu = m.tissue.poisson_ratio;
   const auto& samples = volume_samples();
   m.tissue_young.resize(std::size_t(m.num_tets()));

@@ -92,7 +92,7 @@ std::string reason(const QSqlError& e) {
   return t.empty() ? std::string("unknown database error") : t;
 }
 
-// The built-in breasts' tissue layers (skin, fat, glandular: sim::breast_layers) as the
+// The built-in breasts' tissue layers (fat over glandular tissue: sim::breast_layers) as the
 // scenario contract writes them.
 json breast_layers_json() {
   sim::Scenario s;
@@ -172,7 +172,7 @@ std::vector<Builtin> make_builtins() {
     v.push_back({std::move(p), desc});
   };
   // Breast sizes and shapes: half-ellipsoid domes, volume 2/3 pi a^2 h (facts.md: about
-  // 250 mL small to 1,250 mL large, 560-975 mL typical). Layered tissue (fragment): skin,
+  // 250 mL small to 1,250 mL large, 560-975 mL typical). Layered tissue (fragment):
   // fat at 19 kPa (the paper's value; Krouskop 1998 fat at 5% precompression 18-20 kPa)
   // and glandular tissue, where the tumours lie.
   struct Shape {
