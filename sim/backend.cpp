@@ -28,11 +28,25 @@ std::vector<std::string> available_backends() {
   return out;
 }
 
+namespace {
+
+/// Why a GPU backend cannot run these parameters, or empty: the multigrid preconditioner
+/// has no GPU port (amg.h).
+std::string gpu_refusal(const SimParams& params) {
+  return params.solver.preconditioner == Preconditioner::Multigrid
+             ? "solver.preconditioner \"multigrid\" runs on the cpu backend only (the GPU backends precondition "
+               "with block-Jacobi)"
+             : std::string();
+}
+
+}  // namespace
+
 std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params) {
   if (name == "cpu") return make_cpu_backend(model, params);
 #ifdef PALPATION_HAVE_CUDA
   std::string why;
   if (name == "cuda" || name == "cuda-csr") {
+    if (const std::string no = gpu_refusal(params); !no.empty()) throw std::runtime_error("backend " + name + ": " + no);
     if (!cuda_available(&why)) throw std::runtime_error("backend " + name + ": " + why);
     return name == "cuda" ? make_cuda_backend(model, params) : make_cuda_csr_backend(model, params);
   }
@@ -54,8 +68,9 @@ bool cuda_floor(const Model& model, Precision precision, FloorEstimate& out) {
 
 std::unique_ptr<Backend> make_backend(BackendKind kind, const Model& model, const SimParams& params,
                                       std::string* reason) {
-  std::string why;
-  if (kind == BackendKind::Cuda || kind == BackendKind::Auto) {
+  std::string why = gpu_refusal(params);
+  if (!why.empty() && kind == BackendKind::Cuda) throw std::runtime_error("solver.backend: cuda was asked for but " + why);
+  if (why.empty() && (kind == BackendKind::Cuda || kind == BackendKind::Auto)) {
     if (cuda_available(&why)) {
 #ifdef PALPATION_HAVE_CUDA
       auto b = make_cuda_backend(model, params);

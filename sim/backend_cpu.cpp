@@ -265,10 +265,12 @@ class CpuBackend final : public Backend {
     } else {
       dvprev_ = dv_;
     }
+    use_multigrid(sys);
     const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
                                cg_, parallel(), T(p_.solver.cg_rescue_tolerance), p_.solver.cg_rescue_iterations);
     st.cg_iterations = res.iterations;
     st.rescued = res.rescued;
+    if (cg_.multigrid) note_multigrid_iterations(res.iterations);
     last_converged_ = res.converged;
     st.cg_residual = res.relative_residual;
     st.solved = true;
@@ -312,6 +314,37 @@ class CpuBackend final : public Backend {
 
  private:
   bool nodal() const { return p_.element == Element::NodalPressure; }
+
+  // The multigrid levels are built from this step's system the first time they are
+  // needed, and again when the system has drifted so far from the one they were built
+  // from (a new dt, rotations, contact) that a solve needs twice the iterations of the
+  // first solve after the build, and ten more.
+  void use_multigrid(const cg::BlockSystem<T>& sys) {
+    if (p_.solver.preconditioner != Preconditioner::Multigrid) {
+      cg_.multigrid = nullptr;
+      return;
+    }
+    if (!multigrid_.built() || multigrid_stale_ || T(multigrid_scale_) != sys.scale) {
+      std::vector<Eigen::Vector3d> nodes(m_.num_free());
+      for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
+      cg::BlockSystem<T> stiffness = sys;
+      stiffness.pressure = nullptr;
+      const amg::SpMat sparser = cg::to_sparse(stiffness);
+      multigrid_.build(cg::to_sparse(sys), nodes, {}, sys.pressure ? &sparser : nullptr);
+      multigrid_scale_ = double(sys.scale);
+      multigrid_stale_ = false;
+      multigrid_reference_iterations_ = -1;
+      ++counters_.multigrid_builds;
+    }
+    cg_.multigrid = &multigrid_;
+  }
+  void note_multigrid_iterations(int iterations) {
+    if (multigrid_reference_iterations_ < 0) {
+      multigrid_reference_iterations_ = iterations;
+    } else if (iterations > 2 * multigrid_reference_iterations_ + 10) {
+      multigrid_stale_ = true;
+    }
+  }
 
   // threads: 1 = serial, >= 2 = always parallel (OpenMP's team), 0 = where it pays.
   bool parallel() const {
@@ -750,6 +783,10 @@ class CpuBackend final : public Backend {
   std::vector<T> dvprev_;                    // (nfree x 3) the solution before dv_ (warm start)
   std::vector<T> b0_;                        // (nfree x 3 + trash) sum of K_e (R_e - I) X_e, kept with K
   cg::Workspace<T> cg_;
+  amg::Hierarchy multigrid_;                  // levels below the system (Preconditioner::Multigrid)
+  double multigrid_scale_ = 0;               // the K scale (dt) they were built with
+  bool multigrid_stale_ = false;
+  int multigrid_reference_iterations_ = -1;  // iterations of the first solve after a build
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;

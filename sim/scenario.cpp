@@ -234,7 +234,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   if (j.contains("solver")) {
     const json& sv = j["solver"];
     rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations",
-                             "cg_rescue_tolerance", "cg_rescue_iterations", "threads", "corotation_tolerance"});
+                             "cg_rescue_tolerance", "cg_rescue_iterations", "threads", "corotation_tolerance",
+                             "preconditioner"});
     if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
     if (sv.contains("dt")) {
       s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
@@ -261,6 +262,9 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       s.params.solver.corotation_tolerance = rd.non_negative(sv["corotation_tolerance"], "solver.corotation_tolerance");
       if (s.params.solver.corotation_tolerance > 0.01) rd.fail("solver.corotation_tolerance", "must be <= 0.01");
     }
+    if (sv.contains("preconditioner"))
+      s.params.solver.preconditioner =
+          parse_preconditioner(rd.choice(sv["preconditioner"], "solver.preconditioner", preconditioner_names()));
   }
 
   if (j.contains("contact")) {
@@ -389,7 +393,8 @@ std::string scenario_to_json(const Scenario& s) {
                  {"cg_max_iterations", sv.cg_max_iterations},
                  {"cg_rescue_tolerance", sv.cg_rescue_tolerance},
                  {"cg_rescue_iterations", sv.cg_rescue_iterations},
-                 {"corotation_tolerance", sv.corotation_tolerance}};
+                 {"corotation_tolerance", sv.corotation_tolerance},
+                 {"preconditioner", preconditioner_name(sv.preconditioner)}};
   j["contact"] = {{"stiffness", s.params.contact.stiffness},
                   {"damping", s.params.contact.damping},
                   {"force_filter_hz", s.params.contact.force_filter_hz}};

@@ -3,7 +3,8 @@
 // B the stored blocks, D an optional block diagonal kept apart (the CPU backend keeps the
 // rotated stiffness B from step to step and rebuilds only the mass and contact terms D
 // and the time-step factor). Block-Jacobi preconditioner (inverse of each 3x3 diagonal
-// block of A), warm start from the initial content of x. OpenMP over rows when
+// block of A), or one multigrid V-cycle (amg.h) whose finest-level smoothing is that
+// block-Jacobi; warm start from the initial content of x. OpenMP over rows when
 // `parallel` (both cores, large systems).
 #pragma once
 
@@ -16,6 +17,7 @@
 #include <omp.h>
 #endif
 
+#include "amg.h"
 #include "lanes4.h"
 
 namespace palpation::sim::cg {
@@ -78,7 +80,15 @@ template <class T>
 struct Workspace {
   std::vector<T> r, z, p, q;
   std::vector<T> precond;  // (n / 3 x 12) inverse diagonal blocks, columns of four lanes
+  // Multigrid levels below this system (none: block-Jacobi alone), and its scratch.
+  const amg::Hierarchy* multigrid = nullptr;
+  std::vector<T> t, s;
+  Eigen::VectorXd coarse_r, coarse_e, fine_e;
   void resize(std::size_t n) {
+    if (multigrid) {
+      t.resize(n);
+      s.resize(n);
+    }
     precond.resize(4 * n);
     r.resize(n);
     z.resize(n);
@@ -223,6 +233,74 @@ inline void thread_rows(int n, int& lo, int& hi) {
   hi = int(std::int64_t(n) * (t + 1) / nt);
 }
 
+/// z = M r for the multigrid preconditioner M: one V-cycle from zero with a damped
+/// block-Jacobi sweep on A before and after the coarse correction (amg.h); returns r . z.
+/// Two products with A, one restriction and one prolongation.
+template <class T>
+T multigrid_cycle(const BlockSystem<T>& A, Workspace<T>& w, const T* __restrict r, T* __restrict z, bool parallel) {
+  const amg::Hierarchy& H = *w.multigrid;
+  const int n = 3 * A.n;
+  const T omega = T(H.fine_omega());
+  const T* P = w.precond.data();
+  T* __restrict t = w.t.data();
+  T* __restrict s = w.s.data();
+  precondition(P, r, z, 0, A.n);
+  for (int i = 0; i < n; ++i) z[i] *= omega;
+  multiply(A, z, t, parallel);
+  for (int i = 0; i < n; ++i) t[i] = r[i] - t[i];
+  w.coarse_r.resize(H.restriction().rows());
+  amg::multiply(H.restriction(), t, w.coarse_r.data());
+  H.coarse_cycle(w.coarse_r, w.coarse_e);
+  w.fine_e.resize(n);
+  amg::multiply(H.prolongation(), w.coarse_e.data(), w.fine_e.data());
+  for (int i = 0; i < n; ++i) z[i] += T(w.fine_e[i]);
+  multiply(A, z, t, parallel);
+  for (int i = 0; i < n; ++i) t[i] = r[i] - t[i];
+  precondition(P, t, s, 0, A.n);
+  T rz = 0;
+  for (int i = 0; i < n; ++i) {
+    z[i] += omega * s[i];
+    rz += r[i] * z[i];
+  }
+  return rz;
+}
+
+/// A as one scalar sparse matrix (3 unknowns per block row), in double: what the
+/// multigrid levels are built from.
+template <class T>
+amg::SpMat to_sparse(const BlockSystem<T>& A) {
+  const int n = 3 * A.n;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(9 * std::size_t(A.row_ptr[A.n]) + 9 * std::size_t(A.n));
+  for (int i = 0; i < A.n; ++i)
+    for (int k = A.row_ptr[i]; k < A.row_ptr[i + 1]; ++k)
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+          t.emplace_back(3 * i + r, 3 * A.col[k] + c, double(A.scale) * double(A.blocks[9 * std::size_t(k) + 3 * c + r]));
+  if (A.diag)
+    for (int i = 0; i < A.n; ++i)
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) t.emplace_back(3 * i + r, 3 * i + c, double(A.diag[9 * std::size_t(i) + 3 * c + r]));
+  amg::SpMat M(n, n);
+  M.setFromTriplets(t.begin(), t.end());
+  if (A.pressure) {
+    // scale * B^T W B, B the pressure rows (one per node) over the free unknowns.
+    const PressureTerm<T>& P = *A.pressure;
+    std::vector<Eigen::Triplet<double>> b;
+    for (int r = 0; r < P.nnode; ++r)
+      for (int k = P.row_ptr[r]; k < P.row_ptr[r + 1]; ++k)
+        for (int c = 0; c < 3; ++c) b.emplace_back(r, 3 * P.col[k] + c, double(P.b[3 * std::size_t(k) + c]));
+    amg::SpMat B(P.nnode, n);
+    B.setFromTriplets(b.begin(), b.end());
+    Eigen::VectorXd w(P.nnode);
+    for (int r = 0; r < P.nnode; ++r) w[r] = double(A.scale) * double(P.w[r]);
+    const amg::SpMat WB = w.asDiagonal() * B;
+    const amg::SpMat Bt = B.transpose();
+    M += amg::SpMat(Bt * WB);
+  }
+  return M;
+}
+
 /// Solves A x = b to ||b - A x|| <= tol ||b|| or max_iter iterations; a solve still above
 /// rescue_tol ||b|| there goes on to rescue_tol or rescue_iter iterations in all
 /// (SolverParams::cg_rescue_tolerance says why). Two passes over memory per iteration: the
@@ -260,7 +338,7 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
     }
     rnorm = bnorm;
   }
-  T rz = precondition(P, r, z, 0, A.n);
+  T rz = w.multigrid ? multigrid_cycle(A, w, r, z, parallel) : precondition(P, r, z, 0, A.n);
   for (int i = 0; i < n; ++i) p[i] = z[i];
   int it = 0;
   while ((it < max_iter && rnorm > tol * bnorm) || (it < rescue_iter && rnorm > rescue_tol * bnorm)) {
@@ -269,12 +347,17 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
     if (!(pq > 0)) break;  // not positive definite along p (or NaN): stop, report
     const T alpha = rz / pq;
     T rz_new = 0, rr_new = 0;
+    if (w.multigrid) {
+      rr_new = update_x_r(x, r, p, q, alpha, 0, n);
+      rz_new = multigrid_cycle(A, w, r, z, parallel);
+    } else {
 #pragma omp parallel reduction(+ : rz_new, rr_new) if (parallel)
-    {
-      int lo, hi;
-      thread_rows(A.n, lo, hi);
-      rr_new += update_x_r(x, r, p, q, alpha, 3 * lo, 3 * hi);
-      rz_new += precondition(P, r, z, lo, hi);
+      {
+        int lo, hi;
+        thread_rows(A.n, lo, hi);
+        rr_new += update_x_r(x, r, p, q, alpha, 3 * lo, 3 * hi);
+        rz_new += precondition(P, r, z, lo, hi);
+      }
     }
     rnorm = std::sqrt(rr_new);
     const T beta = rz_new / rz;

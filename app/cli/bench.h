@@ -24,6 +24,7 @@ struct BenchOptions {
   bool quick = false;                          // CI subset: coarse, cpu, few settings
   std::string out;                             // folder for bench.json/csv/png
   std::string scenario = "paper-sweep";
+  std::string preconditioner;                  // "block-jacobi" | "multigrid"; empty: the scenario's
   std::string element;                         // "linear" | "nodal-pressure"; empty: the scenario's
 };
 

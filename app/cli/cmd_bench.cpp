@@ -20,6 +20,10 @@ CommandAction add_bench_command(CLI::App& app) {
                   "Tetrahedral element (linear, nodal-pressure; default: the scenario's, nodal-pressure at Poisson's ratio 0.45 "
                   "and above). The cuda-csr baseline has the linear one only")
       ->check(CLI::IsMember(sim::element_names()));
+  sub->add_option("--preconditioner", o->preconditioner,
+                  "CG preconditioner (block-jacobi, multigrid; default: the scenario's). Multigrid runs on the cpu backend only: "
+                  "the GPU backends are skipped")
+      ->check(CLI::IsMember(sim::preconditioner_names()));
   auto score = std::make_shared<bool>(false);
   sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
   auto review = std::make_shared<std::string>();

@@ -45,6 +45,8 @@ class TestScenario : public QObject {
                             << QString("case.json: tissue.poisson_ratio: must be in (-1, 0.5)");
     QTest::newRow("unknown element") << QString::fromStdString(with("\"tissue\": {\"element\": \"quadratic\"}"))
                                      << QString("case.json: tissue.element: must be one of");
+    QTest::newRow("unknown preconditioner") << QString::fromStdString(with("\"solver\": {\"preconditioner\": \"ilu\"}"))
+                                            << QString("case.json: solver.preconditioner: must be one of");
     QTest::newRow("layers not an array") << QString::fromStdString(with("\"tissue\": {\"layers\": {}}"))
                                          << QString("case.json: tissue.layers: must be an array of 1 to 8 layers");
     QTest::newRow("layer without thickness")
@@ -161,6 +163,30 @@ class TestScenario : public QObject {
 
   // Tissue layers read, write and read back as they were; the layered built-in sweep has
   // the built-in breasts' layers and its no-tumour twin differs only in the tumour.
+  // The CG preconditioner: block-Jacobi unless a scenario names multigrid; written back
+  // out, so a scenario round-trips with it; multigrid runs on the CPU backend, and a GPU
+  // asked for by name refuses it with the reason.
+  void preconditionerRoundTrips() {
+    const sim::Scenario plain = sim::parse_scenario(with("\"solver\": {}"), "case.json");
+    QVERIFY(plain.params.solver.preconditioner == sim::Preconditioner::BlockJacobi);
+    const sim::Scenario mg = sim::parse_scenario(with("\"solver\": {\"preconditioner\": \"multigrid\"}"), "case.json");
+    QVERIFY(mg.params.solver.preconditioner == sim::Preconditioner::Multigrid);
+    const std::string text = sim::scenario_to_json(mg);
+    QVERIFY(text.find("\"preconditioner\": \"multigrid\"") != std::string::npos);
+    QVERIFY(sim::parse_scenario(text, "case.json").params.solver.preconditioner == sim::Preconditioner::Multigrid);
+    const sim::Model m = sim::build_scenario_model(mg, sim::patient_mesh(mg));
+    std::string reason;
+    const auto b = sim::make_backend(sim::BackendKind::Auto, m, mg.params, &reason);
+    QCOMPARE(QString::fromStdString(b->name()), QString("cpu"));
+    QVERIFY2(reason.find("multigrid") != std::string::npos, reason.c_str());
+    try {
+      sim::make_backend(sim::BackendKind::Cuda, m, mg.params);
+      QFAIL("the cuda backend took the multigrid preconditioner");
+    } catch (const std::runtime_error& e) {
+      QVERIFY2(QString(e.what()).contains("multigrid"), e.what());
+    }
+  }
+
   void layersRoundTrip() {
     const sim::Scenario s = sim::parse_scenario(
         with(R"("tissue": {"layers": [{"name": "skin", "thickness": 0.0015, "young_modulus": 56000}, )"

@@ -1,0 +1,325 @@
+// Smoothed-aggregation multigrid: aggregation, tentative and smoothed prolongators, the
+// Galerkin coarse operators and the V-cycle over the coarse levels (amg.h says why).
+#include "amg.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/QR>
+
+namespace palpation::sim::amg {
+namespace {
+
+constexpr int kModes = 6;  // rigid motions: three translations, three rotations
+
+/// Block-diagonal inverse of A's b x b diagonal blocks (a singular block: zero, which
+/// leaves that node to the coarse levels).
+SpMat block_diagonal_inverse(const SpMat& A, int b) {
+  const int n = int(A.rows()) / b;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(std::size_t(n) * b * b);
+  Eigen::MatrixXd D(b, b);
+  for (int i = 0; i < n; ++i) {
+    D.setZero();
+    for (int r = 0; r < b; ++r)
+      for (SpMat::InnerIterator it(A, i * b + r); it; ++it) {
+        const int c = int(it.col()) - i * b;
+        if (c >= 0 && c < b) D(r, c) = it.value();
+      }
+    Eigen::MatrixXd Dinv = D.ldlt().solve(Eigen::MatrixXd::Identity(b, b));
+    if (!Dinv.allFinite()) Dinv.setZero();
+    for (int r = 0; r < b; ++r)
+      for (int c = 0; c < b; ++c)
+        if (Dinv(r, c) != 0) t.emplace_back(i * b + r, i * b + c, Dinv(r, c));
+  }
+  SpMat M(A.rows(), A.cols());
+  M.setFromTriplets(t.begin(), t.end());
+  return M;
+}
+
+/// Largest eigenvalue of D^-1 A (real and positive: similar to D^-1/2 A D^-1/2), by power
+/// iteration from a fixed start; within a few percent after 20 steps, which is all the
+/// smoother's damping 4 / (3 rho) needs (it stays convergent for rho up to 1.5 times this).
+double spectral_radius(const SpMat& Dinv, const SpMat& A) {
+  Eigen::VectorXd v(A.rows());
+  for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = 1.0 + 0.5 * std::sin(0.7 * double(i));
+  double rho = 0;
+  for (int it = 0; it < 20; ++it) {
+    const Eigen::VectorXd y = Dinv * (A * v);
+    const double nv = v.norm(), ny = y.norm();
+    if (!(nv > 0) || !(ny > 0)) break;
+    rho = ny / nv;
+    v = y / ny;
+  }
+  return rho > 0 ? rho : 1.0;
+}
+
+/// Drops the entries of each row of P below `fraction` of the row's largest and rescales
+/// the rest to the row's former sum (Stuben's truncation): the smoothed prolongator's
+/// small entries come from two rings of neighbours and cost more in the cycle and in the
+/// coarse operator's fill than they add to its convergence.
+void truncate_rows(SpMat& P, double fraction) {
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(std::size_t(P.nonZeros()));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) {
+    double big = 0, sum = 0, kept = 0;
+    for (SpMat::InnerIterator it(P, i); it; ++it) {
+      big = std::max(big, std::abs(it.value()));
+      sum += it.value();
+    }
+    for (SpMat::InnerIterator it(P, i); it; ++it)
+      if (std::abs(it.value()) >= fraction * big) kept += it.value();
+    const double scale = 1.0;
+    for (SpMat::InnerIterator it(P, i); it; ++it)
+      if (it.value() != 0 && std::abs(it.value()) >= fraction * big) t.emplace_back(int(i), int(it.col()), scale * it.value());
+  }
+  SpMat Q(P.rows(), P.cols());
+  Q.setFromTriplets(t.begin(), t.end());
+  P = std::move(Q);
+}
+
+}  // namespace
+
+std::vector<int> aggregate(const SpMat& A, int block, double strength, int& count) {
+  const int n = int(A.rows()) / block;
+  // The node graph with the Frobenius norms of the blocks.
+  std::vector<int> ptr(n + 1, 0), adj;
+  std::vector<double> norm, diag(n, 0.0), acc(n, 0.0);
+  std::vector<int> mark(n, -1), list;
+  for (int i = 0; i < n; ++i) {
+    list.clear();
+    for (int r = 0; r < block; ++r)
+      for (SpMat::InnerIterator it(A, i * block + r); it; ++it) {
+        const int j = int(it.col()) / block;
+        if (mark[j] != i) {
+          mark[j] = i;
+          acc[j] = 0;
+          list.push_back(j);
+        }
+        acc[j] += it.value() * it.value();
+      }
+    for (int j : list) {
+      if (j == i) {
+        diag[i] = std::sqrt(acc[j]);
+      } else {
+        adj.push_back(j);
+        norm.push_back(std::sqrt(acc[j]));
+      }
+    }
+    ptr[i + 1] = int(adj.size());
+  }
+  // Strong couplings only.
+  std::vector<int> sptr(n + 1, 0), sadj;
+  std::vector<double> sw;
+  for (int i = 0; i < n; ++i) {
+    for (int k = ptr[i]; k < ptr[i + 1]; ++k) {
+      const int j = adj[k];
+      if (norm[k] >= strength * std::sqrt(diag[i] * diag[j])) {
+        sadj.push_back(j);
+        sw.push_back(norm[k] / std::sqrt(diag[i] * diag[j]));
+      }
+    }
+    sptr[i + 1] = int(sadj.size());
+  }
+  std::vector<int> agg(n, -1);
+  count = 0;
+  // 1: a node whose strong neighbours are all free roots an aggregate of them all.
+  for (int i = 0; i < n; ++i) {
+    if (agg[i] >= 0) continue;
+    bool free = true;
+    for (int k = sptr[i]; k < sptr[i + 1] && free; ++k) free = agg[sadj[k]] < 0;
+    if (!free) continue;
+    agg[i] = count;
+    for (int k = sptr[i]; k < sptr[i + 1]; ++k) agg[sadj[k]] = count;
+    ++count;
+  }
+  // 2: the rest join the aggregate they are most strongly coupled to.
+  std::vector<int> joined = agg;
+  for (int i = 0; i < n; ++i) {
+    if (agg[i] >= 0) continue;
+    double best = -1;
+    for (int k = sptr[i]; k < sptr[i + 1]; ++k)
+      if (agg[sadj[k]] >= 0 && sw[k] > best) {
+        best = sw[k];
+        joined[i] = agg[sadj[k]];
+      }
+  }
+  agg = joined;
+  // 3: what is left (no strong neighbour in an aggregate) forms aggregates of its own.
+  for (int i = 0; i < n; ++i) {
+    if (agg[i] >= 0) continue;
+    agg[i] = count;
+    for (int k = sptr[i]; k < sptr[i + 1]; ++k)
+      if (agg[sadj[k]] < 0) agg[sadj[k]] = count;
+    ++count;
+  }
+  return agg;
+}
+
+void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, const Options& options,
+                      const SpMat* sparser) {
+  if (A0.rows() != A0.cols() || A0.rows() != 3 * Eigen::Index(nodes.size()) ||
+      (sparser && (sparser->rows() != A0.rows() || sparser->cols() != A0.cols())))
+    throw std::runtime_error("amg: a matrix of " + std::to_string(A0.rows()) + " rows for " +
+                             std::to_string(nodes.size()) + " nodes (3 unknowns each)");
+  levels_.clear();
+  // The finest level's near-null space: translations and rotations about the centroid,
+  // the rotations scaled by the body's size so that all six columns are of one order.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const auto& x : nodes) centre += x;
+  if (!nodes.empty()) centre /= double(nodes.size());
+  double size = 0;
+  for (const auto& x : nodes) size = std::max(size, (x - centre).norm());
+  if (!(size > 0)) size = 1;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(3 * Eigen::Index(nodes.size()), kModes);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const Eigen::Vector3d d = (nodes[i] - centre) / size;
+    auto b = B.block<3, kModes>(3 * Eigen::Index(i), 0);
+    b.leftCols<3>().setIdentity();
+    b(1, 3) = -d.z(), b(2, 3) = d.y();  // e_x x d
+    b(0, 4) = d.z(), b(2, 4) = -d.x();  // e_y x d
+    b(0, 5) = -d.y(), b(1, 5) = d.x();  // e_z x d
+  }
+
+  SpMat A = A0;
+  int block = 3;
+  for (int depth = 0;; ++depth) {
+    Level L;
+    L.Dinv = block_diagonal_inverse(A, block);
+    L.omega = 4.0 / (3.0 * spectral_radius(L.Dinv, A));
+    if (depth == 0) L.fine_nonzeros = long(A.nonZeros());
+    const bool last = A.rows() <= options.coarse_unknowns || depth + 1 >= options.max_levels;
+    // What this level aggregates and smooths the prolongator with, and that damping.
+    const SpMat& S = depth == 0 && sparser ? *sparser : A;
+    SpMat SDinv;
+    double s_omega = L.omega;
+    if (&S != &A && !last) {
+      SDinv = block_diagonal_inverse(S, block);
+      s_omega = 4.0 / (3.0 * spectral_radius(SDinv, S));
+    }
+    const SpMat& SD = &S != &A ? SDinv : L.Dinv;
+    int count = 0;
+    std::vector<int> agg;
+    if (!last) agg = aggregate(S, block, options.strength, count);
+    if (last || kModes * count >= A.rows()) {  // small enough, or the coarsening stalls
+      if (depth == 0) {
+        // Nothing to coarsen: the "coarse" level is the system itself, solved directly.
+        if (A.rows() > 4 * Eigen::Index(options.coarse_unknowns))
+          throw std::runtime_error("amg: the aggregation of " + std::to_string(A.rows()) +
+                                   " unknowns found no coarser level (strength " + std::to_string(options.strength) +
+                                   " leaves the nodes without strong neighbours)");
+        L.P = SpMat(A.rows(), A.cols());
+        L.P.setIdentity();
+        L.R = L.P;
+        levels_.push_back(std::move(L));
+        Level C;
+        C.A = std::move(A);
+        coarsest_.compute(Eigen::MatrixXd(C.A));
+        levels_.push_back(std::move(C));
+      } else {
+        coarsest_.compute(Eigen::MatrixXd(A));
+        L.A = std::move(A);
+        levels_.push_back(std::move(L));
+      }
+      if (coarsest_.info() != Eigen::Success)
+        throw std::runtime_error("amg: the coarsest level (" + std::to_string(levels_.back().A.rows()) +
+                                 " unknowns) is not positive definite");
+      break;
+    }
+    // Tentative prolongator: per aggregate, an orthonormal basis of the near-null space
+    // restricted to it (thin QR); R becomes the coarse level's near-null space.
+    const int n = int(A.rows()) / block;
+    std::vector<std::vector<int>> members(count);
+    for (int i = 0; i < n; ++i) members[agg[i]].push_back(i);
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(std::size_t(A.rows()) * kModes);
+    Eigen::MatrixXd Bc = Eigen::MatrixXd::Zero(Eigen::Index(count) * kModes, kModes);
+    for (int a = 0; a < count; ++a) {
+      const auto& mem = members[a];
+      const int rows = block * int(mem.size());
+      Eigen::MatrixXd Ba(rows, kModes);
+      for (std::size_t m = 0; m < mem.size(); ++m) Ba.middleRows(block * Eigen::Index(m), block) = B.middleRows(block * Eigen::Index(mem[m]), block);
+      const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Ba);
+      const int k = std::min(rows, kModes);
+      const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(rows, k);
+      Bc.block(Eigen::Index(a) * kModes, 0, k, kModes) = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+      for (std::size_t m = 0; m < mem.size(); ++m)
+        for (int r = 0; r < block; ++r)
+          for (int c = 0; c < k; ++c) {
+            const double q = Q(block * Eigen::Index(m) + r, c);
+            if (q != 0) t.emplace_back(mem[m] * block + r, a * kModes + c, q);
+          }
+    }
+    SpMat Pt(A.rows(), Eigen::Index(count) * kModes);
+    Pt.setFromTriplets(t.begin(), t.end());
+    // Smoothed: P = (I - omega D^-1 A) Pt, and the Galerkin operator R A P.
+    const SpMat SPt = S * Pt;
+    const SpMat DSPt = SD * SPt;
+    L.P = Pt - s_omega * DSPt;
+    truncate_rows(L.P, options.truncation);
+    L.R = L.P.transpose();
+    SpMat Ac = L.R * (A * L.P);
+    SpMat AcT = Ac.transpose();
+    Ac = 0.5 * (Ac + AcT);
+    // An aggregate smaller than the six modes leaves coarse unknowns with zero rows: give
+    // them a unit diagonal (their residual is always zero, so they stay zero).
+    double dmax = 0;
+    for (Eigen::Index i = 0; i < Ac.rows(); ++i) dmax = std::max(dmax, std::abs(Ac.coeff(i, i)));
+    std::vector<Eigen::Triplet<double>> fix;
+    for (Eigen::Index i = 0; i < Ac.rows(); ++i)
+      if (!(std::abs(Ac.coeff(i, i)) > 1e-12 * dmax)) fix.emplace_back(int(i), int(i), 1.0);
+    if (!fix.empty()) {
+      SpMat F(Ac.rows(), Ac.cols());
+      F.setFromTriplets(fix.begin(), fix.end());
+      Ac += F;
+    }
+    Ac.prune(0.0);
+    if (depth > 0) L.A = std::move(A);  // the finest level's operator is the solver's
+    levels_.push_back(std::move(L));
+    A = std::move(Ac);
+    B = std::move(Bc);
+    block = kModes;
+  }
+}
+
+void Hierarchy::cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& e) const {
+  if (k + 1 == levels_.size()) {
+    e = coarsest_.solve(r);
+    return;
+  }
+  const Level& L = levels_[k];
+  const Eigen::Index n = r.size();
+  Eigen::VectorXd t(n), s(n), rc(L.R.rows()), ec;
+  e.resize(n);
+  multiply(L.Dinv, r.data(), e.data());
+  e *= L.omega;
+  multiply(L.A, e.data(), t.data());
+  t = r - t;
+  multiply(L.R, t.data(), rc.data());
+  cycle(k + 1, rc, ec);
+  multiply(L.P, ec.data(), s.data());
+  e += s;
+  multiply(L.A, e.data(), t.data());
+  t = r - t;
+  multiply(L.Dinv, t.data(), s.data());
+  e += L.omega * s;
+}
+
+void Hierarchy::coarse_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const { cycle(1, r, e); }
+
+Stats Hierarchy::stats() const {
+  Stats s;
+  for (std::size_t k = 0; k < levels_.size(); ++k) {
+    const Level& L = levels_[k];
+    s.unknowns.push_back(k == 0 ? int(L.P.rows()) : int(L.A.rows()));
+    s.nonzeros.push_back(k == 0 ? L.fine_nonzeros : long(L.A.nonZeros()));
+  }
+  long total = 0;
+  for (long z : s.nonzeros) total += z;
+  s.operator_complexity = s.nonzeros.empty() || s.nonzeros[0] == 0 ? 0 : double(total) / double(s.nonzeros[0]);
+  return s;
+}
+
+}  // namespace palpation::sim::amg
