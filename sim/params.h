@@ -12,8 +12,9 @@ enum class Precision { Double, Float };
 
 /// The CG preconditioner. BlockJacobi: the inverse of each node's 3x3 diagonal block,
 /// cheap per iteration, but the iterations grow with the mesh and with Poisson's ratio.
-/// Multigrid: smoothed aggregation (amg.h), about three block-Jacobi iterations' work per
-/// iteration, iterations nearly independent of the mesh; CPU backend only.
+/// Multigrid: smoothed aggregation (amg.h), 3-4x fewer iterations that grow less with the
+/// mesh, each about five block-Jacobi iterations' time on the CPU (docs/simulation.md);
+/// CPU backend only.
 enum class Preconditioner { BlockJacobi, Multigrid };
 inline const char* preconditioner_name(Preconditioner p) { return p == Preconditioner::Multigrid ? "multigrid" : "block-jacobi"; }
 inline std::vector<std::string> preconditioner_names() { return {"block-jacobi", "multigrid"}; }
