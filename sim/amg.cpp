@@ -190,6 +190,7 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     L.Dinv = block_diagonal_inverse(A, block);
     L.omega = 4.0 / (3.0 * spectral_radius(L.Dinv, A));
     if (depth == 0) L.fine_nonzeros = long(A.nonZeros());
+    if (depth == 0 && options.keep_finest) L.A = A;
     const bool last = A.rows() <= options.coarse_unknowns || depth + 1 >= options.max_levels;
     // What this level aggregates and smooths the prolongator with, and that damping.
     const SpMat& S = depth == 0 && sparser ? *sparser : A;
@@ -308,6 +309,12 @@ void Hierarchy::cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& 
 }
 
 void Hierarchy::coarse_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const { cycle(1, r, e); }
+
+void Hierarchy::full_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const {
+  if (levels_.empty() || levels_.front().A.rows() != r.size())
+    throw std::logic_error("amg: full_cycle needs the levels built with Options::keep_finest");
+  cycle(0, r, e);
+}
 
 Stats Hierarchy::stats() const {
   Stats s;

@@ -45,6 +45,9 @@ struct Options {
   // largest (0.2 on the paper breast: 6.7x fewer entries, the coarse operator 1.6x sparser,
   // 5.4 -> 5.8 iterations, 25 % less time a step).
   double truncation = 0.2;
+  // Keep the finest operator, so that full_cycle can smooth on it (a solver that has no
+  // operator of its own: Eigen's CG in static_solve.cpp).
+  bool keep_finest = false;
 };
 
 /// The levels' sizes, for reports and tests.
@@ -79,6 +82,9 @@ class Hierarchy {
   /// damped block-Jacobi sweep before and after each coarse correction, Cholesky on the
   /// coarsest), a symmetric positive definite linear map of r.
   void coarse_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const;
+  /// e ~ A^{-1} r: one V-cycle from the finest level, on the operator kept by
+  /// Options::keep_finest (std::logic_error without it).
+  void full_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const;
 
   Stats stats() const;
 
@@ -95,6 +101,32 @@ class Hierarchy {
 
   std::vector<Level> levels_;  // levels_[0] the finest; the last one coarsest (A only)
   Eigen::LLT<Eigen::MatrixXd> coarsest_;
+};
+
+/// Hierarchy as the preconditioner of Eigen's iterative solvers (Eigen::ConjugateGradient's
+/// Preconditioner parameter), over levels built beforehand with Options::keep_finest.
+class EigenPreconditioner {
+ public:
+  EigenPreconditioner() = default;
+  template <class M>
+  explicit EigenPreconditioner(const M&) {}
+  void attach(const Hierarchy* levels) { levels_ = levels; }
+  template <class M>
+  EigenPreconditioner& analyzePattern(const M&) { return *this; }
+  template <class M>
+  EigenPreconditioner& factorize(const M&) { return *this; }
+  template <class M>
+  EigenPreconditioner& compute(const M&) { return *this; }
+  template <class Rhs>
+  Eigen::VectorXd solve(const Rhs& r) const {
+    Eigen::VectorXd e;
+    levels_->full_cycle(Eigen::VectorXd(r), e);
+    return e;
+  }
+  Eigen::ComputationInfo info() const { return levels_ && levels_->built() ? Eigen::Success : Eigen::InvalidInput; }
+
+ private:
+  const Hierarchy* levels_ = nullptr;
 };
 
 /// y = M x, serial. Eigen's own row-major product forks an OpenMP team for any matrix of

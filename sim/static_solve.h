@@ -27,6 +27,15 @@ Eigen::SparseMatrix<double> assemble_stiffness(const Model& m, const std::vector
 std::vector<Eigen::Vector3d> solve_linear_static(const Model& m, const std::vector<Eigen::Vector3d>& loads,
                                                  Element element = Element::Linear);
 
+/// The same solve by conjugate gradients with the multigrid preconditioner (amg.h) to a
+/// relative residual `tolerance`: for meshes whose direct factorisation takes minutes (the
+/// nodal-pressure term couples two rings of nodes, and the Cholesky factor fills in).
+/// `iterations`, when given, receives CG's count. Throws std::runtime_error when CG does
+/// not reach the tolerance in 5,000 iterations.
+std::vector<Eigen::Vector3d> solve_linear_static_multigrid(const Model& m, const std::vector<Eigen::Vector3d>& loads,
+                                                           Element element = Element::Linear, double tolerance = 1e-8,
+                                                           int* iterations = nullptr);
+
 /// Nodal loads of a uniform body force b (N/m^3): lumped, rho-free (volume / 4 per node).
 std::vector<Eigen::Vector3d> body_force_loads(const Model& m, const Eigen::Vector3d& b);
 
