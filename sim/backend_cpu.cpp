@@ -137,6 +137,7 @@ class CpuBackend final : public Backend {
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
     if (&mat != &mat_) mat_ = mat;
+    multigrid_stale_ = true;  // another system: the multigrid levels are built again
     lambda_.resize(ne);
     mu_.resize(ne);
     // The nodal-pressure element takes lambda out of the element blocks into its nodal term.
@@ -316,15 +317,18 @@ class CpuBackend final : public Backend {
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
   // The multigrid levels are built from this step's system the first time they are
-  // needed, and again when the system has drifted so far from the one they were built
-  // from (a new dt, rotations, contact) that a solve needs twice the iterations of the
-  // first solve after the build, and ten more.
+  // needed, and again after a change of materials or element, when dt has moved the
+  // stiffness's weight by more than a quarter (the real-time loop adjusts dt a little
+  // every step: rebuilding each time would cost more than the levels save), or when the
+  // system has drifted so far from the one they were built from (rotations, contact) that
+  // a solve needs twice the iterations of the first solve after the build, and ten more.
   void use_multigrid(const cg::BlockSystem<T>& sys) {
     if (p_.solver.preconditioner != Preconditioner::Multigrid) {
       cg_.multigrid = nullptr;
       return;
     }
-    if (!multigrid_.built() || multigrid_stale_ || T(multigrid_scale_) != sys.scale) {
+    const double drift = std::abs(double(sys.scale) / multigrid_scale_ - 1.0);
+    if (!multigrid_.built() || multigrid_stale_ || !(drift <= 0.25)) {
       std::vector<Eigen::Vector3d> nodes(m_.num_free());
       for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
       cg::BlockSystem<T> stiffness = sys;
@@ -784,7 +788,7 @@ class CpuBackend final : public Backend {
   std::vector<T> b0_;                        // (nfree x 3 + trash) sum of K_e (R_e - I) X_e, kept with K
   cg::Workspace<T> cg_;
   amg::Hierarchy multigrid_;                  // levels below the system (Preconditioner::Multigrid)
-  double multigrid_scale_ = 0;               // the K scale (dt) they were built with
+  double multigrid_scale_ = 0;               // the weight of K (from dt) they were built with
   bool multigrid_stale_ = false;
   int multigrid_reference_iterations_ = -1;  // iterations of the first solve after a build
   std::vector<contact::SurfaceContact> contacts_;

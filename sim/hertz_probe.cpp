@@ -36,6 +36,7 @@ HertzResult hertz_indent(const HertzCase& c, const std::string& backend) {
   res.tets = m.num_tets();
   SimParams p;
   p.element = c.element;
+  p.solver.preconditioner = c.preconditioner;
   p.solver.dt = 0.01;  // quasi-static: at this dt the system is stiffness-dominated
   p.solver.precision = c.precision;
   p.solver.cg_tolerance = c.cg_tolerance;

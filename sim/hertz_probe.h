@@ -21,6 +21,7 @@ struct HertzCase {
   double depth = 0.001;  // m, the sphere's travel from first touch
   int cells = 28;
   Element element = Element::Linear;
+  Preconditioner preconditioner = Preconditioner::BlockJacobi;
   Precision precision = Precision::Double;
   double cg_tolerance = 1e-8;  // the solver's own error far below the mesh's
 };

@@ -1,7 +1,8 @@
-// palpation hertz [--backend B] [--elements E,...] [--nu V,...] [--cells N,...]: the Hertz
-// indentation (sim/hertz_probe.h) on a backend, one row per element, Poisson's ratio and
-// mesh: the force against Hertz's law, the CG iterations of the hardest step and the
-// median step time. With --limit, exit 1 when a row is further off than that.
+// palpation hertz [--backend B] [--elements E,...] [--nu V,...] [--cells N,...]
+// [--preconditioner P]: the Hertz indentation (sim/hertz_probe.h) on a backend, one row
+// per element, Poisson's ratio and mesh: the force against Hertz's law, the CG iterations
+// of the hardest step and the median step time. With --limit, exit 1 when a row is
+// further off than that.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -21,7 +22,7 @@ CommandAction add_hertz_command(CLI::App& app) {
                                  "Hertz indentation of a block: the simulated force against Hertz's law (finite-layer "
                                  "corrected) per element, Poisson's ratio and mesh");
   struct Opts {
-    std::string backend = "cpu", precision = "double", out;
+    std::string backend = "cpu", precision = "double", preconditioner = "block-jacobi", out;
     std::vector<std::string> elements = sim::element_names();
     std::vector<double> nu{0.45, 0.49, 0.499};
     std::vector<int> cells{28};
@@ -43,6 +44,9 @@ CommandAction add_hertz_command(CLI::App& app) {
   sub->add_option("--cg-tolerance", o->cg_tolerance, "CG relative tolerance")->check(CLI::Range(1e-14, 1e-2));
   sub->add_option("--limit", o->limit, "Exit 1 when |F / Hertz - 1| exceeds this in any row (0: never)")
       ->check(CLI::Range(0.0, 10.0));
+  sub->add_option("--preconditioner", o->preconditioner, "CG preconditioner: block-jacobi, or multigrid (cpu backend only)")
+      ->check(CLI::IsMember(sim::preconditioner_names()))
+      ->capture_default_str();
   sub->add_option("--out", o->out, "Folder for hertz.json");
   return [o]() {
     nlohmann::json rows = nlohmann::json::array();
@@ -60,6 +64,7 @@ CommandAction add_hertz_command(CLI::App& app) {
           c.young = o->young;
           c.depth = o->depth;
           c.cg_tolerance = o->cg_tolerance;
+          c.preconditioner = sim::parse_preconditioner(o->preconditioner);
           c.precision = o->precision == "float" ? sim::Precision::Float : sim::Precision::Double;
           const sim::HertzResult r = sim::hertz_indent(c, o->backend);
           const bool ok = r.ok && (o->limit <= 0 || std::abs(r.error) <= o->limit);
@@ -73,6 +78,7 @@ CommandAction add_hertz_command(CLI::App& app) {
           rows.push_back({{"element", el},
                           {"backend", o->backend},
                           {"precision", o->precision},
+                          {"preconditioner", o->preconditioner},
                           {"nu", nu},
                           {"cells", n},
                           {"nodes", r.nodes},
