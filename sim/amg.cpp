@@ -56,28 +56,34 @@ double spectral_radius(const SpMat& Dinv, const SpMat& A) {
   return rho > 0 ? rho : 1.0;
 }
 
-/// Drops the entries of each row of P below `fraction` of the row's largest and rescales
-/// the rest to the row's former sum (Stuben's truncation): the smoothed prolongator's
-/// small entries come from two rings of neighbours and cost more in the cycle and in the
-/// coarse operator's fill than they add to its convergence.
+/// Drops the entries of each row of P below `fraction` of the row's largest (not
+/// rescaled: with six coarse unknowns per aggregate no one row sum is to be kept). The
+/// smoothed prolongator's small entries come from the rings of neighbours that its
+/// smoothing reaches; they cost more in the cycle and in the coarse operator's fill than
+/// they add to its convergence.
 void truncate_rows(SpMat& P, double fraction) {
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(std::size_t(P.nonZeros()));
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
-    double big = 0, sum = 0, kept = 0;
-    for (SpMat::InnerIterator it(P, i); it; ++it) {
-      big = std::max(big, std::abs(it.value()));
-      sum += it.value();
-    }
+    double big = 0;
+    for (SpMat::InnerIterator it(P, i); it; ++it) big = std::max(big, std::abs(it.value()));
     for (SpMat::InnerIterator it(P, i); it; ++it)
-      if (std::abs(it.value()) >= fraction * big) kept += it.value();
-    const double scale = 1.0;
-    for (SpMat::InnerIterator it(P, i); it; ++it)
-      if (it.value() != 0 && std::abs(it.value()) >= fraction * big) t.emplace_back(int(i), int(it.col()), scale * it.value());
+      if (it.value() != 0 && std::abs(it.value()) >= fraction * big) t.emplace_back(int(i), int(it.col()), it.value());
   }
   SpMat Q(P.rows(), P.cols());
   Q.setFromTriplets(t.begin(), t.end());
   P = std::move(Q);
+}
+
+/// Dense Cholesky of a coarsest level, refused beyond a size that a dense matrix should
+/// take (a stalled coarsening would otherwise allocate without bound).
+void factor_coarsest(const SpMat& A, int limit, Eigen::LLT<Eigen::MatrixXd>& llt) {
+  if (A.rows() > limit)
+    throw std::runtime_error("amg: the coarsening stalled at " + std::to_string(A.rows()) +
+                             " unknowns, more than a direct solve of the coarsest level takes (" + std::to_string(limit) + ")");
+  llt.compute(Eigen::MatrixXd(A));
+  if (llt.info() != Eigen::Success || !llt.matrixLLT().allFinite())
+    throw std::runtime_error("amg: the coarsest level (" + std::to_string(A.rows()) + " unknowns) is not positive definite");
 }
 
 }  // namespace
@@ -164,7 +170,14 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
       (sparser && (sparser->rows() != A0.rows() || sparser->cols() != A0.cols())))
     throw std::runtime_error("amg: a matrix of " + std::to_string(A0.rows()) + " rows for " +
                              std::to_string(nodes.size()) + " nodes (3 unknowns each)");
-  levels_.clear();
+  for (Eigen::Index k = 0; k < A0.outerSize(); ++k)
+    for (SpMat::InnerIterator it(A0, k); it; ++it)
+      if (!std::isfinite(it.value()))
+        throw std::runtime_error("amg: the matrix has an entry that is not finite (row " + std::to_string(it.row()) + ")");
+  // Built aside and swapped in at the end: a build that throws leaves the levels as they were.
+  std::vector<Level> levels;
+  Eigen::LLT<Eigen::MatrixXd> coarsest;
+  const int dense_limit = 4 * options.coarse_unknowns;
   // The finest level's near-null space: translations and rotations about the centroid,
   // the rotations scaled by the body's size so that all six columns are of one order.
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -207,26 +220,19 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     if (last || kModes * count >= A.rows()) {  // small enough, or the coarsening stalls
       if (depth == 0) {
         // Nothing to coarsen: the "coarse" level is the system itself, solved directly.
-        if (A.rows() > 4 * Eigen::Index(options.coarse_unknowns))
-          throw std::runtime_error("amg: the aggregation of " + std::to_string(A.rows()) +
-                                   " unknowns found no coarser level (strength " + std::to_string(options.strength) +
-                                   " leaves the nodes without strong neighbours)");
         L.P = SpMat(A.rows(), A.cols());
         L.P.setIdentity();
         L.R = L.P;
-        levels_.push_back(std::move(L));
+        factor_coarsest(A, dense_limit, coarsest);
+        levels.push_back(std::move(L));
         Level C;
         C.A = std::move(A);
-        coarsest_.compute(Eigen::MatrixXd(C.A));
-        levels_.push_back(std::move(C));
+        levels.push_back(std::move(C));
       } else {
-        coarsest_.compute(Eigen::MatrixXd(A));
+        factor_coarsest(A, dense_limit, coarsest);
         L.A = std::move(A);
-        levels_.push_back(std::move(L));
+        levels.push_back(std::move(L));
       }
-      if (coarsest_.info() != Eigen::Success)
-        throw std::runtime_error("amg: the coarsest level (" + std::to_string(levels_.back().A.rows()) +
-                                 " unknowns) is not positive definite");
       break;
     }
     // Tentative prolongator: per aggregate, an orthonormal basis of the near-null space
@@ -278,11 +284,13 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     }
     Ac.prune(0.0);
     if (depth > 0) L.A = std::move(A);  // the finest level's operator is the solver's
-    levels_.push_back(std::move(L));
+    levels.push_back(std::move(L));
     A = std::move(Ac);
     B = std::move(Bc);
     block = kModes;
   }
+  levels_ = std::move(levels);
+  coarsest_ = std::move(coarsest);
 }
 
 void Hierarchy::cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& e) const {

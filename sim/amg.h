@@ -38,12 +38,13 @@ struct Options {
   int max_levels = 8;
   // A coupling of nodes i and j is strong when |A_ij| >= strength sqrt(|A_ii| |A_jj|), the
   // norms of the 3x3 (coarser: 6x6) blocks; aggregates grow along strong couplings. 0: every
-  // coupling (the paper breast: 25 nodes per aggregate, 6.8 CG iterations a step, against
-  // 13.7 nodes and 5.8 iterations at 0.08, 30 % less time a step; docs/simulation.md).
+  // coupling (the paper breast at truncation 0.2: 25 nodes per aggregate, 6.8 CG
+  // iterations a step, against 13.7 nodes and 5.8 iterations at 0.08, 30 % less time a
+  // step; docs/simulation.md).
   double strength = 0.0;
   // The prolongator keeps, per row, the entries of at least this fraction of the row's
-  // largest (0.2 on the paper breast: 6.7x fewer entries, the coarse operator 1.6x sparser,
-  // 5.4 -> 5.8 iterations, 25 % less time a step).
+  // largest (0.2 on the paper breast at strength 0.08: 5.7x fewer entries, the coarse
+  // operator 1.6x sparser, 5.4 -> 5.8 iterations, 25 % less time a step).
   double truncation = 0.2;
   // Keep the finest operator, so that full_cycle can smooth on it (a solver that has no
   // operator of its own: Eigen's CG in static_solve.cpp).
@@ -66,7 +67,9 @@ class Hierarchy {
   /// stiffness without the nodal-pressure term, whose couplings reach two rings of nodes
   /// where the stiffness reaches one), which keeps the prolongator about three times
   /// sparser; the coarse operators are still R A P of the whole A. Throws
-  /// std::runtime_error on a matrix whose size does not match the nodes.
+  /// std::runtime_error (and keeps the levels it had) on a matrix whose size does not
+  /// match the nodes, an entry that is not finite, a coarsening that stalls above four
+  /// times coarse_unknowns, or a coarsest level that is not positive definite.
   void build(const SpMat& A, std::span<const Eigen::Vector3d> nodes, const Options& options = {},
              const SpMat* sparser = nullptr);
   bool built() const { return !levels_.empty(); }

@@ -126,6 +126,7 @@ class CpuBackend final : public Backend {
     // until the next full assembly. Any change of tolerance assembles afresh.
     if (p.solver.corotation_tolerance != p_.solver.corotation_tolerance) assembled_ = false;
     const bool element_changed = p.element != p_.element;
+    if (p.solver.preconditioner != p_.solver.preconditioner) multigrid_stale_ = true;
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
@@ -211,6 +212,7 @@ class CpuBackend final : public Backend {
     std::fill(dv_.begin(), dv_.end(), T(0));
     dvprev_.clear();
     last_converged_ = false;
+    multigrid_stale_ = true;
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
@@ -271,7 +273,7 @@ class CpuBackend final : public Backend {
                                cg_, parallel(), T(p_.solver.cg_rescue_tolerance), p_.solver.cg_rescue_iterations);
     st.cg_iterations = res.iterations;
     st.rescued = res.rescued;
-    if (cg_.multigrid) note_multigrid_iterations(res.iterations);
+    if (cg_.multigrid) note_multigrid_iterations(res.iterations, res.converged);
     last_converged_ = res.converged;
     st.cg_residual = res.relative_residual;
     st.solved = true;
@@ -317,33 +319,50 @@ class CpuBackend final : public Backend {
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
   // The multigrid levels are built from this step's system the first time they are
-  // needed, and again after a change of materials or element, when dt has moved the
-  // stiffness's weight by more than a quarter (the real-time loop adjusts dt a little
-  // every step: rebuilding each time would cost more than the levels save), or when the
-  // system has drifted so far from the one they were built from (rotations, contact) that
-  // a solve needs twice the iterations of the first solve after the build, and ten more.
+  // needed, and again: after a reset, a change of materials, element or preconditioner;
+  // when the stiffness's weight (from dt) is more than twice or less than half the one
+  // they were built with, at most once every 100 steps (the real-time loop sets dt from
+  // the last step's time, and a rebuild's own slow step must not set off the next); and
+  // when a solve did not converge or needed twice the iterations of the first solve after
+  // the build, and ten more (the system drifted: rotations, contact). A build that throws
+  // (a system that is not finite, a stalled coarsening) leaves this step and the next
+  // 1,000 to block-Jacobi.
   void use_multigrid(const cg::BlockSystem<T>& sys) {
-    if (p_.solver.preconditioner != Preconditioner::Multigrid) {
-      cg_.multigrid = nullptr;
-      return;
-    }
-    const double drift = std::abs(double(sys.scale) / multigrid_scale_ - 1.0);
-    if (!multigrid_.built() || multigrid_stale_ || !(drift <= 0.25)) {
-      std::vector<Eigen::Vector3d> nodes(m_.num_free());
-      for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
-      cg::BlockSystem<T> stiffness = sys;
-      stiffness.pressure = nullptr;
-      const amg::SpMat sparser = cg::to_sparse(stiffness);
-      multigrid_.build(cg::to_sparse(sys), nodes, {}, sys.pressure ? &sparser : nullptr);
+    cg_.multigrid = nullptr;
+    if (p_.solver.preconditioner != Preconditioner::Multigrid) return;
+    ++multigrid_steps_;
+    if (multigrid_failed_at_ >= 0 && multigrid_steps_ - multigrid_failed_at_ < 1000) return;
+    const double ratio = double(sys.scale) / multigrid_scale_;
+    const bool dt_moved = !(ratio <= 2.0 && ratio >= 0.5) && multigrid_steps_ - multigrid_built_at_ >= 100;
+    if (!multigrid_.built() || multigrid_stale_ || dt_moved) {
+      try {
+        std::vector<Eigen::Vector3d> nodes(m_.num_free());
+        for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
+        amg::SpMat sparser;
+        if (sys.pressure) {
+          cg::BlockSystem<T> stiffness = sys;
+          stiffness.pressure = nullptr;
+          sparser = cg::to_sparse(stiffness);
+        }
+        multigrid_.build(cg::to_sparse(sys), nodes, {}, sys.pressure ? &sparser : nullptr);
+      } catch (const std::exception&) {
+        multigrid_failed_at_ = multigrid_steps_;
+        ++counters_.multigrid_failures;
+        return;
+      }
+      multigrid_failed_at_ = -1;
       multigrid_scale_ = double(sys.scale);
       multigrid_stale_ = false;
       multigrid_reference_iterations_ = -1;
+      multigrid_built_at_ = multigrid_steps_;
       ++counters_.multigrid_builds;
     }
     cg_.multigrid = &multigrid_;
   }
-  void note_multigrid_iterations(int iterations) {
-    if (multigrid_reference_iterations_ < 0) {
+  void note_multigrid_iterations(int iterations, bool converged) {
+    if (!converged) {
+      multigrid_stale_ = true;
+    } else if (multigrid_reference_iterations_ < 0) {
       multigrid_reference_iterations_ = iterations;
     } else if (iterations > 2 * multigrid_reference_iterations_ + 10) {
       multigrid_stale_ = true;
@@ -791,6 +810,9 @@ class CpuBackend final : public Backend {
   double multigrid_scale_ = 0;               // the weight of K (from dt) they were built with
   bool multigrid_stale_ = false;
   int multigrid_reference_iterations_ = -1;  // iterations of the first solve after a build
+  long multigrid_steps_ = 0;                 // steps that asked for the multigrid
+  long multigrid_built_at_ = 0;              // ... at the last build
+  long multigrid_failed_at_ = -1;            // ... at the last failed build, or -1
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;

@@ -18,7 +18,8 @@ struct CpuWorkCounters {
   long steps = 0;
   long skipped_at_rest = 0;
   long full_assemblies = 0;
-  long multigrid_builds = 0;  // multigrid levels built (Preconditioner::Multigrid)
+  long multigrid_builds = 0;    // multigrid levels built (Preconditioner::Multigrid)
+  long multigrid_failures = 0;  // builds that threw (those steps ran block-Jacobi)
 };
 
 /// The counters of a CPU backend; zeros for any other backend.

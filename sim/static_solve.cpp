@@ -44,10 +44,10 @@ void assemble_parts(const Model& m, const std::vector<Eigen::Matrix3d>* rotation
       for (int b = 0; b < 4; ++b) {
         const int ib = m.dof[m.tets[e][b]];
         if (ib < 0) continue;
-        const Eigen::Matrix3d K =
+        const Eigen::Matrix3d Kab =
             fem::stiffness_block<double>(r[a], r[b], m.grad[e][a].dot(m.grad[e][b]), m.volume[e], lambda, m.materials.mu[e]);
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) trip.emplace_back(3 * ia + i, 3 * ib + j, K(i, j));
+          for (int j = 0; j < 3; ++j) trip.emplace_back(3 * ia + i, 3 * ib + j, Kab(i, j));
       }
     }
   }
@@ -108,8 +108,8 @@ std::vector<Eigen::Vector3d> solve_linear_static_multigrid(const Model& m, const
   Eigen::ConjugateGradient<amg::SpMat, Eigen::Lower | Eigen::Upper, amg::EigenPreconditioner> cg;
   cg.setTolerance(tolerance);
   cg.setMaxIterations(5000);
-  cg.compute(A);
   cg.preconditioner().attach(&levels);
+  cg.compute(A);
   const Eigen::VectorXd u = cg.solve(free_loads(m, loads));
   if (iterations) *iterations = int(cg.iterations());
   if (cg.info() != Eigen::Success || !(cg.error() <= tolerance))

@@ -52,6 +52,18 @@
 namespace palpation::ui {
 
 namespace {
+
+/// Triangles (node indices of the patient's mesh) as VTK polygon cells.
+vtkSmartPointer<vtkCellArray> triangle_cells(const std::vector<std::array<int, 3>>& tris) {
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->AllocateExact(vtkIdType(tris.size()), vtkIdType(tris.size() * 3));
+  for (const auto& t : tris) {
+    const vtkIdType ids[3] = {t[0], t[1], t[2]};
+    cells->InsertNextCell(3, ids);
+  }
+  return cells;
+}
+
 // Fingertip colours (HandHIRO order: thumb, index, middle, ring, little).
 const double kFingerColour[5][3] = {{0.95, 0.75, 0.2}, {0.2, 0.55, 0.95}, {0.3, 0.8, 0.4}, {0.75, 0.45, 0.9}, {0.9, 0.4, 0.5}};
 
@@ -120,7 +132,10 @@ class ViewWindow : public QWindow {
   VtkView* view_;
 };
 
-VtkView::VtkView(QWidget* parent) : QWidget(parent), surface_actor_(vtkSmartPointer<BlendedSkinActor>::New()) {
+VtkView::VtkView(QWidget* parent)
+    : QWidget(parent),
+      surface_actor_(vtkSmartPointer<BlendedSkinActor>::New()),
+      layer_actor_(vtkSmartPointer<BlendedSkinActor>::New()) {
   setMouseTracking(true);
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(320, 240);
@@ -221,6 +236,22 @@ VtkView::VtkView(QWidget* parent) : QWidget(parent), surface_actor_(vtkSmartPoin
   tumour_actor_->GetProperty()->SetColor(0.85, 0.1, 0.15);
   tumour_actor_->PickableOff();
   renderer_->AddActor(tumour_actor_);
+
+  // The deeper tissue layer (glandular under the fat): its boundary inside the breast, on
+  // the same deformed points, translucent so that the tumours inside it show. Blended in
+  // the opaque pass like the skin (a translucent-pass actor would come after the skin and
+  // fail the depth test behind it), before the skin and after the tumours.
+  layer_poly_->SetPoints(points_);
+  vtkNew<vtkPolyDataMapper> lm;
+  lm->SetInputData(layer_poly_);
+  lm->ScalarVisibilityOff();
+  layer_actor_->SetMapper(lm);
+  // Pink-violet: a hue the skin tone does not hide, with little green, so that the red of
+  // a tumour seen through it stays red.
+  layer_actor_->GetProperty()->SetColor(0.85, 0.5, 0.8);
+  layer_actor_->GetProperty()->SetOpacity(0.3);
+  layer_actor_->PickableOff();
+  renderer_->AddActor(layer_actor_);
 
   // The coverage overlay: the surface's triangles on the same deformed points and normals,
   // one colour per face (cell scalars, direct RGB), pulled towards the camera so that it
@@ -619,12 +650,7 @@ void VtkView::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
   points_->SetNumberOfPoints(vtkIdType(rest.size()));
   for (std::size_t i = 0; i < rest.size(); ++i) points_->SetPoint(vtkIdType(i), rest[i].x(), rest[i].y(), rest[i].z());
   points_->Modified();
-  vtkNew<vtkCellArray> tris;
-  tris->AllocateExact(vtkIdType(geometry_->surface.size()), vtkIdType(geometry_->surface.size() * 3));
-  for (const auto& t : geometry_->surface) {
-    const vtkIdType ids[3] = {t[0], t[1], t[2]};
-    tris->InsertNextCell(3, ids);
-  }
+  const vtkSmartPointer<vtkCellArray> tris = triangle_cells(geometry_->surface);
   surface_->SetPolys(tris);
   coverage_poly_->SetPolys(tris);
   shown_levels_.assign(geometry_->surface.size(), 255);  // every face's colour is set below
@@ -639,6 +665,10 @@ void VtkView::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
   tumour_poly_->SetPolys(vtkNew<vtkCellArray>());
   tumour_poly_->Modified();
   tumour_cells_ = 0;
+  const auto layer = app::live::TumourDocument(geometry_).deep_layer_faces();
+  layer_poly_->SetPolys(triangle_cells(layer));
+  layer_poly_->Modified();
+  layer_faces_ = int(layer.size());
   request_render();
 }
 
@@ -731,18 +761,13 @@ void VtkView::show_snapshot(const app::live::RenderSnapshot& s) {
 
 void VtkView::show_tumours(const app::live::TumourDocument& doc) {
   // The boundary of the tumour elements, once per material change.
-  vtkNew<vtkCellArray> faces;
+  std::vector<std::array<int, 3>> tris;
   tumour_cells_ = 0;
   if (geometry_ && doc.patient() && doc.generation() == geometry_->generation) {
     tumour_cells_ = doc.tumour_element_count();
-    const auto tris = doc.tumour_faces();
-    faces->AllocateExact(vtkIdType(tris.size()), vtkIdType(tris.size() * 3));
-    for (const auto& f : tris) {
-      const vtkIdType ids[3] = {f[0], f[1], f[2]};
-      faces->InsertNextCell(3, ids);
-    }
+    tris = doc.tumour_faces();
   }
-  tumour_poly_->SetPolys(faces);
+  tumour_poly_->SetPolys(triangle_cells(tris));
   tumour_poly_->Modified();
   request_render();
 }
@@ -752,6 +777,7 @@ int VtkView::tumour_cell_count() const { return tumour_cells_; }
 void VtkView::set_tumours_visible(bool on) {
   tumours_visible_ = on;
   tumour_actor_->SetVisibility(on);
+  layer_actor_->SetVisibility(on);
   // Instructors see the tumours through a translucent skin; trainees see opaque skin.
   surface_actor_->GetProperty()->SetOpacity(on ? 0.6 : 1.0);
   request_render();

@@ -7,7 +7,8 @@
 // A native window is not in QWidget::grab(): grabFramebuffer() reads VTK's frame back and
 // grab_with_views() composites it into a window grab (screenshots, exported frames). Shows the deformed breast
 // surface from the simulation's snapshots, the static chest, five fingertip spheres, the
-// stiff (tumour) elements through a translucent skin for instructors, an optional colour
+// stiff (tumour) elements and the boundary of the glandular layer through a translucent
+// skin for instructors, an optional colour
 // map (displacement, or von Mises stress computed by the simulation thread) with a scalar
 // bar; stereo (anaglyph, side-by-side, interlaced, quad-buffer where the display grants
 // stereo buffers) and a mirrored mode for the paper's half-mirror display. Holds no state
@@ -91,6 +92,9 @@ class VtkView : public QWidget {
   /// Grey none, yellow light, orange medium, red deep (RGB 0-255), as in coverage.png.
   static constexpr unsigned char kCoverageColour[4][3] = {{215, 215, 215}, {250, 220, 90}, {245, 150, 50}, {200, 40, 40}};
   int tumour_cell_count() const;
+  /// Faces of the deeper tissue layer's boundary drawn (TumourDocument::deep_layer_faces),
+  /// for tests; shown with the tumours, through the translucent skin.
+  int layer_face_count() const { return layer_faces_; }
   enum class ColourMap { None, Displacement, Stress };
   /// Displacement (mm, 0-15) or von Mises stress (kPa, from the snapshot's von_mises;
   /// the workstation computes it while the stress map is on), with a scalar bar.
@@ -220,6 +224,8 @@ class VtkView : public QWidget {
   vtkNew<vtkScalarBarActor> scalar_bar_;
   vtkNew<vtkPolyData> tumour_poly_;      // boundary faces of the stiff elements
   vtkNew<vtkActor> tumour_actor_;
+  vtkNew<vtkPolyData> layer_poly_;       // boundary of the deeper tissue layer (glandular)
+  vtkSmartPointer<vtkActor> layer_actor_;  // blended in the opaque pass, before the skin (as it is)
   vtkNew<vtkActor> chest_actor_;
   vtkNew<vtkPolyData> coverage_poly_;    // the surface triangles again, coloured per face
   vtkNew<vtkActor> coverage_actor_;
@@ -250,6 +256,7 @@ class VtkView : public QWidget {
   QPoint last_pos_;
   quint64 frames_ = 0, snapshots_ = 0, skipped_ = 0;
   int tumour_cells_ = 0;
+  int layer_faces_ = 0;
   double paint_ns_ = 0, update_ns_ = 0, render_ns_ = 0, swap_ns_ = 0;
 };
 

@@ -161,8 +161,6 @@ class TestScenario : public QObject {
     QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, sim::parse_scenario(with("\"tissue\": {\"element\": \"quadratic\"}"), "case.json"));
   }
 
-  // Tissue layers read, write and read back as they were; the layered built-in sweep has
-  // the built-in breasts' layers and its no-tumour twin differs only in the tumour.
   // The CG preconditioner: block-Jacobi unless a scenario names multigrid; written back
   // out, so a scenario round-trips with it; multigrid runs on the CPU backend, and a GPU
   // asked for by name refuses it with the reason.
@@ -187,6 +185,8 @@ class TestScenario : public QObject {
     }
   }
 
+  // Tissue layers read, write and read back as they were; the layered built-in sweep has
+  // the built-in breasts' layers and its no-tumour twin differs only in the tumour.
   void layersRoundTrip() {
     const sim::Scenario s = sim::parse_scenario(
         with(R"("tissue": {"layers": [{"name": "skin", "thickness": 0.0015, "young_modulus": 56000}, )"

@@ -133,6 +133,22 @@ class TstTumourDocument : public QObject {
     for (const auto& [e, E] : erase) QCOMPARE(E, g->base_young[std::size_t(e)]);
   }
 
+  // The drawn layer boundary: glandular tissue in the lower two thirds of the box is
+  // bounded inside the box by the plane z = 2 cm alone (its faces on the box's own sides
+  // and base are left out): 6 x 6 squares of two triangles. Uniform tissue draws none.
+  void deep_layer_faces_bound_the_gland() {
+    auto g = box_patient(kTissue);
+    QVERIFY(TumourDocument(g).deep_layer_faces().empty());
+    g->base_young.assign(g->tets.size(), kTissue);
+    QVERIFY(TumourDocument(g).deep_layer_faces().empty());
+    for (std::size_t e = 0; e < g->tets.size(); ++e)
+      if (g->centroid[e].z() < 0.02) g->base_young[e] = 31500;
+    const auto faces = TumourDocument(g).deep_layer_faces();
+    QCOMPARE(int(faces.size()), 6 * 6 * 2);
+    for (const auto& f : faces)
+      for (int v : f) QCOMPARE(g->rest[std::size_t(v)].z(), 0.02);
+  }
+
   void shapes() {
     TumourDocument doc(box_patient(kTissue));
     const auto& g = *doc.patient();

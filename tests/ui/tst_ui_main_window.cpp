@@ -349,6 +349,7 @@ class TstUiMainWindow : public QObject {
     }
     QCOMPARE(changed, painted);
     QVERIFY(w_->view()->tumour_cell_count() > 0);
+    QVERIFY(w_->view()->layer_face_count() > 0);  // the default patient's glandular layer is drawn
     ed->undo_stack()->undo();
     QVERIFY(synced());
     QVERIFY(ws.applied_young() == before);
