@@ -273,7 +273,11 @@ class CpuBackend final : public Backend {
                                cg_, parallel(), T(p_.solver.cg_rescue_tolerance), p_.solver.cg_rescue_iterations);
     st.cg_iterations = res.iterations;
     st.rescued = res.rescued;
-    if (cg_.multigrid) note_multigrid_iterations(res.iterations, res.converged);
+    // A capped solve that stops short of its tolerance but within the rescue tolerance is
+    // what the cap asked for; one beyond both (or not finite) says the levels no longer fit.
+    if (cg_.multigrid)
+      note_multigrid_iterations(res.iterations, res.relative_residual <= std::max(p_.solver.cg_tolerance,
+                                                                                  p_.solver.cg_rescue_tolerance));
     last_converged_ = res.converged;
     st.cg_residual = res.relative_residual;
     st.solved = true;
@@ -323,10 +327,10 @@ class CpuBackend final : public Backend {
   // when the stiffness's weight (from dt) is more than twice or less than half the one
   // they were built with, at most once every 100 steps (the real-time loop sets dt from
   // the last step's time, and a rebuild's own slow step must not set off the next); and
-  // when a solve did not converge or needed twice the iterations of the first solve after
-  // the build, and ten more (the system drifted: rotations, contact). A build that throws
-  // (a system that is not finite, a stalled coarsening) leaves this step and the next
-  // 1,000 to block-Jacobi.
+  // when a solve ended beyond its tolerance and the rescue tolerance (or not finite) or
+  // needed twice the iterations of the first solve after the build, and ten more (the
+  // system drifted: rotations, contact). A build that throws (a system that is not
+  // finite, a stalled coarsening) leaves this step and the next 1,000 to block-Jacobi.
   void use_multigrid(const cg::BlockSystem<T>& sys) {
     cg_.multigrid = nullptr;
     if (p_.solver.preconditioner != Preconditioner::Multigrid) return;
@@ -359,8 +363,8 @@ class CpuBackend final : public Backend {
     }
     cg_.multigrid = &multigrid_;
   }
-  void note_multigrid_iterations(int iterations, bool converged) {
-    if (!converged) {
+  void note_multigrid_iterations(int iterations, bool solved) {
+    if (!solved) {
       multigrid_stale_ = true;
     } else if (multigrid_reference_iterations_ < 0) {
       multigrid_reference_iterations_ = iterations;
