@@ -193,9 +193,12 @@ class TestBuiltinCases : public QObject {
     if (expected_felt(rec.name)) {
       QVERIFY2(felt, qPrintable(QString("C_body %1 below %2").arg(c.body()).arg(kFelt)));
       // The paper's tumour (3 cm, 2 cm under the skin) is felt against the tissue beside it
-      // too: 0.45 on this mesh, mesh noise between the sites about 0.1 (the 0.3 cm case,
-      // C_body 0.000, gives C_site -0.09).
-      if (rec.name == "paper-case") QVERIFY2(c.site() >= kFelt, qPrintable(QString::number(c.site())));
+      // too, above the mesh noise between the sites (the 0.3 cm case, C_body 0.000, gives
+      // C_site -0.06 to -0.09). In the layered breast the press beside it is on stiffer
+      // glandular tissue: C_site 0.141, 0.303 and >= 0.15 on three fresh Gmsh meshings of
+      // one commit (the parallel mesher's mesh differs run to run): the bound is the
+      // noise, 0.1.
+      if (rec.name == "paper-case") QVERIFY2(c.site() >= 0.1, qPrintable(QString::number(c.site())));
     } else if (!borderline(rec.name)) {
       // Not felt now: a model change that makes it felt fails here, so the docs and this
       // list are brought up to date with it.
