@@ -342,13 +342,12 @@ class CpuBackend final : public Backend {
       try {
         std::vector<Eigen::Vector3d> nodes(m_.num_free());
         for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
-        amg::SpMat sparser;
-        if (sys.pressure) {
-          cg::BlockSystem<T> stiffness = sys;
-          stiffness.pressure = nullptr;
-          sparser = cg::to_sparse(stiffness);
-        }
-        multigrid_.build(cg::to_sparse(sys), nodes, {}, sys.pressure ? &sparser : nullptr);
+        // The stiffness alone once, the whole system from it.
+        const amg::SpMat stiffness = cg::to_sparse(sys);
+        if (sys.pressure)
+          multigrid_.build(amg::SpMat(stiffness + cg::pressure_to_sparse(sys)), nodes, {}, &stiffness);
+        else
+          multigrid_.build(stiffness, nodes);
       } catch (const std::exception&) {
         multigrid_failed_at_ = multigrid_steps_;
         ++counters_.multigrid_failures;

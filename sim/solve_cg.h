@@ -265,8 +265,8 @@ T multigrid_cycle(const BlockSystem<T>& A, Workspace<T>& w, const T* __restrict 
   return rz;
 }
 
-/// A as one scalar sparse matrix (3 unknowns per block row), in double: what the
-/// multigrid levels are built from.
+/// A without its pressure term as one scalar sparse matrix (3 unknowns per block row), in
+/// double: with pressure_to_sparse, what the multigrid levels are built from.
 template <class T>
 amg::SpMat to_sparse(const BlockSystem<T>& A) {
   const int n = 3 * A.n;
@@ -283,8 +283,17 @@ amg::SpMat to_sparse(const BlockSystem<T>& A) {
         for (int r = 0; r < 3; ++r) t.emplace_back(3 * i + r, 3 * i + c, double(A.diag[9 * std::size_t(i) + 3 * c + r]));
   amg::SpMat M(n, n);
   M.setFromTriplets(t.begin(), t.end());
+  return M;
+}
+
+/// scale * B^T W B of A's pressure term as a scalar sparse matrix (empty without one):
+/// to_sparse(A) plus this is the whole of A.
+template <class T>
+amg::SpMat pressure_to_sparse(const BlockSystem<T>& A) {
+  const int n = 3 * A.n;
+  amg::SpMat M(n, n);
   if (A.pressure) {
-    // scale * B^T W B, B the pressure rows (one per node) over the free unknowns.
+    // B: the pressure rows (one per node) over the free unknowns.
     const PressureTerm<T>& P = *A.pressure;
     std::vector<Eigen::Triplet<double>> b;
     for (int r = 0; r < P.nnode; ++r)
@@ -296,7 +305,7 @@ amg::SpMat to_sparse(const BlockSystem<T>& A) {
     for (int r = 0; r < P.nnode; ++r) w[r] = double(A.scale) * double(P.w[r]);
     const amg::SpMat WB = w.asDiagonal() * B;
     const amg::SpMat Bt = B.transpose();
-    M += amg::SpMat(Bt * WB);
+    M = Bt * WB;
   }
   return M;
 }
@@ -347,18 +356,14 @@ Result solve(const BlockSystem<T>& A, const T* b, T* x, T tol, int max_iter, Wor
     if (!(pq > 0)) break;  // not positive definite along p (or NaN): stop, report
     const T alpha = rz / pq;
     T rz_new = 0, rr_new = 0;
-    if (w.multigrid) {
-      rr_new = update_x_r(x, r, p, q, alpha, 0, n);
-      rz_new = multigrid_cycle(A, w, r, z, parallel);
-    } else {
 #pragma omp parallel reduction(+ : rz_new, rr_new) if (parallel)
-      {
-        int lo, hi;
-        thread_rows(A.n, lo, hi);
-        rr_new += update_x_r(x, r, p, q, alpha, 3 * lo, 3 * hi);
-        rz_new += precondition(P, r, z, lo, hi);
-      }
+    {
+      int lo, hi;
+      thread_rows(A.n, lo, hi);
+      rr_new += update_x_r(x, r, p, q, alpha, 3 * lo, 3 * hi);
+      if (!w.multigrid) rz_new += precondition(P, r, z, lo, hi);
     }
+    if (w.multigrid) rz_new = multigrid_cycle(A, w, r, z, parallel);
     rnorm = std::sqrt(rr_new);
     const T beta = rz_new / rz;
     rz = rz_new;
