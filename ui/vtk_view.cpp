@@ -665,7 +665,7 @@ void VtkView::set_patient(std::shared_ptr<const app::live::PatientGeometry> g) {
   tumour_poly_->SetPolys(vtkNew<vtkCellArray>());
   tumour_poly_->Modified();
   tumour_cells_ = 0;
-  const auto layer = app::live::TumourDocument(geometry_).deep_layer_faces();
+  const auto layer = app::live::deep_layer_faces(*geometry_);
   layer_poly_->SetPolys(triangle_cells(layer));
   layer_poly_->Modified();
   layer_faces_ = int(layer.size());

@@ -92,7 +92,7 @@ class VtkView : public QWidget {
   /// Grey none, yellow light, orange medium, red deep (RGB 0-255), as in coverage.png.
   static constexpr unsigned char kCoverageColour[4][3] = {{215, 215, 215}, {250, 220, 90}, {245, 150, 50}, {200, 40, 40}};
   int tumour_cell_count() const;
-  /// Faces of the deeper tissue layer's boundary drawn (TumourDocument::deep_layer_faces),
+  /// Faces of the deeper tissue layer's boundary drawn (live::deep_layer_faces),
   /// for tests; shown with the tumours, through the translucent skin.
   int layer_face_count() const { return layer_faces_; }
   enum class ColourMap { None, Displacement, Stress };

@@ -57,43 +57,6 @@ std::vector<std::array<int, 3>> TumourDocument::tumour_faces() const {
   return m.boundary_faces();
 }
 
-std::vector<std::array<int, 3>> TumourDocument::deep_layer_faces() const {
-  if (!g_ || g_->base_young.size() != g_->tets.size() || g_->tets.empty()) return {};
-  const auto [lo, hi] = std::minmax_element(g_->base_young.begin(), g_->base_young.end());
-  if (!(*hi > *lo * 1.01)) return {};
-  // The modulus under the skin: the mean over the elements with a node on the surface.
-  std::vector<char> on_surface(g_->rest.size(), 0);
-  for (const auto& f : g_->surface)
-    for (int v : f) on_surface[std::size_t(v)] = 1;
-  double skin_side = 0;
-  int n = 0;
-  for (std::size_t e = 0; e < g_->tets.size(); ++e)
-    if (std::any_of(g_->tets[e].begin(), g_->tets[e].end(), [&](int v) { return on_surface[std::size_t(v)] != 0; })) {
-      skin_side += g_->base_young[e];
-      ++n;
-    }
-  if (n == 0) return {};
-  skin_side /= n;
-  const double half = 0.5 * (*hi - *lo);
-  sim::TetMesh deep, all;
-  deep.nodes = all.nodes = g_->rest;
-  all.tets = g_->tets;
-  for (std::size_t e = 0; e < g_->tets.size(); ++e)
-    if (std::abs(g_->base_young[e] - skin_side) > half) deep.tets.push_back(g_->tets[e]);
-  if (deep.tets.empty()) return {};
-  auto key = [](std::array<int, 3> f) {
-    std::sort(f.begin(), f.end());
-    return f;
-  };
-  std::vector<std::array<int, 3>> outer;
-  for (const auto& f : all.boundary_faces()) outer.push_back(key(f));
-  std::sort(outer.begin(), outer.end());
-  std::vector<std::array<int, 3>> faces;
-  for (const auto& f : deep.boundary_faces())
-    if (!std::binary_search(outer.begin(), outer.end(), key(f))) faces.push_back(f);
-  return faces;
-}
-
 std::vector<int> TumourDocument::elements_in(TumourShape shape, const Eigen::Vector3d& centre, const Eigen::Vector3d& radii) const {
   std::vector<int> v;
   if (!g_) return v;
@@ -201,6 +164,43 @@ std::optional<TumourDocument::Stroke> TumourDocument::end_stroke() {
     s.painted = std::move(t);
   }
   return s;
+}
+
+std::vector<std::array<int, 3>> deep_layer_faces(const PatientGeometry& g) {
+  if (g.base_young.size() != g.tets.size() || g.tets.empty()) return {};
+  const auto [lo, hi] = std::minmax_element(g.base_young.begin(), g.base_young.end());
+  if (!(*hi > *lo * 1.01)) return {};
+  // The modulus under the skin: the mean over the elements with a node on the surface.
+  std::vector<char> on_surface(g.rest.size(), 0);
+  for (const auto& f : g.surface)
+    for (int v : f) on_surface[std::size_t(v)] = 1;
+  double skin_side = 0;
+  int n = 0;
+  for (std::size_t e = 0; e < g.tets.size(); ++e)
+    if (std::any_of(g.tets[e].begin(), g.tets[e].end(), [&](int v) { return on_surface[std::size_t(v)] != 0; })) {
+      skin_side += g.base_young[e];
+      ++n;
+    }
+  if (n == 0) return {};
+  skin_side /= n;
+  const double half = 0.5 * (*hi - *lo);
+  sim::TetMesh deep, all;
+  deep.nodes = all.nodes = g.rest;
+  all.tets = g.tets;
+  for (std::size_t e = 0; e < g.tets.size(); ++e)
+    if (std::abs(g.base_young[e] - skin_side) > half) deep.tets.push_back(g.tets[e]);
+  if (deep.tets.empty()) return {};
+  auto key = [](std::array<int, 3> f) {
+    std::sort(f.begin(), f.end());
+    return f;
+  };
+  std::vector<std::array<int, 3>> outer;
+  for (const auto& f : all.boundary_faces()) outer.push_back(key(f));
+  std::sort(outer.begin(), outer.end());
+  std::vector<std::array<int, 3>> faces;
+  for (const auto& f : deep.boundary_faces())
+    if (!std::binary_search(outer.begin(), outer.end(), key(f))) faces.push_back(f);
+  return faces;
 }
 
 }  // namespace palpation::app::live

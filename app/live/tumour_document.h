@@ -75,14 +75,6 @@ class TumourDocument {
   /// The boundary of the tumour elements (faces no other tumour element shares, outward:
   /// sim::TetMesh::boundary_faces over them), node indices of the patient's mesh.
   std::vector<std::array<int, 3>> tumour_faces() const;
-  /// The boundary of the patient's deeper tissue layer inside the breast, for drawing: the
-  /// elements whose own tissue (PatientGeometry::base_of) lies nearer the deepest layer's
-  /// modulus than the one under the skin (the glandular tissue under the fat of the
-  /// built-in breasts; an element that a band boundary cuts goes by its averaged
-  /// modulus). Faces on the breast's own boundary (the chest wall) are left out. Empty
-  /// for uniform tissue. With more than two layers it draws the boundary between the
-  /// skin-side half of the moduli and the rest.
-  std::vector<std::array<int, 3>> deep_layer_faces() const;
 
   // What a change would be (nothing changes) -------------------------------------------
   /// Elements whose rest centroid lies inside the shape (a sphere takes radii.x()).
@@ -131,5 +123,14 @@ class TumourDocument {
   MaterialChange stroke_;
   int painted_count_ = 0;
 };
+
+/// The boundary of the patient's deeper tissue layer inside the breast, for drawing: the
+/// elements whose own tissue (PatientGeometry::base_of) lies nearer the deepest layer's
+/// modulus than the one under the skin (the glandular tissue under the fat of the
+/// built-in breasts; an element that a band boundary cuts goes by its averaged
+/// modulus). Faces on the breast's own boundary (the chest wall) are left out. Empty
+/// for uniform tissue. With more than two layers it draws the boundary between the
+/// skin-side half of the moduli and the rest.
+std::vector<std::array<int, 3>> deep_layer_faces(const PatientGeometry& g);
 
 }  // namespace palpation::app::live

@@ -138,12 +138,12 @@ class TstTumourDocument : public QObject {
   // and base are left out): 6 x 6 squares of two triangles. Uniform tissue draws none.
   void deep_layer_faces_bound_the_gland() {
     auto g = box_patient(kTissue);
-    QVERIFY(TumourDocument(g).deep_layer_faces().empty());
+    QVERIFY(app::live::deep_layer_faces(*g).empty());
     g->base_young.assign(g->tets.size(), kTissue);
-    QVERIFY(TumourDocument(g).deep_layer_faces().empty());
+    QVERIFY(app::live::deep_layer_faces(*g).empty());
     for (std::size_t e = 0; e < g->tets.size(); ++e)
       if (g->centroid[e].z() < 0.02) g->base_young[e] = 31500;
-    const auto faces = TumourDocument(g).deep_layer_faces();
+    const auto faces = app::live::deep_layer_faces(*g);
     QCOMPARE(int(faces.size()), 6 * 6 * 2);
     for (const auto& f : faces)
       for (int v : f) QCOMPARE(g->rest[std::size_t(v)].z(), 0.02);
