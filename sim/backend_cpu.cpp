@@ -135,6 +135,29 @@ class CpuBackend final : public Backend {
   }
   const CpuWorkCounters& counters() const { return counters_; }
 
+  // The element caches (F, the rotations q_, K blocks) need no copy: they are formed from
+  // the start-of-step positions, and a step taken again from the same positions finds
+  // them as its first take left them, which is what it would have made of them itself.
+  bool checkpoint() override {
+    kept_.x = x_;
+    kept_.v = v_;
+    kept_.dv = dv_;
+    kept_.dvprev = dvprev_;
+    kept_.filtered = filtered_;
+    kept_.rested = rested_;
+    kept_.last_converged = last_converged_;
+    return true;
+  }
+  void rollback() override {
+    x_ = kept_.x;
+    v_ = kept_.v;
+    dv_ = kept_.dv;
+    dvprev_ = kept_.dvprev;
+    filtered_ = kept_.filtered;
+    rested_ = kept_.rested;
+    last_converged_ = kept_.last_converged;
+  }
+
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
     if (&mat != &mat_) mat_ = mat;
@@ -367,7 +390,11 @@ class CpuBackend final : public Backend {
       multigrid_stale_ = true;
     } else if (multigrid_reference_iterations_ < 0) {
       multigrid_reference_iterations_ = iterations;
-    } else if (iterations > 2 * multigrid_reference_iterations_ + 10) {
+      multigrid_reference_tolerance_ = p_.solver.cg_tolerance;
+    } else if (p_.solver.cg_tolerance == multigrid_reference_tolerance_ &&
+               iterations > 2 * multigrid_reference_iterations_ + 10) {
+      // Only against solves to the same tolerance: the error controller's check solves a
+      // hundred times tighter, and its tolerance moves.
       multigrid_stale_ = true;
     }
   }
@@ -813,6 +840,7 @@ class CpuBackend final : public Backend {
   double multigrid_scale_ = 0;               // the weight of K (from dt) they were built with
   bool multigrid_stale_ = false;
   int multigrid_reference_iterations_ = -1;  // iterations of the first solve after a build
+  double multigrid_reference_tolerance_ = 0;  // ... and its tolerance
   long multigrid_steps_ = 0;                 // steps that asked for the multigrid
   long multigrid_built_at_ = 0;              // ... at the last build
   long multigrid_failed_at_ = -1;            // ... at the last failed build, or -1
@@ -824,6 +852,11 @@ class CpuBackend final : public Backend {
   bool assembled_ = false;                   // blocks_ holds K for the current rotations
   long steps_since_assembly_ = 0;
   CpuWorkCounters counters_;
+  struct Kept {
+    std::vector<T> x, v, dv, dvprev;
+    std::vector<Eigen::Vector3d> filtered;
+    bool rested = true, last_converged = false;
+  } kept_;                                   // checkpoint()
   int threads_ = 1;                          // trash slots (OpenMP threads)
   unsigned cores_ = std::thread::hardware_concurrency();
 };

@@ -42,7 +42,18 @@ struct SolverParams {
   // docs/benchmarks.md has the step time against force error.
   double corotation_tolerance = 1e-3;
   Preconditioner preconditioner = Preconditioner::BlockJacobi;
+  // > 0: the finger-force error to hold (a fraction of the converged force); the CG
+  // tolerance is then chosen and adapted by Simulation (error_control.h), cg_tolerance its
+  // start. 0: cg_tolerance as given, fixed. Scenarios that name no cg_tolerance, the
+  // workstation and sessions hold kDefaultForceError; code that builds SimParams gets a
+  // fixed tolerance unless it asks.
+  double force_error = 0;
 };
+
+/// The force error a scenario holds when it names neither solver.force_error nor
+/// solver.cg_tolerance: 1 % of the converged force, under the 15 % that a trainee can
+/// tell apart (facts.md: Weber fraction of compliance).
+inline constexpr double kDefaultForceError = 0.01;
 
 /// Rayleigh damping C = alpha M + beta K.
 struct DampingParams {

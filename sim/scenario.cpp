@@ -235,7 +235,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     const json& sv = j["solver"];
     rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations",
                              "cg_rescue_tolerance", "cg_rescue_iterations", "threads", "corotation_tolerance",
-                             "preconditioner"});
+                             "preconditioner", "force_error"});
     if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
     if (sv.contains("dt")) {
       s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
@@ -265,6 +265,16 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (sv.contains("preconditioner"))
       s.params.solver.preconditioner =
           parse_preconditioner(rd.choice(sv["preconditioner"], "solver.preconditioner", preconditioner_names()));
+    // A scenario that names a CG tolerance and no force error keeps that tolerance fixed
+    // (every scenario written before the key: its results stay what they were).
+    s.params.solver.force_error = sv.contains("cg_tolerance") ? 0.0 : kDefaultForceError;
+    if (sv.contains("force_error")) {
+      s.params.solver.force_error = rd.non_negative(sv["force_error"], "solver.force_error");
+      if (s.params.solver.force_error > 0.5)
+        rd.fail("solver.force_error", "must be <= 0.5 (a fraction of the converged force; 0 keeps cg_tolerance fixed)");
+    }
+  } else {
+    s.params.solver.force_error = kDefaultForceError;
   }
 
   if (j.contains("contact")) {
@@ -397,6 +407,8 @@ std::string scenario_to_json(const Scenario& s) {
   // Written only when not the default, so that a scenario's text (generated cases, which
   // curricula pin by hash; recordings) stays byte for byte what it was before the key.
   if (sv.preconditioner != Preconditioner::BlockJacobi) j["solver"]["preconditioner"] = preconditioner_name(sv.preconditioner);
+  // Read back, a scenario with cg_tolerance and no force_error has a fixed tolerance.
+  if (sv.force_error > 0) j["solver"]["force_error"] = sv.force_error;
   j["contact"] = {{"stiffness", s.params.contact.stiffness},
                   {"damping", s.params.contact.damping},
                   {"force_filter_hz", s.params.contact.force_filter_hz}};

@@ -118,13 +118,13 @@ Simulation::Outcome Simulation::advance(std::span<const FingerInput> in, std::sp
   }
   Outcome r;
   try {
-    r.stats = backend_->step(in, out);
+    r.stats = controlled_step(in, out);
   } catch (const std::exception& e) {
     // The CPU backend keeps the parameters (dt and threads included) of the one it replaces.
     if (!fall_back_to_cpu(e.what())) throw;
     r.fell_back = true;
     r.error = e.what();
-    r.stats = backend_->step(in, out);
+    r.stats = controlled_step(in, out);
   }
   t_ += h;
   ++steps_;
@@ -142,6 +142,55 @@ Simulation::Outcome Simulation::advance(std::span<const FingerInput> in, std::sp
     for (auto& o : out) o = FingerOutput{};
   }
   return r;
+}
+
+StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span<FingerOutput> out) {
+  SimParams p = backend_->params();
+  // Parameters set from outside (the workstation's panel, a new scenario) restart the
+  // controller from their tolerance; the tolerance it set itself is its own.
+  if (p.solver.force_error != control_.target() || (control_.on() && p.solver.cg_tolerance != control_set_tol_)) {
+    control_.start(p.solver.force_error, p.solver.cg_tolerance, p.solver.precision);
+    control_set_tol_ = -1;
+    rescue_base_ = p.solver.cg_rescue_tolerance;
+  }
+  if (!control_.on()) return backend_->step(in, out);
+  // A capped solve is still rescued (SolverParams::cg_rescue_tolerance), but to no
+  // tighter than the tolerance the controller chose: a rescue to 1e-3 would make every
+  // looser tolerance 1e-3.
+  auto set_tolerance = [&](double tol) {
+    const double rescue = std::max(rescue_base_, tol);
+    if (p.solver.cg_tolerance == tol && p.solver.cg_rescue_tolerance == rescue) return;
+    p.solver.cg_tolerance = tol;
+    p.solver.cg_rescue_tolerance = rescue;
+    backend_->set_params(p);
+  };
+  set_tolerance(control_.tolerance());
+  control_set_tol_ = control_.tolerance();
+  // A check needs a step in contact to compare: it follows one (a skipped step at rest
+  // costs nothing, and no checkpoint is taken then).
+  if (!(last_contact_ && control_.check_due() && backend_->checkpoint())) {
+    const StepStats st = backend_->step(in, out);
+    last_contact_ = st.contacts > 0;
+    if (last_contact_) control_.count_contact_step();
+    return st;
+  }
+  loose_.resize(out.size());
+  const StepStats loose = backend_->step(in, loose_);
+  last_contact_ = loose.contacts > 0;
+  if (!last_contact_ || !loose.finite) {
+    // Nothing to compare (the finger has left), or a step the guard must see as it is.
+    std::copy(loose_.begin(), loose_.end(), out.begin());
+    return loose;
+  }
+  control_.count_contact_step();
+  backend_->rollback();
+  set_tolerance(control_.reference_tolerance());
+  StepStats st = backend_->step(in, out);
+  control_.checked(finger_force_error(loose_, out));
+  set_tolerance(control_.tolerance());
+  control_set_tol_ = control_.tolerance();
+  st.cg_iterations += loose.cg_iterations;  // the work of the step, both solves
+  return st;
 }
 
 DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<const FingerOutput> out) {
@@ -239,6 +288,7 @@ int Simulation::set_element_young(std::span<const std::pair<int, double>> change
 void Simulation::reset() {
   backend_->reset();
   summary_known_ = false;
+  last_contact_ = false;  // the controller keeps its tolerance: the same body, the same solver
   t_ = 0;
   steps_ = 0;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "backend.h"
+#include "error_control.h"
 #include "model.h"
 #include "phantom.h"
 #include "scenario.h"
@@ -115,6 +116,9 @@ class Simulation {
   /// its step, as both do, leaves this at 0).
   int readbacks() const { return readbacks_; }
   int fallbacks() const { return fallbacks_; }
+  /// The error controller's record (solver.force_error > 0; error_control.h): the CG
+  /// tolerance it holds now, its converged checks and the errors they measured.
+  const ErrorControlStats& error_control() const { return control_.stats(); }
   void set_log(const LogFn& log) { log_ = log; }
   double time() const { return t_; }
   int steps() const { return steps_; }
@@ -124,6 +128,10 @@ class Simulation {
 
  private:
   void init(const LogFn& log);
+  /// The backend's step under the error controller: the tolerance it holds, and every so
+  /// many steps in contact the converged check (the step taken again, a hundred times
+  /// tighter, from a checkpoint; the tighter one is kept).
+  StepStats controlled_step(std::span<const FingerInput> in, std::span<FingerOutput> out);
   Scenario s_;
   Model model_;                          // const after construction
   Materials materials_;
@@ -140,6 +148,11 @@ class Simulation {
   std::vector<double> xyz_, vel_;        // scratch
   bool summary_known_ = false;           // check_ holds the state's summary (unchanged by a skipped step)
   int readbacks_ = 0;                    // steps whose guard read the state back
+  ToleranceController control_;
+  double control_set_tol_ = -1;          // the tolerance the controller last gave the backend
+  double rescue_base_ = 1e-3;            // the rescue tolerance of the parameters it started from
+  bool last_contact_ = false;            // the last step touched: a check may follow
+  std::vector<FingerOutput> loose_;      // the check's loose outputs
   LogFn log_;
 };
 

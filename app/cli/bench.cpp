@@ -47,10 +47,12 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     if (opt.backends.empty()) opt.backends = {"cpu"};
     opt.steps = std::min(opt.steps, 300);
     opt.warmup = 20;
-    settings = {{1e-6, 500}, {1e-3, 500}, {1e-10, 10}};
+    settings = {{1e-6, 500}, {1e-3, 500}, {1e-10, 10}, {1e-3, 500, sim::kDefaultForceError}};
   } else {
-    settings = {{3e-2, 1000}, {1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20}};
+    settings = {{3e-2, 1000}, {1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20},
+                {1e-3, 200, sim::kDefaultForceError}};
   }
+  if (opt.force_error > 0) settings = {{1e-3, 200, opt.force_error}};
   const auto avail = sim::available_backends();
   if (opt.backends.empty()) opt.backends = avail;
   for (const auto& b : opt.backends)
@@ -96,6 +98,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     sref.params.solver.cg_max_iterations = 5000;
     sref.params.solver.corotation_tolerance = 0;  // every element's rotation every step
     sref.params.solver.preconditioner = sim::Preconditioner::BlockJacobi;  // any converges to 1e-10; one cached reference
+    sref.params.solver.force_error = 0;
     std::ostringstream key;
     sim::TetMesh keymesh;
     keymesh.nodes = model.rest;
@@ -136,6 +139,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
           sp.params.solver.precision = prec == "float" ? sim::Precision::Float : sim::Precision::Double;
           sp.params.solver.cg_tolerance = set.tolerance;
           sp.params.solver.cg_max_iterations = set.max_iterations;
+          sp.params.solver.force_error = set.force_error;
           // Float cannot reach 1e-10: the cap decides; skip loose float points that add nothing.
           Trace tr = run_trace(sp, model, backend, opt.steps);
           std::vector<double> timed(tr.step_ms.begin() + std::min<std::size_t>(opt.warmup, tr.step_ms.size()), tr.step_ms.end());
@@ -149,9 +153,19 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             floor_ms = (fl.step_fixed_us + percentile(its, 50) * fl.iteration_us) / 1000.0;
             x_floor = floor_ms > 0 ? med / floor_ms : 0;
           }
-          std::printf("%-7s %-9s %-6s %8.0e %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
-                      backend.c_str(), prec.c_str(), set.tolerance, set.max_iterations, med, p99, percentile(its, 50), itmax,
-                      ferr, derr, floor_ms, x_floor, tr.finite ? "" : "  NOT FINITE");
+          char tol[16];
+          if (set.force_error > 0)
+            std::snprintf(tol, sizeof tol, "fe%g%%", 100 * set.force_error);  // the error controller's target
+          else
+            std::snprintf(tol, sizeof tol, "%.0e", set.tolerance);
+          std::printf("%-7s %-9s %-6s %8s %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
+                      backend.c_str(), prec.c_str(), tol, set.max_iterations, med, p99, percentile(its, 50), itmax, ferr, derr,
+                      floor_ms, x_floor, tr.finite ? "" : "  NOT FINITE");
+          if (set.force_error > 0)
+            std::printf("        error controller: CG tolerance %.2e at the end, %d checks (%d over target), worst check %.2e, "
+                        "last %.2e; %d divergence resets\n",
+                        tr.control.tolerance, tr.control.checks, tr.control.over_target, tr.control.worst_error,
+                        tr.control.last_error, tr.divergences);
           std::fflush(stdout);
           if (!devices.count(backend)) devices[backend] = sim::make_named_backend(backend, model, s.params)->device_name();
           report["points"].push_back({{"mesh", level},
@@ -162,6 +176,11 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"precision", prec},
                                       {"cg_tolerance", set.tolerance},
                                       {"cg_max_iterations", set.max_iterations},
+                                      {"force_error_target", set.force_error},
+                                      {"controlled_cg_tolerance", tr.control.tolerance},
+                                      {"controller_checks", tr.control.checks},
+                                      {"controller_worst_check_error", tr.control.worst_error},
+                                      {"divergence_resets", tr.divergences},
                                       {"step_ms_median", med},
                                       {"step_ms_p99", p99},
                                       {"cg_iterations_median", percentile(its, 50)},

@@ -26,11 +26,13 @@ struct BenchOptions {
   std::string scenario = "paper-sweep";
   std::string preconditioner;                  // "block-jacobi" | "multigrid"; empty: the scenario's
   std::string element;                         // "linear" | "nodal-pressure"; empty: the scenario's
+  double force_error = 0;                      // > 0: only the error-controlled point, at this target
 };
 
 struct BenchSetting {
-  double tolerance;
+  double tolerance;        // the CG tolerance, or where the error controller starts
   int max_iterations;
+  double force_error = 0;  // > 0: the error controller holds this (SolverParams::force_error)
 };
 
 /// Runs the sweep; prints the table on stdout. Returns the JSON report.

@@ -21,10 +21,14 @@ using CommandAction = std::function<int()>;
 
 /// A scenario argument (a JSON file, a built-in name or "builtin:NAME", or, where the
 /// build has the patient library, a built-in patient's name with its default press) with the
-/// command-line overrides of --backend and --resolution applied (empty: none).
+/// command-line overrides of --backend, --resolution (empty: none) and --force-error
+/// (negative: none) applied.
 /// Throws sim::ScenarioError naming the argument.
 sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend = {},
-                                const std::string& resolution = {});
+                                const std::string& resolution = {}, double force_error = -1);
+/// Adds --force-error to a command that runs a scenario: the solver's force-error target
+/// (SolverParams::force_error), 0 for the scenario's CG tolerance kept fixed.
+void add_force_error_option(CLI::App* sub, double& force_error);
 
 /// A recording argument, read (app/store/recording.h); a bad file is bad input: throws
 /// sim::ScenarioError with the reader's message (file, chunk, offset, reason).

@@ -8,7 +8,15 @@
 
 namespace palpation::app::cli {
 
-sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend, const std::string& resolution) {
+void add_force_error_option(CLI::App* sub, double& force_error) {
+  sub->add_option("--force-error", force_error,
+                  "Override solver.force_error: the finger-force error the CG tolerance is chosen to hold, a fraction of the "
+                  "converged force (0: the scenario's cg_tolerance, fixed)")
+      ->check(CLI::Range(0.0, 0.5));
+}
+
+sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backend, const std::string& resolution,
+                                double force_error) {
   sim::Scenario s;
   bool builtin = false;
   for (const auto& n : sim::builtin_scenario_names())
@@ -27,6 +35,7 @@ sim::Scenario load_scenario_arg(const std::string& arg, const std::string& backe
 #endif
   if (!builtin) s = sim::load_scenario(arg);
   if (!backend.empty()) s.backend = backend;
+  if (force_error >= 0) s.params.solver.force_error = force_error;
   if (!resolution.empty()) {
     auto e = sim::resolution_edge(s.patient.phantom, resolution);
     if (!e) throw sim::ScenarioError("--resolution: unknown level \"" + resolution + "\"");

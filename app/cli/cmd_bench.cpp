@@ -24,6 +24,10 @@ CommandAction add_bench_command(CLI::App& app) {
                   "CG preconditioner (block-jacobi, multigrid; default: the scenario's). Multigrid runs on the cpu backend only: "
                   "the GPU backends are skipped")
       ->check(CLI::IsMember(sim::preconditioner_names()));
+  sub->add_option("--force-error", o->force_error,
+                  "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "
+                  "the full sweep has one at 0.01 beside its fixed tolerances)")
+      ->check(CLI::Range(1e-6, 0.5));
   auto score = std::make_shared<bool>(false);
   sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
   auto review = std::make_shared<std::string>();

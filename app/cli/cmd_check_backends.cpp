@@ -150,6 +150,7 @@ int run_check(const CheckOptions& o) {
       sim::Scenario sd = s;
       sd.params.solver.precision = sim::Precision::Double;
       sd.params.solver.cg_tolerance = o.tolerance;
+      sd.params.solver.force_error = 0;  // the same fixed tolerance on both sides
       sd.params.solver.cg_max_iterations = o.max_iterations;
       sd.params.solver.corotation_tolerance = 0;  // the CPU updates every element every step, as the GPU does
       sd.params.element = sim::parse_element(element);

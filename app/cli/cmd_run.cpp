@@ -23,6 +23,7 @@ CommandAction add_run_command(CLI::App& app) {
   auto* sub = app.add_subcommand("run", "Run a scenario headless; writes DIR/fingers.csv and DIR/summary.json");
   struct Opts {
     std::string scenario, out, backend, resolution;
+    double force_error = -1;
     bool quiet = false;
   };
   auto o = std::make_shared<Opts>();
@@ -31,9 +32,10 @@ CommandAction add_run_command(CLI::App& app) {
   sub->add_option("--backend", o->backend, "Override solver.backend (auto, cpu, cuda)")
       ->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, fine, xfine)");
+  add_force_error_option(sub, o->force_error);
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {
-    sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution);
+    sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution, o->force_error);
     OutputDir out(o->out);  // created before the run: an unwritable folder fails early
     RunOptions opt;
     opt.progress = !o->quiet;

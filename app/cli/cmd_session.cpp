@@ -47,7 +47,7 @@ CommandAction add_session_command(CLI::App& app) {
   struct Opts {
     std::string record;
     std::string scenario, out, device = "emulator", config, coupling, backend, resolution, recording, sim_dt = "realtime", emulator_exe;
-    double duration = 0, sim_max_dt = 0.01, vib_from = -1, vib_to = -1;
+    double duration = 0, sim_max_dt = 0.01, vib_from = -1, vib_to = -1, force_error = -1;
     int priority = 80;
     bool rigid = false, no_passivity = false, no_rt = false, process = false, quiet = false;
   };
@@ -61,6 +61,7 @@ CommandAction add_session_command(CLI::App& app) {
   sub->add_option("--duration", o->duration, "Seconds to run (default: the scenario's duration)");
   sub->add_option("--backend", o->backend, "Override solver.backend (auto, cpu, cuda)")->check(CLI::IsMember({"auto", "cpu", "cuda"}));
   sub->add_option("--resolution", o->resolution, "Override patient.resolution (coarse, paper, fine, xfine)");
+  add_force_error_option(sub, o->force_error);
   sub->add_option("--recording", o->recording, "Drive the hand by a recorded fingers.csv instead of the scenario's paths");
   sub->add_flag("--rigid-hand", o->rigid, "Emulator: fingertips follow the path exactly (default: a compliant finger)");
   sub->add_flag("--no-passivity", o->no_passivity, "Switch off the energy (passivity) controller");
@@ -80,7 +81,7 @@ CommandAction add_session_command(CLI::App& app) {
   sub->add_option("--record", o->record, "Session recording (default: DIR/session.palrec; an interrupted one left "
                                          "there is recovered first and kept as session-recovered-N.palrec)");
   return [o]() {
-    sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution);
+    sim::Scenario s = load_scenario_arg(o->scenario, o->backend, o->resolution, o->force_error);
     if (o->duration < 0) throw sim::ScenarioError("--duration: must be > 0");
     SessionOptions opt;
     opt.device = o->device;

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "backend.h"
+#include "simulation.h"
 #include "model_cache.h"
 
 namespace palpation::app::cli {
@@ -16,31 +17,35 @@ namespace palpation::app::cli {
 std::vector<int> snapshot_steps(int steps) { return {steps / 4, steps / 2, 3 * steps / 4, steps}; }
 
 Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::string& backend, int steps) {
-  auto b = sim::make_named_backend(backend, model, s.params);
+  // The guarded step every session takes (Simulation::step: the divergence guard, the
+  // error controller), on the backend named: "cpu" and "cuda" as the scenario would make
+  // them, the cuda-csr baseline put in after.
+  sim::Scenario sb = s;
+  const bool kind = backend == "cpu" || backend == "cuda";
+  sb.backend = kind ? backend : "cpu";
+  sim::Simulation sim(sb, model);
+  if (!kind) sim.replace_backend(sim::make_named_backend(backend, sim.model(), s.params));
   const int nf = static_cast<int>(s.fingers.size());
-  std::vector<sim::FingerInput> in(nf);
-  std::vector<sim::FingerOutput> out(nf);
-  for (int f = 0; f < nf; ++f) in[f].radius = s.fingers[f].radius;
   Trace tr;
   tr.force.reserve(std::size_t(steps) * std::size_t(nf) * 3);
   const auto snaps = snapshot_steps(steps);
   std::vector<double> x;
   for (int k = 1; k <= steps; ++k) {
-    const double t = k * s.params.solver.dt;
-    for (int f = 0; f < nf; ++f) s.fingers[f].sample(t, in[f].position, in[f].velocity);
     const auto a = std::chrono::steady_clock::now();
-    const sim::StepStats st = b->step(in, out);
+    const sim::StepStats st = sim.step();
     tr.step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
     tr.iterations.push_back(st.cg_iterations);
     tr.contacts.push_back(st.contacts);
     tr.finite = tr.finite && st.finite;
     for (int f = 0; f < nf; ++f)
-      for (int c = 0; c < 3; ++c) tr.force.push_back(out[f].force[c]);
+      for (int c = 0; c < 3; ++c) tr.force.push_back(sim.outputs()[f].force[c]);
     if (std::find(snaps.begin(), snaps.end(), k) != snaps.end()) {
-      b->positions(x);
+      sim.backend().positions(x);
       tr.snaps.push_back(x);
     }
   }
+  tr.control = sim.error_control();
+  tr.divergences = sim.divergences();
   return tr;
 }
 

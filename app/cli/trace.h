@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "error_control.h"
 #include "model.h"
 #include "scenario.h"
 
@@ -17,13 +18,16 @@ struct Trace {
   std::vector<double> step_ms;             // (steps) wall time of the backend's step
   std::vector<std::vector<double>> snaps;  // node positions (nnode x 3, m) at snapshot_steps(steps)
   bool finite = true;
+  sim::ErrorControlStats control;          // the error controller at the end (solver.force_error > 0)
+  int divergences = 0;                     // steps the guard put back at rest
 };
 
 /// The steps whose positions a trace keeps: N/4, N/2, 3N/4, N.
 std::vector<int> snapshot_steps(int steps);
 
-/// Steps a backend by name (sim::make_named_backend) through the scenario's finger paths
-/// for `steps` steps of its dt.
+/// Steps the scenario's finger paths for `steps` steps of its dt through Simulation::step
+/// (the guarded step every session takes) on a backend by name (sim::make_named_backend);
+/// step_ms times that whole step.
 Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::string& backend, int steps);
 
 /// Relative L2 norm of a - ref (absolute when ref is zero; infinite when the sizes differ).

@@ -107,6 +107,7 @@ RunResult run_headless(sim::Simulation& simulation, const RunOptions& opt) {
     j["cg_iterations_mean"] = r.cg_iterations.empty() ? 0.0 : sum / double(r.cg_iterations.size());
   }
   j["finite"] = finite;
+  j["error_control"] = error_control_json(simulation.error_control());
   j["max_force_n"] = max_force;
   j["wall_seconds"] = wall;
   j["realtime_factor"] = wall > 0 ? s.duration / wall : 0.0;
@@ -126,6 +127,17 @@ void write_fingers_csv(const std::string& path, const std::vector<FingerSample>&
   for (const auto& s : samples)
     std::fprintf(f, "%.4f,%d,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g\n", s.t, s.finger, s.x.x(), s.x.y(), s.x.z(), s.f.x(), s.f.y(), s.f.z());
   if (std::fclose(f) != 0) throw std::runtime_error(path + ": write failed (disk full?)");
+}
+
+nlohmann::json error_control_json(const sim::ErrorControlStats& c) {
+  if (!(c.target > 0)) return {{"force_error_target", 0.0}};
+  return {{"force_error_target", c.target},
+          {"cg_tolerance", c.tolerance},
+          {"checks", c.checks},
+          {"checks_over_target", c.over_target},
+          {"last_error", c.last_error},
+          {"worst_error", c.worst_error},
+          {"contact_steps", c.contact_steps}};
 }
 
 }  // namespace palpation::app::live

@@ -43,4 +43,8 @@ void write_fingers_csv(const std::string& path, const std::vector<FingerSample>&
 /// Median and percentile of a sample (copy sorted), 0 for an empty one.
 double percentile(std::vector<double> v, double p);
 
+/// The error controller's record for summaries (run, session): {"force_error_target": 0}
+/// alone when it is off.
+nlohmann::json error_control_json(const sim::ErrorControlStats& c);
+
 }  // namespace palpation::app::live

@@ -369,7 +369,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"cg_iterations_max", cg_max},
                        {"divergence_resets", sim_thread.resets},
                        {"backend_fallbacks", sim_thread.fallbacks},
-                       {"finite", sim_thread.finite}};
+                       {"finite", sim_thread.finite},
+                       {"error_control", error_control_json(simulation.error_control())}};
   }
   j["force_mapping"] = {{"scale", mapping.scale},
                         {"rule", force_scale_rule_name(mapping.rule)},

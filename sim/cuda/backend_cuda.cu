@@ -342,6 +342,29 @@ class CudaBackend final : public Backend {
   void positions(std::vector<double>& xyz) const override { download(x_, xyz); }
   void velocities(std::vector<double>& xyz) const override { download(v_, xyz); }
 
+  // Device-to-device copies in stream order: the next step's kernels follow them.
+  bool checkpoint() override {
+    kept_x_.copy_from(x_, stream_);
+    kept_v_.copy_from(v_, stream_);
+    kept_quat_.copy_from(quat_, stream_);
+    kept_dv_.copy_from(dv_, stream_);
+    kept_dv_prev_.copy_from(dv_prev_, stream_);
+    kept_filtered_ = filtered_;
+    kept_rested_ = rested_;
+    kept_last_converged_ = last_converged_;
+    return true;
+  }
+  void rollback() override {
+    x_.copy_from(kept_x_, stream_);
+    v_.copy_from(kept_v_, stream_);
+    quat_.copy_from(kept_quat_, stream_);
+    dv_.copy_from(kept_dv_, stream_);
+    dv_prev_.copy_from(kept_dv_prev_, stream_);
+    filtered_ = kept_filtered_;
+    rested_ = kept_rested_;
+    last_converged_ = kept_last_converged_;
+  }
+
   StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
     if (fingers.size() > std::size_t(kMaxFingers))
       throw std::runtime_error("cuda backend: at most " + std::to_string(kMaxFingers) + " fingers");
@@ -654,6 +677,9 @@ class CudaBackend final : public Backend {
   DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
   DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, dv_prev_, r_, z_, p0_, p1_, q_;
   bool last_converged_ = false;  // the last solve reached the tolerance: extrapolate the warm start
+  DeviceArray<T> kept_x_, kept_v_, kept_quat_, kept_dv_, kept_dv_prev_;  // checkpoint()
+  std::vector<Eigen::Vector3d> kept_filtered_;
+  bool kept_rested_ = true, kept_last_converged_ = false;
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
   DevResult* host_res_ = nullptr;  // mapped pinned memory

@@ -52,6 +52,11 @@ class DeviceArray {
     if (n) CU(cudaMemcpyAsync(p_, v, n * sizeof(T), cudaMemcpyHostToDevice, s));
     CU(cudaStreamSynchronize(s));
   }
+  /// Copies another array's contents in stream order (device to device; no wait).
+  void copy_from(const DeviceArray& o, cudaStream_t s) {
+    if (o.n_ != n_) alloc(o.n_);
+    if (n_) CU(cudaMemcpyAsync(p_, o.p_, n_ * sizeof(T), cudaMemcpyDeviceToDevice, s));
+  }
   void zero(cudaStream_t s) {
     if (n_) CU(cudaMemsetAsync(p_, 0, n_ * sizeof(T), s));
   }

@@ -1,0 +1,306 @@
+// The error-controlled CG tolerance (error_control.h): the controller's rule, the force
+// error it measures, the backends' checkpoint and rollback (a step taken again from a
+// checkpoint is the same step), and a whole press held to its target against a converged
+// run, with fewer iterations than a tight fixed tolerance. CPU, and CUDA where a GPU is
+// usable (its rows skip with the reason otherwise).
+#include <QtTest>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "backend.h"
+#include "error_control.h"
+#include "scenario.h"
+#include "simulation.h"
+
+using namespace palpation::sim;
+
+namespace {
+
+constexpr double kTop = 0.03;
+constexpr double kR = 0.008;
+
+// A 6 x 6 x 3 cm box of 6 mm cells at Poisson's ratio 0.45 (the nodal-pressure element).
+Scenario box(const std::string& backend) {
+  Scenario s;
+  s.source = "tst_error_control";
+  s.patient.phantom = "box";
+  s.patient.resolution.clear();
+  s.patient.edge = 0.006;
+  s.patient.size = Eigen::Vector3d(0.06, 0.06, kTop);
+  s.young_modulus = 19000;
+  s.poisson_ratio = 0.45;
+  s.backend = backend;
+  // 5 ms: at 1 ms the extrapolated warm start alone meets 1e-3 on this small box, and
+  // every tolerance gives the same forces.
+  s.params.solver.dt = 0.005;
+  s.params.solver.threads = 1;
+  return s;
+}
+
+// The finger at step k: pressed in to 4 mm over 0.1 s, then circling (5 mm radius,
+// 3 Hz) while its depth swings 3 mm at 4 Hz, as a palpating finger does: a path whose
+// solutions the warm start does not foresee, so the tolerance matters.
+FingerInput finger_at(int k, double dt) {
+  FingerInput in;
+  in.radius = kR;
+  const double t = k * dt, w = 2 * M_PI * 3, u = 2 * M_PI * 4;
+  const double ramp = std::min(t / 0.1, 1.0), dramp = t < 0.1 ? 10.0 : 0.0;
+  const double depth = ramp * (0.004 + 0.003 * std::sin(u * t));
+  const double ddepth = dramp * (0.004 + 0.003 * std::sin(u * t)) + ramp * 0.003 * u * std::cos(u * t);
+  in.position = Eigen::Vector3d(0.005 * std::cos(w * t), 0.005 * std::sin(w * t), kTop + kR - depth);
+  in.velocity = Eigen::Vector3d(-0.005 * w * std::sin(w * t), 0.005 * w * std::cos(w * t), -ddepth);
+  return in;
+}
+
+struct Press {
+  std::vector<double> force;  // raw finger force, x y z per step
+  long iterations = 0;
+  ErrorControlStats control;
+};
+
+Press press(const Scenario& s, const Model& m, int steps) {
+  Simulation sim(s, m);
+  Press r;
+  std::vector<FingerInput> in(1);
+  std::vector<FingerOutput> out(1);
+  for (int k = 1; k <= steps; ++k) {
+    in[0] = finger_at(k, s.params.solver.dt);
+    const auto o = sim.advance(in, out, s.params.solver.dt);
+    if (!o.ok) throw std::runtime_error("step " + std::to_string(k) + " diverged");
+    r.force.insert(r.force.end(), out[0].force_raw.data(), out[0].force_raw.data() + 3);
+    r.iterations += o.stats.cg_iterations;
+  }
+  r.control = sim.error_control();
+  return r;
+}
+
+// Relative L2 norm of the force series against the reference's (the bench's force error).
+double series_error(const std::vector<double>& a, const std::vector<double>& ref) {
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < a.size() && i < ref.size(); ++i) {
+    num += (a[i] - ref[i]) * (a[i] - ref[i]);
+    den += ref[i] * ref[i];
+  }
+  return std::sqrt(num / den);
+}
+
+bool backend_usable(const std::string& b) {
+  if (b == "cpu") return true;
+  std::string why;
+  if (!cuda_available(&why)) {
+    QTest::qSkip(("no usable GPU: " + why).c_str(), __FILE__, __LINE__);
+    return false;
+  }
+  return true;
+}
+
+FingerOutput touching(double fx, double fz) {
+  FingerOutput o;
+  o.force_raw = Eigen::Vector3d(fx, 0, fz);
+  o.contacts = 3;
+  return o;
+}
+
+}  // namespace
+
+class TestErrorControl : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void forceErrorIsRelativeToTheLargestFingerWithAFloor() {
+    // Two fingers: the error is the largest difference over the largest force.
+    std::vector<FingerOutput> ref{touching(0, 2.0), touching(0, 0.5)};
+    std::vector<FingerOutput> loose{touching(0, 2.01), touching(0.03, 0.5)};
+    QCOMPARE(finger_force_error(loose, ref), 0.03 / 2.0);
+    // A light touch: relative to the floor, not to its own 0.01 N.
+    std::vector<FingerOutput> light_ref{touching(0, 0.01)}, light{touching(0, 0.011)};
+    QVERIFY(std::abs(finger_force_error(light, light_ref) - 0.001 / kForceErrorFloor) < 1e-12);
+    // No finger touching: nothing to compare.
+    std::vector<FingerOutput> none(2);
+    QCOMPARE(finger_force_error(none, none), 0.0);
+    // A non-finite force is an infinite error.
+    std::vector<FingerOutput> bad{touching(NAN, 2.0), touching(0, 0.5)};
+    QVERIFY(std::isinf(finger_force_error(bad, ref)));
+  }
+
+  void controllerMovesTheToleranceByTheErrorRatio() {
+    ToleranceController c;
+    QVERIFY(!c.on());
+    c.start(0.01, 1e-3, Precision::Double);
+    QVERIFY(c.on());
+    QCOMPARE(c.tolerance(), 1e-3);
+    QCOMPARE(c.reference_tolerance(), 1e-5);
+    QVERIFY(c.check_due());  // the first step in contact is checked
+    // Far below the aim (a twentieth of the target: 5e-4): loosened at most 4x, the next check as
+    // soon as this one.
+    c.checked(1e-6);
+    QCOMPARE(c.tolerance(), 4e-3);
+    QCOMPARE(c.interval(), ToleranceController::kMinInterval);
+    QVERIFY(!c.check_due());
+    for (int i = 0; i < c.interval(); ++i) c.count_contact_step();
+    QVERIFY(c.check_due());
+    // Just under half the aim: loosened to aim at it (about 2x).
+    c.checked(0.00025 * 0.999);
+    QVERIFY(std::abs(c.tolerance() - 4e-3 * 0.0005 / (0.00025 * 0.999)) < 1e-15);
+    const double before = c.tolerance();
+    // Within [aim / 2, 2 aim]: kept, checks twice as far apart.
+    c.checked(0.00095);
+    QCOMPARE(c.tolerance(), before);
+    QCOMPARE(c.interval(), 2 * ToleranceController::kMinInterval);
+    // Above twice the aim: tightened by aim / error, checks back to every 10 steps.
+    c.checked(0.002);
+    QVERIFY(std::abs(c.tolerance() - before * 0.25) < 1e-15);
+    QCOMPARE(c.interval(), ToleranceController::kMinInterval);
+    QCOMPARE(c.stats().over_target, 1);
+    QCOMPARE(c.stats().worst_error, 0.002);
+    // Far above (or not finite): at most 20x tighter a check, never below the floor.
+    const double t = c.tolerance();
+    c.checked(NAN);
+    QCOMPARE(c.tolerance(), std::max(c.min_tolerance(), t / 20));
+    for (int i = 0; i < 20; ++i) c.checked(1.0);
+    QCOMPARE(c.tolerance(), c.min_tolerance());
+    // Never looser than kMaxTolerance; the interval at most kMaxInterval.
+    for (int i = 0; i < 20; ++i) c.checked(0);
+    QCOMPARE(c.tolerance(), ToleranceController::kMaxTolerance);
+    QCOMPARE(c.interval(), ToleranceController::kMaxInterval);
+    // Float's tightest loose tolerance leaves its reference solve reachable.
+    c.start(0.01, 1e-6, Precision::Float);
+    QCOMPARE(c.tolerance(), 1e-3);
+    // A target of 0 (or not finite) is off.
+    c.start(NAN, 1e-3, Precision::Double);
+    QVERIFY(!c.on());
+  }
+
+  void rollbackTakesTheSameStepAgain_data() {
+    QTest::addColumn<QString>("backend");
+    QTest::newRow("cpu") << "cpu";
+    QTest::newRow("cuda") << "cuda";
+  }
+  // A step from a checkpoint, rolled back and taken again, gives the same forces and
+  // positions (to the last bits: the same arithmetic from the same state), and the steps
+  // after it go on as if it had been taken once.
+  void rollbackTakesTheSameStepAgain() {
+    QFETCH(QString, backend);
+    if (!backend_usable(backend.toStdString())) return;
+    const Scenario s = box(backend.toStdString());
+    const Model m = build_scenario_model(s, patient_mesh(s));
+    auto once = make_named_backend(backend.toStdString(), m, s.params);
+    auto twice = make_named_backend(backend.toStdString(), m, s.params);
+    std::vector<FingerInput> in(1);
+    std::vector<FingerOutput> a(1), b(1), scratch(1);
+    for (int k = 1; k <= 60; ++k) {
+      in[0] = finger_at(k, s.params.solver.dt);
+      once->step(in, a);
+      if (k % 7 == 3) {
+        QVERIFY(twice->checkpoint());
+        SimParams loose = twice->params();
+        loose.solver.cg_tolerance = 0.05;  // a different first take, as the controller's is
+        twice->set_params(loose);
+        twice->step(in, scratch);
+        twice->rollback();
+        twice->set_params(s.params);
+      }
+      twice->step(in, b);
+      QVERIFY2((a[0].force_raw - b[0].force_raw).norm() <= 1e-12 * std::max(1.0, a[0].force_raw.norm()),
+               ("step " + std::to_string(k)).c_str());
+      QVERIFY((a[0].force - b[0].force).norm() <= 1e-12 * std::max(1.0, a[0].force.norm()));
+    }
+    QVERIFY(a[0].contacts > 0);
+    std::vector<double> xa, xb;
+    once->positions(xa);
+    twice->positions(xb);
+    double d = 0;
+    for (std::size_t i = 0; i < xa.size(); ++i) d = std::max(d, std::abs(xa[i] - xb[i]));
+    QVERIFY2(d < 1e-14, std::to_string(d).c_str());
+  }
+
+  void pressHeldToItsTarget_data() {
+    QTest::addColumn<QString>("backend");
+    QTest::newRow("cpu") << "cpu";
+    QTest::newRow("cuda") << "cuda";
+  }
+  // 400 steps of a press. The controller starts at CG 1e-6 and loosens; the force series
+  // stays within the 1 % target of a converged run (1e-10) with fewer iterations than the
+  // fixed 1e-6 run. A target of 1e-5 instead makes it tighten below where it started.
+  void pressHeldToItsTarget() {
+    QFETCH(QString, backend);
+    if (!backend_usable(backend.toStdString())) return;
+    Scenario s = box(backend.toStdString());
+    const Model m = build_scenario_model(s, patient_mesh(s));
+    constexpr int kSteps = 400;
+    Scenario ref = s;
+    ref.params.solver.cg_tolerance = 1e-10;
+    ref.params.solver.cg_max_iterations = 5000;
+    const Press converged = press(ref, m, kSteps);
+    Scenario fixed = s;
+    fixed.params.solver.cg_tolerance = 1e-6;
+    const Press tight = press(fixed, m, kSteps);
+    Scenario held = fixed;
+    held.params.solver.force_error = 0.01;
+    const Press controlled = press(held, m, kSteps);
+
+    const double err = series_error(controlled.force, converged.force);
+    qInfo("%s: controlled force error %.2e (target 1e-2), tolerance 1e-6 -> %.2e, %d checks (%d over), worst check %.2e; "
+          "iterations %ld against %ld fixed at 1e-6",
+          qPrintable(backend), err, controlled.control.tolerance, controlled.control.checks, controlled.control.over_target,
+          controlled.control.worst_error, controlled.iterations, tight.iterations);
+    QVERIFY2(err <= 0.01, std::to_string(err).c_str());
+    QVERIFY(controlled.control.checks >= 3);
+    // Loosened by at least 100x: 1e-6 holds the force to far better than 1 %.
+    QVERIFY(controlled.control.tolerance >= 1e-4);
+    QVERIFY(controlled.iterations < tight.iterations);
+
+    // Held at the loosest tolerance the controller allows, then at a target ten times
+    // below the error measured there: it has to tighten, and the force series gets closer.
+    Scenario loosest = fixed;
+    loosest.params.solver.cg_tolerance = ToleranceController::kMaxTolerance;
+    loosest.params.solver.force_error = 0.5;
+    const Press loose = press(loosest, m, kSteps);
+    QCOMPARE(loose.control.tolerance, ToleranceController::kMaxTolerance);
+    qInfo("loosest: %d checks, %ld contact steps, last %.3e", loose.control.checks, loose.control.contact_steps, loose.control.last_error);
+    QVERIFY(loose.control.worst_error > 0);
+    Scenario strict = loosest;
+    strict.params.solver.force_error = loose.control.worst_error / 10;
+    const Press tightened = press(strict, m, kSteps);
+    const double loose_err = series_error(loose.force, converged.force), strict_err = series_error(tightened.force, converged.force);
+    qInfo("%s: at CG 0.1 worst check %.2e, force error %.2e; target %.2e: tolerance -> %.2e, %d over, force error %.2e",
+          qPrintable(backend), loose.control.worst_error, loose_err, strict.params.solver.force_error,
+          tightened.control.tolerance, tightened.control.over_target, strict_err);
+    QVERIFY(tightened.control.over_target >= 1);
+    QVERIFY(tightened.control.tolerance < ToleranceController::kMaxTolerance / 4);
+    QVERIFY(strict_err < loose_err);
+  }
+
+  // A scenario file: no solver.cg_tolerance and no force_error -> the default target; a
+  // cg_tolerance alone -> fixed (every file written before the key); force_error given ->
+  // it; out of range -> a message naming the field. Written only when on.
+  void scenarioFieldAndDefaults() {
+    const std::string base =
+        R"({"patient": {"phantom": "box"}, "fingers": [{"path": [[0, 0, 0, 0.1], [1, 0, 0, 0.05]]}])";
+    QCOMPARE(parse_scenario(base + "}", "t").params.solver.force_error, kDefaultForceError);
+    QCOMPARE(parse_scenario(base + R"(, "solver": {"dt": 0.001}})", "t").params.solver.force_error, kDefaultForceError);
+    QCOMPARE(parse_scenario(base + R"(, "solver": {"cg_tolerance": 1e-4}})", "t").params.solver.force_error, 0.0);
+    const Scenario given = parse_scenario(base + R"(, "solver": {"cg_tolerance": 1e-4, "force_error": 0.05}})", "t");
+    QCOMPARE(given.params.solver.force_error, 0.05);
+    // Round trip: written when on, and read back the same; off stays off.
+    QCOMPARE(parse_scenario(scenario_to_json(given), "t").params.solver.force_error, 0.05);
+    Scenario off = given;
+    off.params.solver.force_error = 0;
+    QVERIFY(scenario_to_json(off).find("force_error") == std::string::npos);
+    QCOMPARE(parse_scenario(scenario_to_json(off), "t").params.solver.force_error, 0.0);
+    for (const char* bad : {"0.7", "-0.01", "\"x\""}) {
+      try {
+        parse_scenario(base + R"(, "solver": {"force_error": )" + bad + "}}", "case.json");
+        QFAIL(bad);
+      } catch (const ScenarioError& e) {
+        QVERIFY2(std::string(e.what()).find("solver.force_error") != std::string::npos, e.what());
+        QVERIFY2(std::string(e.what()).find("case.json") != std::string::npos, e.what());
+      }
+    }
+  }
+};
+
+QTEST_GUILESS_MAIN(TestErrorControl)
+#include "tst_error_control.moc"
