@@ -28,6 +28,7 @@ void ToleranceController::start(double target, double tolerance, Precision preci
   stats_.tolerance = std::clamp(std::isfinite(tolerance) ? tolerance : 1e-3, min_tol_, kMaxTolerance);
   interval_ = kMinInterval;
   since_check_ = kMinInterval;
+  ceiling_ = 2 * kMaxTolerance;
 }
 
 void ToleranceController::checked(double error) {
@@ -36,19 +37,24 @@ void ToleranceController::checked(double error) {
   stats_.last_error = error;
   stats_.worst_error = std::max(stats_.worst_error, error);
   const double aim = kCheckShare * stats_.target;
-  if (!(error <= 2 * aim)) {  // NaN too
+  if (!(error <= aim)) {  // NaN too
     ++stats_.over_target;
-    const double f = std::isfinite(error) && error > 0 ? std::max(1.0 / 20, aim / error) : 1.0 / 20;
+    // Not loosened to where this failed again until a long calm (below).
+    ceiling_ = std::min(ceiling_, stats_.tolerance);
+    const double f = std::isfinite(error) && error > 0 ? std::max(1.0 / 20, 0.5 * aim / error) : 1.0 / 20;
     stats_.tolerance = std::max(min_tol_, stats_.tolerance * f);
     interval_ = kMinInterval;
     return;
   }
-  if (error < 0.5 * aim && stats_.tolerance < kMaxTolerance) {
+  const double highest = std::min(kMaxTolerance, 0.5 * ceiling_);
+  if (error < 0.25 * aim && stats_.tolerance < highest) {
     // Still finding the level: the next check as soon as this one.
-    const double f = error > 0 ? std::min(4.0, aim / error) : 4.0;
-    stats_.tolerance = std::min(kMaxTolerance, stats_.tolerance * f);
+    stats_.tolerance = std::max(stats_.tolerance, std::min(highest, 2 * stats_.tolerance));
     return;
   }
+  // Held: checks twice as far apart; after a whole longest interval held, the tolerance
+  // that once failed may be tried again (the contact that needed it may be gone).
+  if (interval_ == kMaxInterval) ceiling_ = std::min(2 * ceiling_, 2 * kMaxTolerance);
   interval_ = std::min(kMaxInterval, 2 * interval_);
 }
 

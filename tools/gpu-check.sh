@@ -22,6 +22,9 @@
 #   bench  palpation bench: cuda on coarse, paper, xfine in double and float; the textbook
 #          baseline cuda-csr on paper and xfine in double (the equal-error comparison)
 #   idle   palpation bench --scenario idle (no contact, at rest)
+#   control the error-controlled tolerance against the fixed ones: bench (all tolerances and
+#          fe1%) and palpation session with --force-error 0 and 0.01, on CONTROL_MESHES
+#          (default paper xfine): control.txt, control-MESH.csv. Not a default stage
 #   sweep  the paper's Fig. 6 sweep on CUDA at SWEEP_MESHES (default paper), with and without
 #          the tumour, with each of SWEEP_ELEMENTS (default linear nodal-pressure), on each of
 #          SWEEP_SCENARIOS (default paper-sweep, the paper's uniform tissue, and
@@ -364,6 +367,30 @@ if has idle; then
   timeout 120 "$P" bench --scenario idle --meshes paper,xfine --backends cuda-csr --precisions double,float \
     --element linear --steps 1000 --out /tmp/palpation-idle-csr
   [[ -f /tmp/palpation-idle-csr/bench.csv ]] && tail -n +2 /tmp/palpation-idle-csr/bench.csv >>"$OUT/idle.csv"
+fi
+if has control; then
+  # The error-controlled tolerance (solver.force_error) against the fixed ones, through the
+  # bench (Simulation::step, force error against the converged reference) and through the
+  # real-time pipeline (palpation session, emulator), on CONTROL_MESHES.
+  for m in ${CONTROL_MESHES:-paper xfine}; do
+    say "control: bench $m (the fixed tolerances and fe1%), double"
+    timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda --precisions double --out "/tmp/palpation-control-$m" \
+      | tee -a "$OUT/control.txt"
+    [[ -f /tmp/palpation-control-$m/bench.csv ]] && cp "/tmp/palpation-control-$m/bench.csv" "$OUT/control-$m.csv"
+    for fe in 0 0.01; do
+      say "control: session paper-sweep on $m, --force-error $fe, 8 s"
+      timeout 120 "$P" session paper-sweep --device emulator --backend cuda --resolution "$m" --force-error "$fe" \
+        --duration 8 --quiet --out "/tmp/palpation-control-session-$m-$fe" >/dev/null 2>&1
+      python3 - "/tmp/palpation-control-session-$m-$fe/loop.json" "$m" "$fe" <<'EOF2' | tee -a "$OUT/control.txt"
+import json, sys
+j = json.load(open(sys.argv[1]))["simulation"]
+e = j.get("error_control", {})
+print(f"session {sys.argv[2]} force_error {sys.argv[3]}: {j['step_rate_hz']:.0f} steps/s, dt median {j['dt_ms_median']:.3f} ms, "
+      f"step median {j['step_ms_median']:.3f} / p99 {j['step_ms_p99']:.3f} / max {j['step_ms_max']:.3f} ms, "
+      f"CG max {j['cg_iterations_max']}, resets {j['divergence_resets']}; controller {e}")
+EOF2
+    done
+  done
 fi
 if has sweep; then
   for base in ${SWEEP_SCENARIOS:-paper-sweep paper-sweep-layered}; do
