@@ -88,47 +88,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="414"/>
+        <location filename="../ui/panels.cpp" line="427"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="415"/>
+        <location filename="../ui/panels.cpp" line="428"/>
         <source>Mouse palpation (no robot)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="416"/>
+        <location filename="../ui/panels.cpp" line="429"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="417"/>
+        <location filename="../ui/panels.cpp" line="430"/>
         <source>HandHIRO address</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="418"/>
+        <location filename="../ui/panels.cpp" line="431"/>
         <source>Loop jitter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="419"/>
+        <location filename="../ui/panels.cpp" line="432"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="432"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>attached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="432"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>released</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="434"/>
+        <location filename="../ui/panels.cpp" line="447"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -665,622 +665,622 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="158"/>
+        <location filename="../ui/main_window.cpp" line="160"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="168"/>
+        <location filename="../ui/main_window.cpp" line="170"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="218"/>
+        <location filename="../ui/main_window.cpp" line="220"/>
         <source>Stored pressure levels not used (defaults apply): %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="258"/>
+        <location filename="../ui/main_window.cpp" line="260"/>
         <source>This session is not recorded: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="260"/>
+        <location filename="../ui/main_window.cpp" line="262"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="262"/>
+        <location filename="../ui/main_window.cpp" line="264"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="302"/>
+        <location filename="../ui/main_window.cpp" line="304"/>
         <source>no patient library is open: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="338"/>
+        <location filename="../ui/main_window.cpp" line="340"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="338"/>
+        <location filename="../ui/main_window.cpp" line="340"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="380"/>
+        <location filename="../ui/main_window.cpp" line="382"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="393"/>
+        <location filename="../ui/main_window.cpp" line="395"/>
         <source>Open a session recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="394"/>
+        <location filename="../ui/main_window.cpp" line="396"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="397"/>
+        <location filename="../ui/main_window.cpp" line="399"/>
         <source>Cannot open the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="401"/>
+        <location filename="../ui/main_window.cpp" line="403"/>
         <source>Save screenshot</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="401"/>
+        <location filename="../ui/main_window.cpp" line="403"/>
         <source>PNG images (*.png)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="431"/>
-        <location filename="../ui/main_window.cpp" line="618"/>
+        <location filename="../ui/main_window.cpp" line="433"/>
+        <location filename="../ui/main_window.cpp" line="620"/>
         <source>Stereo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="441"/>
+        <location filename="../ui/main_window.cpp" line="443"/>
         <source>Eye separation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="441"/>
+        <location filename="../ui/main_window.cpp" line="443"/>
         <source>Eye angle (degrees):</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="520"/>
+        <location filename="../ui/main_window.cpp" line="522"/>
         <source>End the exam now? No more marks can be made after it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="539"/>
-        <location filename="../ui/main_window.cpp" line="548"/>
-        <location filename="../ui/main_window.cpp" line="553"/>
-        <location filename="../ui/main_window.cpp" line="648"/>
+        <location filename="../ui/main_window.cpp" line="541"/>
+        <location filename="../ui/main_window.cpp" line="550"/>
+        <location filename="../ui/main_window.cpp" line="555"/>
+        <location filename="../ui/main_window.cpp" line="650"/>
         <source>Curriculum</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="545"/>
+        <location filename="../ui/main_window.cpp" line="547"/>
         <source>Open a curriculum</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="545"/>
+        <location filename="../ui/main_window.cpp" line="547"/>
         <source>Curricula (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="604"/>
+        <location filename="../ui/main_window.cpp" line="606"/>
         <source>Palpation Trainer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="605"/>
+        <location filename="../ui/main_window.cpp" line="607"/>
         <source>&amp;File</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="606"/>
+        <location filename="../ui/main_window.cpp" line="608"/>
         <source>&amp;Open recording...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="607"/>
+        <location filename="../ui/main_window.cpp" line="609"/>
         <source>Mark lump here (M)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="608"/>
+        <location filename="../ui/main_window.cpp" line="610"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="609"/>
+        <location filename="../ui/main_window.cpp" line="611"/>
         <source>Save &amp;screenshot...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="610"/>
+        <location filename="../ui/main_window.cpp" line="612"/>
         <source>&amp;Quit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="611"/>
+        <location filename="../ui/main_window.cpp" line="613"/>
         <source>&amp;Edit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="612"/>
+        <location filename="../ui/main_window.cpp" line="614"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="613"/>
+        <location filename="../ui/main_window.cpp" line="615"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="614"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>&amp;View</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="615"/>
+        <location filename="../ui/main_window.cpp" line="617"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Oblique</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Top</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Front</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Mono</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Anaglyph (red/cyan)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Side by side</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Interlaced</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="621"/>
+        <location filename="../ui/main_window.cpp" line="623"/>
         <source>Eye separation...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="622"/>
+        <location filename="../ui/main_window.cpp" line="624"/>
         <source>Mirrored (half-mirror display)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="623"/>
+        <location filename="../ui/main_window.cpp" line="625"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="624"/>
+        <location filename="../ui/main_window.cpp" line="626"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="626"/>
+        <location filename="../ui/main_window.cpp" line="628"/>
         <source>Displacement colour map</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="627"/>
+        <location filename="../ui/main_window.cpp" line="629"/>
         <source>Stress colour map (von Mises)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="628"/>
+        <location filename="../ui/main_window.cpp" line="630"/>
         <source>Show tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="629"/>
+        <location filename="../ui/main_window.cpp" line="631"/>
         <source>Panels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="630"/>
+        <location filename="../ui/main_window.cpp" line="632"/>
         <source>&amp;Mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="631"/>
+        <location filename="../ui/main_window.cpp" line="633"/>
         <source>Instructor mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="640"/>
+        <location filename="../ui/main_window.cpp" line="642"/>
         <source>Coverage overlay</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="641"/>
+        <location filename="../ui/main_window.cpp" line="643"/>
         <source>Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. Not shown in an exam.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="643"/>
+        <location filename="../ui/main_window.cpp" line="645"/>
         <source>Clear coverage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="644"/>
+        <location filename="../ui/main_window.cpp" line="646"/>
         <source>Trainee progress...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="645"/>
+        <location filename="../ui/main_window.cpp" line="647"/>
         <source>Each trainee&apos;s exams over time and the class&apos;s results</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="646"/>
+        <location filename="../ui/main_window.cpp" line="648"/>
         <source>Pressure levels...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="647"/>
+        <location filename="../ui/main_window.cpp" line="649"/>
         <source>What counts as light, medium and deep pressure in the coverage and the score</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="649"/>
+        <location filename="../ui/main_window.cpp" line="651"/>
         <source>Open curriculum file...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="650"/>
+        <location filename="../ui/main_window.cpp" line="652"/>
         <source>No curriculum (free exams)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="651"/>
+        <location filename="../ui/main_window.cpp" line="653"/>
         <source>Next curriculum case</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="652"/>
+        <location filename="../ui/main_window.cpp" line="654"/>
         <source>Loads the trainee&apos;s first case of the curriculum not yet passed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="656"/>
+        <location filename="../ui/main_window.cpp" line="658"/>
         <source>Tools</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="657"/>
+        <location filename="../ui/main_window.cpp" line="659"/>
         <source>Coverage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="658"/>
+        <location filename="../ui/main_window.cpp" line="660"/>
         <source>Camera / scripted hand</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="659"/>
+        <location filename="../ui/main_window.cpp" line="661"/>
         <source>Palpate with the mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="733"/>
+        <location filename="../ui/main_window.cpp" line="735"/>
         <source>Trainee</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="734"/>
+        <location filename="../ui/main_window.cpp" line="736"/>
         <source>Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="752"/>
+        <location filename="../ui/main_window.cpp" line="754"/>
         <source>Trainee not added to the library: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="763"/>
+        <location filename="../ui/main_window.cpp" line="765"/>
         <source>Patient library not available: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="800"/>
+        <location filename="../ui/main_window.cpp" line="802"/>
         <source>The exam&apos;s result is kept on this station: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="803"/>
+        <location filename="../ui/main_window.cpp" line="805"/>
         <source>The exam&apos;s result is not stored: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="835"/>
+        <location filename="../ui/main_window.cpp" line="837"/>
         <source>Pressure levels set: they apply to the exams that start from now on.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="867"/>
+        <location filename="../ui/main_window.cpp" line="869"/>
         <source>No curriculum is chosen (Mode &gt; Curriculum).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="875"/>
+        <location filename="../ui/main_window.cpp" line="877"/>
         <source>The trainee&apos;s results could not be read: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="880"/>
+        <location filename="../ui/main_window.cpp" line="882"/>
         <source>%1 has passed every case of %2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="921"/>
+        <location filename="../ui/main_window.cpp" line="923"/>
         <source>Curriculum %1: case %2 of %3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="922"/>
+        <location filename="../ui/main_window.cpp" line="924"/>
         <source>Curriculum %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="940"/>
+        <location filename="../ui/main_window.cpp" line="942"/>
         <source>Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1028"/>
+        <location filename="../ui/main_window.cpp" line="1030"/>
         <source>, trainee %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1103"/>
+        <location filename="../ui/main_window.cpp" line="1105"/>
         <source>Not recording</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1104"/>
+        <location filename="../ui/main_window.cpp" line="1106"/>
         <source>Recording stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1105"/>
+        <location filename="../ui/main_window.cpp" line="1107"/>
         <source>Recording (%1 marks)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="143"/>
-        <location filename="../ui/main_window.cpp" line="660"/>
+        <location filename="../ui/main_window.cpp" line="144"/>
+        <location filename="../ui/main_window.cpp" line="662"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="332"/>
+        <location filename="../ui/main_window.cpp" line="334"/>
         <source>The exam has ended: nothing marked.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="347"/>
+        <location filename="../ui/main_window.cpp" line="349"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="632"/>
+        <location filename="../ui/main_window.cpp" line="634"/>
         <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="634"/>
+        <location filename="../ui/main_window.cpp" line="636"/>
         <source>Guided practice</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="635"/>
+        <location filename="../ui/main_window.cpp" line="637"/>
         <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="636"/>
+        <location filename="../ui/main_window.cpp" line="638"/>
         <source>Exam</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="637"/>
+        <location filename="../ui/main_window.cpp" line="639"/>
         <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="638"/>
+        <location filename="../ui/main_window.cpp" line="640"/>
         <source>End exam</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="639"/>
+        <location filename="../ui/main_window.cpp" line="641"/>
         <source>Stops the exam: no more marks.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Possible (25 %)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Likely (50 %)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Probable (75 %)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Certain (100 %)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="655"/>
+        <location filename="../ui/main_window.cpp" line="657"/>
         <source>How sure you are of the next mark</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="661"/>
+        <location filename="../ui/main_window.cpp" line="663"/>
         <source>Tumours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="662"/>
+        <location filename="../ui/main_window.cpp" line="664"/>
         <source>Forces</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="663"/>
+        <location filename="../ui/main_window.cpp" line="665"/>
         <source>Simulation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="664"/>
+        <location filename="../ui/main_window.cpp" line="666"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="703"/>
+        <location filename="../ui/main_window.cpp" line="705"/>
         <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="705"/>
+        <location filename="../ui/main_window.cpp" line="707"/>
         <source>Leave the exam? This ends it: no more marks can be made in it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="706"/>
+        <location filename="../ui/main_window.cpp" line="708"/>
         <source>Change of mode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1030"/>
+        <location filename="../ui/main_window.cpp" line="1032"/>
         <source>Instructor: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1032"/>
+        <location filename="../ui/main_window.cpp" line="1034"/>
         <source>Guided practice: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1032"/>
+        <location filename="../ui/main_window.cpp" line="1034"/>
         <source>Guided practice ended: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1033"/>
+        <location filename="../ui/main_window.cpp" line="1035"/>
         <source>Exam: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1033"/>
+        <location filename="../ui/main_window.cpp" line="1035"/>
         <source>Exam ended: case %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1047"/>
+        <location filename="../ui/main_window.cpp" line="1049"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1093"/>
+        <location filename="../ui/main_window.cpp" line="1095"/>
         <source>Backend: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1093"/>
+        <location filename="../ui/main_window.cpp" line="1095"/>
         <source>Backend: %1 (fallback)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1095"/>
+        <location filename="../ui/main_window.cpp" line="1097"/>
         <source>Simulation: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1096"/>
+        <location filename="../ui/main_window.cpp" line="1098"/>
         <source>Haptic: %1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1098"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>mouse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1099"/>
+        <location filename="../ui/main_window.cpp" line="1101"/>
         <source>simulated HandHIRO</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1100"/>
+        <location filename="../ui/main_window.cpp" line="1102"/>
         <source>Device: %1, %2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1100"/>
+        <location filename="../ui/main_window.cpp" line="1102"/>
         <source>connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1100"/>
+        <location filename="../ui/main_window.cpp" line="1102"/>
         <source>not connected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1101"/>
+        <location filename="../ui/main_window.cpp" line="1103"/>
         <source>View: %1 fps</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1617,176 +1617,176 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="282"/>
+        <location filename="../ui/review_window.cpp" line="280"/>
         <source>Review: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="283"/>
-        <location filename="../ui/review_window.cpp" line="341"/>
+        <location filename="../ui/review_window.cpp" line="281"/>
+        <location filename="../ui/review_window.cpp" line="339"/>
         <source>Pause</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="283"/>
-        <location filename="../ui/review_window.cpp" line="341"/>
-        <location filename="../ui/review_window.cpp" line="350"/>
+        <location filename="../ui/review_window.cpp" line="281"/>
+        <location filename="../ui/review_window.cpp" line="339"/>
+        <location filename="../ui/review_window.cpp" line="348"/>
         <source>Play</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="284"/>
+        <location filename="../ui/review_window.cpp" line="282"/>
         <source>Speed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="285"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
         <source>Export CSV...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="286"/>
+        <location filename="../ui/review_window.cpp" line="284"/>
         <source>Export PNG frames...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="287"/>
+        <location filename="../ui/review_window.cpp" line="285"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="288"/>
+        <location filename="../ui/review_window.cpp" line="286"/>
         <source>&lt;b&gt;Exam score&lt;/b&gt;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="289"/>
+        <location filename="../ui/review_window.cpp" line="287"/>
         <source>Coverage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="290"/>
+        <location filename="../ui/review_window.cpp" line="288"/>
         <source>The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="291"/>
+        <location filename="../ui/review_window.cpp" line="289"/>
         <source>Save report...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="293"/>
+        <location filename="../ui/review_window.cpp" line="291"/>
         <source>Scoring the exam...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="302"/>
+        <location filename="../ui/review_window.cpp" line="300"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="303"/>
+        <location filename="../ui/review_window.cpp" line="301"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="307"/>
+        <location filename="../ui/review_window.cpp" line="305"/>
         <source>%1 (re-sim.)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="309"/>
+        <location filename="../ui/review_window.cpp" line="307"/>
         <source>now</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="310"/>
+        <location filename="../ui/review_window.cpp" line="308"/>
         <source>Events</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="371"/>
-        <location filename="../ui/review_window.cpp" line="410"/>
+        <location filename="../ui/review_window.cpp" line="369"/>
+        <location filename="../ui/review_window.cpp" line="408"/>
         <source>No score: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="376"/>
+        <location filename="../ui/review_window.cpp" line="374"/>
         <source>Tumours found: %1 of %2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="377"/>
+        <location filename="../ui/review_window.cpp" line="375"/>
         <source>False positives: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="378"/>
+        <location filename="../ui/review_window.cpp" line="376"/>
         <source>Coverage: light %1, medium %2, deep %3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="380"/>
+        <location filename="../ui/review_window.cpp" line="378"/>
         <source>Vertical strips: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="400"/>
+        <location filename="../ui/review_window.cpp" line="398"/>
         <source>Coverage up to %1: light %2, medium %3, deep %4</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="411"/>
+        <location filename="../ui/review_window.cpp" line="409"/>
         <source>The exam is still being scored.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="474"/>
+        <location filename="../ui/review_window.cpp" line="472"/>
         <source>Re-simulation stopped: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="477"/>
+        <location filename="../ui/review_window.cpp" line="475"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="486"/>
+        <location filename="../ui/review_window.cpp" line="484"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="493"/>
+        <location filename="../ui/review_window.cpp" line="491"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="494"/>
+        <location filename="../ui/review_window.cpp" line="492"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="496"/>
+        <location filename="../ui/review_window.cpp" line="494"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="500"/>
+        <location filename="../ui/review_window.cpp" line="498"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="509"/>
+        <location filename="../ui/review_window.cpp" line="507"/>
         <source>The recording was interrupted: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="510"/>
+        <location filename="../ui/review_window.cpp" line="508"/>
         <source>The recording was recovered after an interruption.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="517"/>
+        <location filename="../ui/review_window.cpp" line="515"/>
         <source>Written: %1</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2002,92 +2002,107 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="337"/>
+        <location filename="../ui/panels.cpp" line="345"/>
         <source>Backend</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="338"/>
+        <location filename="../ui/panels.cpp" line="346"/>
         <source>CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="339"/>
+        <location filename="../ui/panels.cpp" line="347"/>
         <source>CG max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="340"/>
+        <location filename="../ui/panels.cpp" line="348"/>
+        <source>Force error held</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="349"/>
+        <source>off: fixed CG tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="350"/>
+        <source>The finger-force error the solver holds, in percent of the converged force: it picks the loosest CG tolerance that keeps it, starting from the one above, and checks it against a converged step every so often. Off: the CG tolerance stays as set.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="341"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>Safety</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="342"/>
+        <location filename="../ui/panels.cpp" line="355"/>
         <source>Step time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="343"/>
+        <location filename="../ui/panels.cpp" line="356"/>
         <source>CG iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="344"/>
+        <location filename="../ui/panels.cpp" line="357"/>
         <source>Simulation rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="345"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>Haptic rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>Apply solver settings</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="347"/>
+        <location filename="../ui/panels.cpp" line="360"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="373"/>
         <source>stopped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="361"/>
+        <location filename="../ui/panels.cpp" line="374"/>
         <source>loading</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="362"/>
+        <location filename="../ui/panels.cpp" line="375"/>
         <source>running</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="363"/>
+        <location filename="../ui/panels.cpp" line="376"/>
         <source>swapping</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="364"/>
+        <location filename="../ui/panels.cpp" line="377"/>
         <source>error: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="369"/>
+        <location filename="../ui/panels.cpp" line="382"/>
         <source>no fault</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="370"/>
+        <location filename="../ui/panels.cpp" line="383"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>%n backend fallback</numerusform>
@@ -2095,7 +2110,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="371"/>
+        <location filename="../ui/panels.cpp" line="384"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>%n divergence reset</numerusform>
@@ -2103,18 +2118,18 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="372"/>
+        <location filename="../ui/panels.cpp" line="385"/>
         <source>forces held and blended</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="376"/>
+        <location filename="../ui/panels.cpp" line="389"/>
         <source>%1 ms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="378"/>
-        <location filename="../ui/panels.cpp" line="379"/>
+        <location filename="../ui/panels.cpp" line="391"/>
+        <location filename="../ui/panels.cpp" line="392"/>
         <source>%1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2309,22 +2324,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="599"/>
+        <location filename="../ui/vtk_view.cpp" line="630"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="602"/>
+        <location filename="../ui/vtk_view.cpp" line="633"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="821"/>
+        <location filename="../ui/vtk_view.cpp" line="847"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="823"/>
+        <location filename="../ui/vtk_view.cpp" line="849"/>
         <source>the view is not initialised yet</source>
         <translation type="unfinished"></translation>
     </message>

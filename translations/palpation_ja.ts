@@ -88,47 +88,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="414"/>
+        <location filename="../ui/panels.cpp" line="427"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation>シミュレーションの HandHIRO（自動触診）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="415"/>
+        <location filename="../ui/panels.cpp" line="428"/>
         <source>Mouse palpation (no robot)</source>
         <translation>マウス触診（ロボットなし）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="416"/>
+        <location filename="../ui/panels.cpp" line="429"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="417"/>
+        <location filename="../ui/panels.cpp" line="430"/>
         <source>HandHIRO address</source>
         <translation>HandHIRO アドレス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="418"/>
+        <location filename="../ui/panels.cpp" line="431"/>
         <source>Loop jitter</source>
         <translation>ループのジッタ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="419"/>
+        <location filename="../ui/panels.cpp" line="432"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation>HandHIRO のネットワーク接続は起動時に選びます: palpation-trainer --device emulator、または --device handhiro --robot アドレス:ポート</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="432"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>attached</source>
         <translation>装着</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="432"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>released</source>
         <translation>解放</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="434"/>
+        <location filename="../ui/panels.cpp" line="447"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation>%1 µs（0.5 秒間の最大）</translation>
     </message>
@@ -670,622 +670,622 @@
 <context>
     <name>palpation::ui::MainWindow</name>
     <message>
-        <location filename="../ui/main_window.cpp" line="158"/>
+        <location filename="../ui/main_window.cpp" line="160"/>
         <source>Mouse palpation: move over the breast; the wheel or a downward drag presses the fingertip in.</source>
         <translation>マウス触診: 乳房の上で動かします。ホイールまたは下向きのドラッグで指先を押し込みます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="168"/>
+        <location filename="../ui/main_window.cpp" line="170"/>
         <source>No element lies inside that shape: nothing added.</source>
         <translation>その形状の中に要素がありません。追加されませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="218"/>
+        <location filename="../ui/main_window.cpp" line="220"/>
         <source>Stored pressure levels not used (defaults apply): %1</source>
         <translation>保存された圧の段階は使われません（既定値を使用）: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="258"/>
+        <location filename="../ui/main_window.cpp" line="260"/>
         <source>This session is not recorded: %1</source>
         <translation>このセッションは記録されていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="260"/>
+        <location filename="../ui/main_window.cpp" line="262"/>
         <source>Recovered interrupted recordings: %1</source>
         <translation>中断された記録を復元しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="262"/>
+        <location filename="../ui/main_window.cpp" line="264"/>
         <source>Patient library not available (built-in phantoms only): %1</source>
         <translation>患者ライブラリを使えません（内蔵ファントムのみ）: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="302"/>
+        <location filename="../ui/main_window.cpp" line="304"/>
         <source>no patient library is open: %1</source>
         <translation>患者ライブラリが開かれていません: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="338"/>
+        <location filename="../ui/main_window.cpp" line="340"/>
         <source>No fingertip on the breast: nothing marked.</source>
         <translation>乳房に触れている指先がありません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="338"/>
+        <location filename="../ui/main_window.cpp" line="340"/>
         <source>This session is not recorded: nothing marked.</source>
         <translation>このセッションは記録されていません。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="380"/>
+        <location filename="../ui/main_window.cpp" line="382"/>
         <source>Patient &quot;%1&quot; saved; choose it and Load patient to palpate it.</source>
         <translation>患者「%1」を保存しました。選んで「患者を読み込む」を押すと触診できます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="393"/>
+        <location filename="../ui/main_window.cpp" line="395"/>
         <source>Open a session recording</source>
         <translation>セッションの記録を開く</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="394"/>
+        <location filename="../ui/main_window.cpp" line="396"/>
         <source>Session recordings (*.palrec *.prec);;All files (*)</source>
         <translation>セッションの記録 (*.palrec *.prec);;すべてのファイル (*)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="397"/>
+        <location filename="../ui/main_window.cpp" line="399"/>
         <source>Cannot open the recording</source>
         <translation>記録を開けません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="401"/>
+        <location filename="../ui/main_window.cpp" line="403"/>
         <source>Save screenshot</source>
         <translation>スクリーンショットを保存</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="401"/>
+        <location filename="../ui/main_window.cpp" line="403"/>
         <source>PNG images (*.png)</source>
         <translation>PNG 画像 (*.png)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="431"/>
-        <location filename="../ui/main_window.cpp" line="618"/>
+        <location filename="../ui/main_window.cpp" line="433"/>
+        <location filename="../ui/main_window.cpp" line="620"/>
         <source>Stereo</source>
         <translation>立体視</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="441"/>
+        <location filename="../ui/main_window.cpp" line="443"/>
         <source>Eye separation</source>
         <translation>眼間距離</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="441"/>
+        <location filename="../ui/main_window.cpp" line="443"/>
         <source>Eye angle (degrees):</source>
         <translation>視差角（度）:</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="520"/>
+        <location filename="../ui/main_window.cpp" line="522"/>
         <source>End the exam now? No more marks can be made after it.</source>
         <translation>試験を今終了しますか？終了後はマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="539"/>
-        <location filename="../ui/main_window.cpp" line="548"/>
-        <location filename="../ui/main_window.cpp" line="553"/>
-        <location filename="../ui/main_window.cpp" line="648"/>
+        <location filename="../ui/main_window.cpp" line="541"/>
+        <location filename="../ui/main_window.cpp" line="550"/>
+        <location filename="../ui/main_window.cpp" line="555"/>
+        <location filename="../ui/main_window.cpp" line="650"/>
         <source>Curriculum</source>
         <translation>カリキュラム</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="545"/>
+        <location filename="../ui/main_window.cpp" line="547"/>
         <source>Open a curriculum</source>
         <translation>カリキュラムを開く</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="545"/>
+        <location filename="../ui/main_window.cpp" line="547"/>
         <source>Curricula (*.json)</source>
         <translation>カリキュラム (*.json)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="604"/>
+        <location filename="../ui/main_window.cpp" line="606"/>
         <source>Palpation Trainer</source>
         <translation>触診トレーナー</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="605"/>
+        <location filename="../ui/main_window.cpp" line="607"/>
         <source>&amp;File</source>
         <translation>ファイル(&amp;F)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="606"/>
+        <location filename="../ui/main_window.cpp" line="608"/>
         <source>&amp;Open recording...</source>
         <translation>記録を開く(&amp;O)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="607"/>
+        <location filename="../ui/main_window.cpp" line="609"/>
         <source>Mark lump here (M)</source>
         <translation>しこりをマーク (M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="608"/>
+        <location filename="../ui/main_window.cpp" line="610"/>
         <source>Trainee: &quot;I feel a lump here&quot;: marks the index fingertip&apos;s position in the recording</source>
         <translation>研修生:「ここにしこりがある」― 人差し指の指先の位置を記録にマークします</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="609"/>
+        <location filename="../ui/main_window.cpp" line="611"/>
         <source>Save &amp;screenshot...</source>
         <translation>スクリーンショットを保存(&amp;S)...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="610"/>
+        <location filename="../ui/main_window.cpp" line="612"/>
         <source>&amp;Quit</source>
         <translation>終了(&amp;Q)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="611"/>
+        <location filename="../ui/main_window.cpp" line="613"/>
         <source>&amp;Edit</source>
         <translation>編集(&amp;E)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="612"/>
+        <location filename="../ui/main_window.cpp" line="614"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="613"/>
+        <location filename="../ui/main_window.cpp" line="615"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="614"/>
+        <location filename="../ui/main_window.cpp" line="616"/>
         <source>&amp;View</source>
         <translation>表示(&amp;V)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="615"/>
+        <location filename="../ui/main_window.cpp" line="617"/>
         <source>Camera</source>
         <translation>カメラ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Oblique</source>
         <translation>斜め</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Top</source>
         <translation>上</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Side</source>
         <translation>側面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="616"/>
+        <location filename="../ui/main_window.cpp" line="618"/>
         <source>Front</source>
         <translation>正面</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Mono</source>
         <translation>モノ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Anaglyph (red/cyan)</source>
         <translation>アナグリフ（赤/シアン）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Side by side</source>
         <translation>サイドバイサイド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Interlaced</source>
         <translation>インターレース</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="619"/>
+        <location filename="../ui/main_window.cpp" line="621"/>
         <source>Quad-buffer (shutter glasses)</source>
         <translation>クアッドバッファ（シャッターメガネ）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="621"/>
+        <location filename="../ui/main_window.cpp" line="623"/>
         <source>Eye separation...</source>
         <translation>眼間距離...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="622"/>
+        <location filename="../ui/main_window.cpp" line="624"/>
         <source>Mirrored (half-mirror display)</source>
         <translation>鏡像（ハーフミラー表示）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="623"/>
+        <location filename="../ui/main_window.cpp" line="625"/>
         <source>Fast rendering (software OpenGL)</source>
         <translation>高速描画（ソフトウェア OpenGL）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="624"/>
+        <location filename="../ui/main_window.cpp" line="626"/>
         <source>A lighter 3-D view: plain background, no highlights on the skin, an unlit chest. On by itself when the computer draws OpenGL in software.</source>
         <translation>軽い 3D 表示：単色の背景、皮膚のハイライトなし、陰影なしの胸壁。コンピューターが OpenGL をソフトウェアで描画するときは自動でオンになります。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="626"/>
+        <location filename="../ui/main_window.cpp" line="628"/>
         <source>Displacement colour map</source>
         <translation>変位カラーマップ</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="627"/>
+        <location filename="../ui/main_window.cpp" line="629"/>
         <source>Stress colour map (von Mises)</source>
         <translation>応力カラーマップ（ミーゼス）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="628"/>
+        <location filename="../ui/main_window.cpp" line="630"/>
         <source>Show tumours</source>
         <translation>腫瘍を表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="629"/>
+        <location filename="../ui/main_window.cpp" line="631"/>
         <source>Panels</source>
         <translation>パネル</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="630"/>
+        <location filename="../ui/main_window.cpp" line="632"/>
         <source>&amp;Mode</source>
         <translation>モード(&amp;M)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="631"/>
+        <location filename="../ui/main_window.cpp" line="633"/>
         <source>Instructor mode</source>
         <translation>指導者モード</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="640"/>
+        <location filename="../ui/main_window.cpp" line="642"/>
         <source>Coverage overlay</source>
         <translation>触診範囲の表示</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="641"/>
+        <location filename="../ui/main_window.cpp" line="643"/>
         <source>Colours the skin by the highest pressure reached: yellow light, orange medium, red deep. Not shown in an exam.</source>
         <translation>皮膚を到達した最大の圧で色分けします：黄は軽い圧、橙は中程度の圧、赤は深い圧。試験中は表示しません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="643"/>
+        <location filename="../ui/main_window.cpp" line="645"/>
         <source>Clear coverage</source>
         <translation>触診範囲を消去</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="644"/>
+        <location filename="../ui/main_window.cpp" line="646"/>
         <source>Trainee progress...</source>
         <translation>研修生の進捗...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="645"/>
+        <location filename="../ui/main_window.cpp" line="647"/>
         <source>Each trainee&apos;s exams over time and the class&apos;s results</source>
         <translation>各研修生の試験の推移とクラスの成績</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="646"/>
+        <location filename="../ui/main_window.cpp" line="648"/>
         <source>Pressure levels...</source>
         <translation>圧の段階...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="647"/>
+        <location filename="../ui/main_window.cpp" line="649"/>
         <source>What counts as light, medium and deep pressure in the coverage and the score</source>
         <translation>触診範囲と採点で軽い圧・中程度・深い圧とみなす基準</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="649"/>
+        <location filename="../ui/main_window.cpp" line="651"/>
         <source>Open curriculum file...</source>
         <translation>カリキュラムファイルを開く...</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="650"/>
+        <location filename="../ui/main_window.cpp" line="652"/>
         <source>No curriculum (free exams)</source>
         <translation>カリキュラムなし（自由試験）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="651"/>
+        <location filename="../ui/main_window.cpp" line="653"/>
         <source>Next curriculum case</source>
         <translation>カリキュラムの次の症例</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="652"/>
+        <location filename="../ui/main_window.cpp" line="654"/>
         <source>Loads the trainee&apos;s first case of the curriculum not yet passed</source>
         <translation>研修生がまだ合格していないカリキュラムの最初の症例を読み込みます</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="656"/>
+        <location filename="../ui/main_window.cpp" line="658"/>
         <source>Tools</source>
         <translation>ツール</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="657"/>
+        <location filename="../ui/main_window.cpp" line="659"/>
         <source>Coverage</source>
         <translation>触診範囲</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="658"/>
+        <location filename="../ui/main_window.cpp" line="660"/>
         <source>Camera / scripted hand</source>
         <translation>カメラ / 自動触診ハンド</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="659"/>
+        <location filename="../ui/main_window.cpp" line="661"/>
         <source>Palpate with the mouse</source>
         <translation>マウスで触診</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="733"/>
+        <location filename="../ui/main_window.cpp" line="735"/>
         <source>Trainee</source>
         <translation>研修生</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="734"/>
+        <location filename="../ui/main_window.cpp" line="736"/>
         <source>Who is the trainee? Choose a name or type a new one (empty: anonymous, no result stored).</source>
         <translation>研修生は誰ですか？名前を選ぶか新しい名前を入力してください（空欄：匿名、結果は保存されません）。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="752"/>
+        <location filename="../ui/main_window.cpp" line="754"/>
         <source>Trainee not added to the library: %1</source>
         <translation>研修生をライブラリに追加できませんでした：%1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="763"/>
+        <location filename="../ui/main_window.cpp" line="765"/>
         <source>Patient library not available: %1</source>
         <translation>患者ライブラリを使用できません：%1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="800"/>
+        <location filename="../ui/main_window.cpp" line="802"/>
         <source>The exam&apos;s result is kept on this station: %1</source>
         <translation>試験結果はこの端末に保管されています: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="803"/>
+        <location filename="../ui/main_window.cpp" line="805"/>
         <source>The exam&apos;s result is not stored: %1</source>
         <translation>試験の結果は保存されていません：%1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="835"/>
+        <location filename="../ui/main_window.cpp" line="837"/>
         <source>Pressure levels set: they apply to the exams that start from now on.</source>
         <translation>圧の段階を設定しました: これから始まる試験に適用されます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="867"/>
+        <location filename="../ui/main_window.cpp" line="869"/>
         <source>No curriculum is chosen (Mode &gt; Curriculum).</source>
         <translation>カリキュラムが選ばれていません（モード &gt; カリキュラム）。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="875"/>
+        <location filename="../ui/main_window.cpp" line="877"/>
         <source>The trainee&apos;s results could not be read: %1</source>
         <translation>研修生の結果を読み込めませんでした: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="880"/>
+        <location filename="../ui/main_window.cpp" line="882"/>
         <source>%1 has passed every case of %2.</source>
         <translation>%1 は %2 のすべての症例に合格しました。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="921"/>
+        <location filename="../ui/main_window.cpp" line="923"/>
         <source>Curriculum %1: case %2 of %3</source>
         <translation>カリキュラム %1: 症例 %2 / %3</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="922"/>
+        <location filename="../ui/main_window.cpp" line="924"/>
         <source>Curriculum %1</source>
         <translation>カリキュラム %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="940"/>
+        <location filename="../ui/main_window.cpp" line="942"/>
         <source>Coverage: %1 none %2 light %3 %4 medium %5 %6 deep %7</source>
         <translation>触診範囲：%1 なし %2 軽い圧 %3 %4 中程度 %5 %6 深い圧 %7</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1028"/>
+        <location filename="../ui/main_window.cpp" line="1030"/>
         <source>, trainee %1</source>
         <translation>、研修生 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1103"/>
+        <location filename="../ui/main_window.cpp" line="1105"/>
         <source>Not recording</source>
         <translation>記録していません</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1104"/>
+        <location filename="../ui/main_window.cpp" line="1106"/>
         <source>Recording stopped: %1</source>
         <translation>記録が停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1105"/>
+        <location filename="../ui/main_window.cpp" line="1107"/>
         <source>Recording (%1 marks)</source>
         <translation>記録中（マーク %1 件）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="143"/>
-        <location filename="../ui/main_window.cpp" line="660"/>
+        <location filename="../ui/main_window.cpp" line="144"/>
+        <location filename="../ui/main_window.cpp" line="662"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="332"/>
+        <location filename="../ui/main_window.cpp" line="334"/>
         <source>The exam has ended: nothing marked.</source>
         <translation>試験は終了しています。マークしませんでした。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="347"/>
+        <location filename="../ui/main_window.cpp" line="349"/>
         <source>Mark %1: &quot;I feel a lump here&quot; at (%2, %3, %4) cm, %5 % confident, recorded.</source>
         <translation>マーク %1:「ここにしこりがある」(%2, %3, %4) cm、確信度 %5 % を記録しました。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="632"/>
+        <location filename="../ui/main_window.cpp" line="634"/>
         <source>The instructor&apos;s view: every panel, the answer included. From a trainee mode it asks for a confirmation.</source>
         <translation>指導者の表示: 答えを含むすべてのパネル。研修生のモードから戻るときは確認を求めます。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="634"/>
+        <location filename="../ui/main_window.cpp" line="636"/>
         <source>Guided practice</source>
         <translation>ガイド付き練習</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="635"/>
+        <location filename="../ui/main_window.cpp" line="637"/>
         <source>Trainee: palpate and mark; the instructor&apos;s panels are hidden.</source>
         <translation>研修生: 触診してマークします。指導者のパネルは表示されません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="636"/>
+        <location filename="../ui/main_window.cpp" line="638"/>
         <source>Exam</source>
         <translation>試験</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="637"/>
+        <location filename="../ui/main_window.cpp" line="639"/>
         <source>Trainee examined: palpate and mark; the answer stays hidden until the exam ends.</source>
         <translation>研修生の試験: 触診してマークします。試験が終わるまで答えは表示されません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="638"/>
+        <location filename="../ui/main_window.cpp" line="640"/>
         <source>End exam</source>
         <translation>試験を終了</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="639"/>
+        <location filename="../ui/main_window.cpp" line="641"/>
         <source>Stops the exam: no more marks.</source>
         <translation>試験を終了します。以後はマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Possible (25 %)</source>
         <translation>可能性あり (25 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Likely (50 %)</source>
         <translation>たぶん (50 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Probable (75 %)</source>
         <translation>おそらく (75 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="653"/>
+        <location filename="../ui/main_window.cpp" line="655"/>
         <source>Certain (100 %)</source>
         <translation>確実 (100 %)</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="655"/>
+        <location filename="../ui/main_window.cpp" line="657"/>
         <source>How sure you are of the next mark</source>
         <translation>次のマークの確信度</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="661"/>
+        <location filename="../ui/main_window.cpp" line="663"/>
         <source>Tumours</source>
         <translation>腫瘍</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="662"/>
+        <location filename="../ui/main_window.cpp" line="664"/>
         <source>Forces</source>
         <translation>力</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="663"/>
+        <location filename="../ui/main_window.cpp" line="665"/>
         <source>Simulation</source>
         <translation>シミュレーション</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="664"/>
+        <location filename="../ui/main_window.cpp" line="666"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="703"/>
+        <location filename="../ui/main_window.cpp" line="705"/>
         <source>Return to instructor mode? This ends the trainee&apos;s session and shows the answer, the patient&apos;s details and every panel. For the instructor only.</source>
         <translation>指導者モードに戻りますか？研修生のセッションを終了し、答え、患者の詳細、すべてのパネルを表示します。指導者専用の操作です。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="705"/>
+        <location filename="../ui/main_window.cpp" line="707"/>
         <source>Leave the exam? This ends it: no more marks can be made in it.</source>
         <translation>試験を抜けますか？試験は終了し、この試験ではもうマークできません。</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="706"/>
+        <location filename="../ui/main_window.cpp" line="708"/>
         <source>Change of mode</source>
         <translation>モードの切り替え</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1030"/>
+        <location filename="../ui/main_window.cpp" line="1032"/>
         <source>Instructor: %1</source>
         <translation>指導者: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1032"/>
+        <location filename="../ui/main_window.cpp" line="1034"/>
         <source>Guided practice: case %1</source>
         <translation>ガイド付き練習: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1032"/>
+        <location filename="../ui/main_window.cpp" line="1034"/>
         <source>Guided practice ended: case %1</source>
         <translation>ガイド付き練習終了: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1033"/>
+        <location filename="../ui/main_window.cpp" line="1035"/>
         <source>Exam: case %1</source>
         <translation>試験: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1033"/>
+        <location filename="../ui/main_window.cpp" line="1035"/>
         <source>Exam ended: case %1</source>
         <translation>試験終了: 症例 %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1047"/>
+        <location filename="../ui/main_window.cpp" line="1049"/>
         <source>%1 nodes, %2 tetrahedra</source>
         <translation>節点 %1、四面体 %2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1093"/>
+        <location filename="../ui/main_window.cpp" line="1095"/>
         <source>Backend: %1</source>
         <translation>バックエンド: %1</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1093"/>
+        <location filename="../ui/main_window.cpp" line="1095"/>
         <source>Backend: %1 (fallback)</source>
         <translation>バックエンド: %1（フォールバック）</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1095"/>
+        <location filename="../ui/main_window.cpp" line="1097"/>
         <source>Simulation: %1 Hz</source>
         <translation>シミュレーション: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1096"/>
+        <location filename="../ui/main_window.cpp" line="1098"/>
         <source>Haptic: %1 Hz</source>
         <translation>力覚: %1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1098"/>
+        <location filename="../ui/main_window.cpp" line="1100"/>
         <source>mouse</source>
         <translation>マウス</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1099"/>
+        <location filename="../ui/main_window.cpp" line="1101"/>
         <source>simulated HandHIRO</source>
         <translation>シミュレーションの HandHIRO</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1100"/>
+        <location filename="../ui/main_window.cpp" line="1102"/>
         <source>Device: %1, %2</source>
         <translation>デバイス: %1、%2</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1100"/>
+        <location filename="../ui/main_window.cpp" line="1102"/>
         <source>connected</source>
         <translation>接続中</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1100"/>
+        <location filename="../ui/main_window.cpp" line="1102"/>
         <source>not connected</source>
         <translation>未接続</translation>
     </message>
     <message>
-        <location filename="../ui/main_window.cpp" line="1101"/>
+        <location filename="../ui/main_window.cpp" line="1103"/>
         <source>View: %1 fps</source>
         <translation>表示: %1 fps</translation>
     </message>
@@ -1621,176 +1621,176 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="282"/>
+        <location filename="../ui/review_window.cpp" line="280"/>
         <source>Review: %1</source>
         <translation>レビュー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="283"/>
-        <location filename="../ui/review_window.cpp" line="341"/>
+        <location filename="../ui/review_window.cpp" line="281"/>
+        <location filename="../ui/review_window.cpp" line="339"/>
         <source>Pause</source>
         <translation>一時停止</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="283"/>
-        <location filename="../ui/review_window.cpp" line="341"/>
-        <location filename="../ui/review_window.cpp" line="350"/>
+        <location filename="../ui/review_window.cpp" line="281"/>
+        <location filename="../ui/review_window.cpp" line="339"/>
+        <location filename="../ui/review_window.cpp" line="348"/>
         <source>Play</source>
         <translation>再生</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="284"/>
+        <location filename="../ui/review_window.cpp" line="282"/>
         <source>Speed</source>
         <translation>速度</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="285"/>
+        <location filename="../ui/review_window.cpp" line="283"/>
         <source>Export CSV...</source>
         <translation>CSV 出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="286"/>
+        <location filename="../ui/review_window.cpp" line="284"/>
         <source>Export PNG frames...</source>
         <translation>PNG フレーム出力...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="287"/>
+        <location filename="../ui/review_window.cpp" line="285"/>
         <source>Instructor events and trainee marks (click to go there)</source>
         <translation>指導者のイベントと研修生のマーク（クリックでその時刻へ移動）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="288"/>
+        <location filename="../ui/review_window.cpp" line="286"/>
         <source>&lt;b&gt;Exam score&lt;/b&gt;</source>
         <translation>&lt;b&gt;試験の成績&lt;/b&gt;</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="289"/>
+        <location filename="../ui/review_window.cpp" line="287"/>
         <source>Coverage</source>
         <translation>触診範囲</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="290"/>
+        <location filename="../ui/review_window.cpp" line="288"/>
         <source>The skin coloured by the highest pressure reached: grey none, yellow light, orange medium, red deep</source>
         <translation>到達した最大の圧で色分けした皮膚：灰色はなし、黄は軽い圧、橙は中程度、赤は深い圧</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="291"/>
+        <location filename="../ui/review_window.cpp" line="289"/>
         <source>Save report...</source>
         <translation>報告書を保存...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="293"/>
+        <location filename="../ui/review_window.cpp" line="291"/>
         <source>Scoring the exam...</source>
         <translation>試験を採点しています...</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="302"/>
+        <location filename="../ui/review_window.cpp" line="300"/>
         <source>Force on each fingertip (N): sent to the device (solid), re-simulated simulation force (dashed)</source>
         <translation>各指先の力 (N): デバイスへ送った力（実線）、再シミュレーションの力（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="303"/>
+        <location filename="../ui/review_window.cpp" line="301"/>
         <source>Force on each fingertip (N): recorded (solid), re-simulated (dashed)</source>
         <translation>各指先の力 (N): 記録（実線）、再シミュレーション（破線）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="307"/>
+        <location filename="../ui/review_window.cpp" line="305"/>
         <source>%1 (re-sim.)</source>
         <translation>%1（再計算）</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="309"/>
+        <location filename="../ui/review_window.cpp" line="307"/>
         <source>now</source>
         <translation>現在</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="310"/>
+        <location filename="../ui/review_window.cpp" line="308"/>
         <source>Events</source>
         <translation>イベント</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="371"/>
-        <location filename="../ui/review_window.cpp" line="410"/>
+        <location filename="../ui/review_window.cpp" line="369"/>
+        <location filename="../ui/review_window.cpp" line="408"/>
         <source>No score: %1</source>
         <translation>成績なし：%1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="376"/>
+        <location filename="../ui/review_window.cpp" line="374"/>
         <source>Tumours found: %1 of %2</source>
         <translation>発見した腫瘍：%2 個中 %1 個</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="377"/>
+        <location filename="../ui/review_window.cpp" line="375"/>
         <source>False positives: %1</source>
         <translation>偽陽性：%1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="378"/>
+        <location filename="../ui/review_window.cpp" line="376"/>
         <source>Coverage: light %1, medium %2, deep %3</source>
         <translation>触診範囲：軽い圧 %1、中程度 %2、深い圧 %3</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="400"/>
+        <location filename="../ui/review_window.cpp" line="398"/>
         <source>Coverage up to %1: light %2, medium %3, deep %4</source>
         <translation>%1 までの触診範囲：軽い圧 %2、中程度 %3、深い圧 %4</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="380"/>
+        <location filename="../ui/review_window.cpp" line="378"/>
         <source>Vertical strips: %1</source>
         <translation>縦方向の帯：%1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="411"/>
+        <location filename="../ui/review_window.cpp" line="409"/>
         <source>The exam is still being scored.</source>
         <translation>試験はまだ採点中です。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="474"/>
+        <location filename="../ui/review_window.cpp" line="472"/>
         <source>Re-simulation stopped: %1</source>
         <translation>再シミュレーションが停止しました: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="477"/>
+        <location filename="../ui/review_window.cpp" line="475"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: %4 N (%5 finger at %6 s; largest recorded force %7 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: %4 N（%6 秒の%5、記録された最大の力 %7 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="486"/>
+        <location filename="../ui/review_window.cpp" line="484"/>
         <source>Re-simulated %1 of %2 simulation steps (backend %3). Largest difference from the recorded simulation forces: 0 N (largest recorded force %4 N).</source>
         <translation>シミュレーション %2 ステップ中 %1 ステップを再シミュレーションしました（バックエンド %3）。記録されたシミュレーションの力との最大差: 0 N（記録された最大の力 %4 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="493"/>
+        <location filename="../ui/review_window.cpp" line="491"/>
         <source>Reproduced: same backend and settings give the same forces.</source>
         <translation>再現しました: 同じバックエンドと設定で同じ力になります。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="494"/>
+        <location filename="../ui/review_window.cpp" line="492"/>
         <source>Not reproduced exactly (another backend or settings).</source>
         <translation>完全には再現されていません（バックエンドまたは設定が異なります）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="496"/>
+        <location filename="../ui/review_window.cpp" line="494"/>
         <source>The forces sent at 1 kHz differ from the simulation&apos;s by up to %1 N (the haptic loop&apos;s local contact model, coupling and safety filter).</source>
         <translation>1 kHz で送った力はシミュレーションの力と最大 %1 N 異なります（力覚ループの局所接触モデル、カップリング、安全フィルタによる）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="500"/>
+        <location filename="../ui/review_window.cpp" line="498"/>
         <source>Re-simulated %1 of %2 ticks (backend %3) from the recorded device input at the scenario&apos;s time step. Largest difference from the recorded forces: %4 N (largest recorded force %5 N).</source>
         <translation>記録されたデバイス入力から、シナリオの時間刻みで %2 ティック中 %1 ティックを再シミュレーションしました（バックエンド %3）。記録された力との最大差: %4 N（記録された最大の力 %5 N）。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="509"/>
+        <location filename="../ui/review_window.cpp" line="507"/>
         <source>The recording was interrupted: %1</source>
         <translation>記録は途中で中断されています: %1</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="510"/>
+        <location filename="../ui/review_window.cpp" line="508"/>
         <source>The recording was recovered after an interruption.</source>
         <translation>この記録は中断の後に復元されたものです。</translation>
     </message>
     <message>
-        <location filename="../ui/review_window.cpp" line="517"/>
+        <location filename="../ui/review_window.cpp" line="515"/>
         <source>Written: %1</source>
         <translation>書き出しました: %1</translation>
     </message>
@@ -2006,117 +2006,132 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="337"/>
+        <location filename="../ui/panels.cpp" line="345"/>
         <source>Backend</source>
         <translation>バックエンド</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="338"/>
+        <location filename="../ui/panels.cpp" line="346"/>
         <source>CG tolerance</source>
         <translation>CG 許容誤差</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="339"/>
+        <location filename="../ui/panels.cpp" line="347"/>
         <source>CG max. iterations</source>
         <translation>CG 最大反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="340"/>
+        <location filename="../ui/panels.cpp" line="348"/>
+        <source>Force error held</source>
+        <translation>保持する力の誤差</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="349"/>
+        <source>off: fixed CG tolerance</source>
+        <translation>オフ：CG 許容誤差を固定</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="350"/>
+        <source>The finger-force error the solver holds, in percent of the converged force: it picks the loosest CG tolerance that keeps it, starting from the one above, and checks it against a converged step every so often. Off: the CG tolerance stays as set.</source>
+        <translation>ソルバーが保持する指先の力の誤差（収束した力に対する割合、%）。これを満たす最も緩い CG 許容誤差を上の値から選び、ときどき収束したステップと比べて確かめます。オフ：CG 許容誤差は設定のまま。</translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>State</source>
         <translation>状態</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="341"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>Safety</source>
         <translation>安全</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="342"/>
+        <location filename="../ui/panels.cpp" line="355"/>
         <source>Step time</source>
         <translation>ステップ時間</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="343"/>
+        <location filename="../ui/panels.cpp" line="356"/>
         <source>CG iterations</source>
         <translation>CG 反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="344"/>
+        <location filename="../ui/panels.cpp" line="357"/>
         <source>Simulation rate</source>
         <translation>シミュレーション周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="345"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>Haptic rate</source>
         <translation>力覚ループ周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>Apply solver settings</source>
         <translation>ソルバー設定を適用</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="347"/>
+        <location filename="../ui/panels.cpp" line="360"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation>バックエンドの変更は患者の（再）読み込み時に反映されます。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="373"/>
         <source>stopped</source>
         <translation>停止</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="361"/>
+        <location filename="../ui/panels.cpp" line="374"/>
         <source>loading</source>
         <translation>読み込み中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="362"/>
+        <location filename="../ui/panels.cpp" line="375"/>
         <source>running</source>
         <translation>実行中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="363"/>
+        <location filename="../ui/panels.cpp" line="376"/>
         <source>swapping</source>
         <translation>患者を切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="364"/>
+        <location filename="../ui/panels.cpp" line="377"/>
         <source>error: %1</source>
         <translation>エラー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="369"/>
+        <location filename="../ui/panels.cpp" line="382"/>
         <source>no fault</source>
         <translation>異常なし</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="370"/>
+        <location filename="../ui/panels.cpp" line="383"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>バックエンドのフォールバック %n 回</numerusform>
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="371"/>
+        <location filename="../ui/panels.cpp" line="384"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>発散リセット %n 回</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="372"/>
+        <location filename="../ui/panels.cpp" line="385"/>
         <source>forces held and blended</source>
         <translation>力を保持して切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="376"/>
+        <location filename="../ui/panels.cpp" line="389"/>
         <source>%1 ms</source>
         <translation>%1 ms</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="378"/>
-        <location filename="../ui/panels.cpp" line="379"/>
+        <location filename="../ui/panels.cpp" line="391"/>
+        <location filename="../ui/panels.cpp" line="392"/>
         <source>%1 Hz</source>
         <translation>%1 Hz</translation>
     </message>
@@ -2311,22 +2326,22 @@
 <context>
     <name>palpation::ui::VtkView</name>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="599"/>
+        <location filename="../ui/vtk_view.cpp" line="630"/>
         <source>no OpenGL context for a native window on this platform (%1)</source>
         <translation>このプラットフォーム（%1）ではネイティブウィンドウの OpenGL コンテキストを作れません</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="602"/>
+        <location filename="../ui/vtk_view.cpp" line="633"/>
         <source>the display&apos;s OpenGL (%1) has no stereo buffers; quad-buffer stereo needs a stereo-capable GPU, driver and display</source>
         <translation>このディスプレイの OpenGL（%1）にはステレオバッファがありません。クアッドバッファ立体視にはステレオ対応の GPU、ドライバ、ディスプレイが必要です</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="821"/>
+        <location filename="../ui/vtk_view.cpp" line="847"/>
         <source>Quad-buffer stereo is not available: %1. Showing anaglyph (red/cyan glasses) instead; side-by-side and interlaced are also available.</source>
         <translation>クアッドバッファ立体視は使えません: %1。代わりにアナグリフ（赤青メガネ）で表示します。サイドバイサイドとインターレースも使えます。</translation>
     </message>
     <message>
-        <location filename="../ui/vtk_view.cpp" line="823"/>
+        <location filename="../ui/vtk_view.cpp" line="849"/>
         <source>the view is not initialised yet</source>
         <translation>ビューがまだ初期化されていません</translation>
     </message>

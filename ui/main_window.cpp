@@ -94,6 +94,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
   // scenario defaults.
   sim_panel_->tolerance->setValue(scenario_.params.solver.cg_tolerance);
   sim_panel_->iterations->setValue(scenario_.params.solver.cg_max_iterations);
+  sim_panel_->force_error->setValue(100 * scenario_.params.solver.force_error);
   device_panel_ = new DevicePanel(ws_->device_config().hand.capabilities.max_force);
   if (!ws_->simulated_device()) {
     // A link (emulator or robot): fixed at start (--device); the mouse needs the simulated device.
@@ -147,6 +148,7 @@ MainWindow::MainWindow(std::unique_ptr<app::live::Workstation> ws, QWidget* pare
     sim::SimParams p = scenario_.params;
     p.solver.cg_tolerance = sim_panel_->tolerance->value();
     p.solver.cg_max_iterations = sim_panel_->iterations->value();
+    p.solver.force_error = sim_panel_->force_error->value() / 100;
     scenario_.params = p;
     ws_->set_params(p);
   });

@@ -311,6 +311,13 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   iterations = new QSpinBox;
   iterations->setRange(5, 2000);
   iterations->setValue(defaults.cg_max_iterations);
+  // Percent of the converged finger force; at 0 the CG tolerance above stays fixed.
+  force_error = new QDoubleSpinBox;
+  force_error->setDecimals(2);
+  force_error->setRange(0, 50);
+  force_error->setSingleStep(0.5);
+  force_error->setSuffix(QStringLiteral(" %"));
+  force_error->setValue(100 * defaults.force_error);
   apply = new QPushButton;
   step_ms = new QLabel;
   cg = new QLabel;
@@ -323,6 +330,7 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   form_->addRow(QStringLiteral("-"), backend);
   form_->addRow(QStringLiteral("-"), tolerance);
   form_->addRow(QStringLiteral("-"), iterations);
+  form_->addRow(QStringLiteral("-"), force_error);
   form_->addRow(apply);
   form_->addRow(QStringLiteral("-"), state);
   form_->addRow(QStringLiteral("-"), safety);
@@ -337,6 +345,11 @@ void SimulationPanel::retranslate() {
   set_label(form_, backend, tr("Backend"));
   set_label(form_, tolerance, tr("CG tolerance"));
   set_label(form_, iterations, tr("CG max. iterations"));
+  set_label(form_, force_error, tr("Force error held"));
+  force_error->setSpecialValueText(tr("off: fixed CG tolerance"));
+  force_error->setToolTip(tr("The finger-force error the solver holds, in percent of the converged force: it picks "
+                             "the loosest CG tolerance that keeps it, starting from the one above, and checks it "
+                             "against a converged step every so often. Off: the CG tolerance stays as set."));
   set_label(form_, state, tr("State"));
   set_label(form_, safety, tr("Safety"));
   set_label(form_, step_ms, tr("Step time"));

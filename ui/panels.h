@@ -97,6 +97,7 @@ class SimulationPanel : public QWidget {
   QComboBox* backend = nullptr;
   QDoubleSpinBox* tolerance = nullptr;
   QSpinBox* iterations = nullptr;
+  QDoubleSpinBox* force_error = nullptr;  // percent; 0: the tolerance fixed
   QPushButton* apply = nullptr;
   QLabel *step_ms = nullptr, *cg = nullptr, *step_rate = nullptr, *haptic_rate = nullptr, *state = nullptr;
   QLabel* safety = nullptr;  // fallbacks / divergence resets and the newest reason

@@ -286,6 +286,29 @@ class TstUiMainWindow : public QObject {
     QVERIFY(w_->menuBar()->actions().size() >= 5);
   }
 
+  // The Simulation panel shows the force error the default patient holds (1 % of the
+  // converged force) and Apply sends what it is set to: 0 for a fixed CG tolerance.
+  void simulation_panel_force_error() {
+    auto* sim_panel = w_->findChild<ui::SimulationPanel*>();
+    QVERIFY(sim_panel);
+    QCOMPARE(sim_panel->force_error->value(), 100 * palpation::sim::kDefaultForceError);
+    auto sent = std::make_shared<std::vector<double>>();
+    w_->workstation().add_command_listener([sent](const app::live::CommandRecord& r) {
+      if (r.kind == app::live::CommandKind::Params) sent->push_back(r.params.solver.force_error);
+    });
+    sim_panel->force_error->setValue(0);
+    QVERIFY(sim_panel->force_error->text().contains(QStringLiteral("fixed")));
+    sim_panel->apply->click();
+    QVERIFY(!sent->empty());
+    QCOMPARE(sent->back(), 0.0);
+    sim_panel->force_error->setValue(2.5);
+    sim_panel->apply->click();
+    QCOMPARE(sent->back(), 0.025);
+    sim_panel->force_error->setValue(100 * palpation::sim::kDefaultForceError);
+    sim_panel->apply->click();
+    QVERIFY(synced());
+  }
+
   void add_tumour_and_undo() {
     auto& ws = w_->workstation();
     ui::TumourEditor* ed = w_->editor();
