@@ -54,7 +54,7 @@ class TestStress : public QObject {
   void matrixSubset_data() {
     QTest::addColumn<QString>("name");
     for (const char* n : {"dt-50ms", "contrast-30x", "contrast-1000x", "poisson-0.499", "jump-through", "squeeze-5",
-                          "inverted-order", "sliver-2%", "sliver-0.1%"})
+                          "inverted-order", "sliver-2%", "sliver-0.1%", "held-1%-coarse"})
       QTest::newRow(n) << QString(n);
   }
   void matrixSubset() {

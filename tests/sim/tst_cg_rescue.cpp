@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "backend.h"
+#include "box_scenario.h"
 #include "scenario.h"
 #include "simulation.h"
 
@@ -25,23 +26,14 @@ constexpr double kR = 0.008;
 // A 6 x 6 x 3 cm box of 6 mm cells, a 9 mm sphere 1000x stiffer 6 mm under the top, dt
 // 10 ms (the real-time loop's largest): the stress matrix's contrast case.
 Scenario stiff_inclusion(const std::string& backend) {
-  Scenario s;
-  s.source = "tst_cg_rescue";
-  s.patient.phantom = "box";
-  s.patient.resolution.clear();
-  s.patient.edge = 0.006;
-  s.patient.size = Eigen::Vector3d(0.06, 0.06, kTop);
-  s.young_modulus = 19000;
-  s.poisson_ratio = 0.45;
+  Scenario s = box_scenario("tst_cg_rescue", Eigen::Vector3d(0.06, 0.06, kTop), 0.006, backend);
   Inclusion inc;
   inc.center = Eigen::Vector3d(0, 0, kTop - 0.006 - 0.009);
   inc.radii = Eigen::Vector3d::Constant(0.009);
   inc.young_modulus = 1000 * s.young_modulus;
   inc.poisson_ratio = 0.45;
   s.inclusions = {inc};
-  s.backend = backend;
   s.params.solver.dt = 0.01;
-  s.params.solver.threads = 1;
   return s;
 }
 

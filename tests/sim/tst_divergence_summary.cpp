@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "backend.h"
+#include "box_scenario.h"
 #include "scenario.h"
 #include "simulation.h"
 
@@ -22,16 +23,7 @@ constexpr double kTop = 0.02;
 constexpr double kR = 0.008;
 
 Scenario box(const std::string& backend) {
-  Scenario s;
-  s.source = "tst_divergence_summary";
-  s.patient.phantom = "box";
-  s.patient.resolution.clear();
-  s.patient.edge = 0.005;
-  s.patient.size = Eigen::Vector3d(0.04, 0.04, kTop);
-  s.young_modulus = 19000;
-  s.poisson_ratio = 0.45;
-  s.backend = backend;
-  s.params.solver.threads = 1;
+  Scenario s = box_scenario("tst_divergence_summary", Eigen::Vector3d(0.04, 0.04, kTop), 0.005, backend);
   s.params.solver.cg_tolerance = 1e-8;
   s.params.solver.cg_max_iterations = 2000;
   return s;

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "backend.h"
+#include "box_scenario.h"
+#include "relative_error.h"
 #include "error_control.h"
 #include "scenario.h"
 #include "simulation.h"
@@ -23,19 +25,10 @@ constexpr double kR = 0.008;
 
 // A 6 x 6 x 3 cm box of 6 mm cells at Poisson's ratio 0.45 (the nodal-pressure element).
 Scenario box(const std::string& backend) {
-  Scenario s;
-  s.source = "tst_error_control";
-  s.patient.phantom = "box";
-  s.patient.resolution.clear();
-  s.patient.edge = 0.006;
-  s.patient.size = Eigen::Vector3d(0.06, 0.06, kTop);
-  s.young_modulus = 19000;
-  s.poisson_ratio = 0.45;
-  s.backend = backend;
+  Scenario s = box_scenario("tst_error_control", Eigen::Vector3d(0.06, 0.06, kTop), 0.006, backend);
   // 5 ms: at 1 ms the extrapolated warm start alone meets 1e-3 on this small box, and
   // every tolerance gives the same forces.
   s.params.solver.dt = 0.005;
-  s.params.solver.threads = 1;
   return s;
 }
 
@@ -74,16 +67,6 @@ Press press(const Scenario& s, const Model& m, int steps) {
   }
   r.control = sim.error_control();
   return r;
-}
-
-// Relative L2 norm of the force series against the reference's (the bench's force error).
-double series_error(const std::vector<double>& a, const std::vector<double>& ref) {
-  double num = 0, den = 0;
-  for (std::size_t i = 0; i < a.size() && i < ref.size(); ++i) {
-    num += (a[i] - ref[i]) * (a[i] - ref[i]);
-    den += ref[i] * ref[i];
-  }
-  return std::sqrt(num / den);
 }
 
 bool backend_usable(const std::string& b) {
@@ -248,7 +231,7 @@ class TestErrorControl : public QObject {
     held.params.solver.force_error = 0.01;
     const Press controlled = press(held, m, kSteps);
 
-    const double err = series_error(controlled.force, converged.force);
+    const double err = relative_error(controlled.force, converged.force);
     qInfo("%s: controlled force error %.2e (target 1e-2), tolerance 1e-6 -> %.2e, %d checks (%d over), worst check %.2e; "
           "iterations %ld against %ld fixed at 1e-6",
           qPrintable(backend), err, controlled.control.tolerance, controlled.control.checks, controlled.control.over_target,
@@ -271,7 +254,7 @@ class TestErrorControl : public QObject {
     Scenario strict = loosest;
     strict.params.solver.force_error = loose.control.worst_error / 10;
     const Press tightened = press(strict, m, kSteps);
-    const double loose_err = series_error(loose.force, converged.force), strict_err = series_error(tightened.force, converged.force);
+    const double loose_err = relative_error(loose.force, converged.force), strict_err = relative_error(tightened.force, converged.force);
     qInfo("%s: at CG 0.1 worst check %.2e, force error %.2e; target %.2e: tolerance -> %.2e, %d over, force error %.2e",
           qPrintable(backend), loose.control.worst_error, loose_err, strict.params.solver.force_error,
           tightened.control.tolerance, tightened.control.over_target, strict_err);

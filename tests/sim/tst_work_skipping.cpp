@@ -12,6 +12,7 @@
 #include <string>
 
 #include "backend.h"
+#include "box_scenario.h"
 #include "backend_cpu.h"
 #include "phantom.h"
 #include "scenario.h"
@@ -26,15 +27,7 @@ constexpr double kTop = 0.02;
 constexpr double kR = 0.008;
 
 Scenario box(double edge = 0.005) {
-  Scenario s;
-  s.source = "tst_work_skipping";
-  s.patient.phantom = "box";
-  s.patient.resolution.clear();
-  s.patient.edge = edge;
-  s.patient.size = Eigen::Vector3d(0.04, 0.04, kTop);
-  s.young_modulus = 19000;
-  s.poisson_ratio = 0.45;
-  s.params.solver.threads = 1;
+  Scenario s = box_scenario("tst_work_skipping", Eigen::Vector3d(0.04, 0.04, kTop), edge);
   s.params.solver.cg_tolerance = 1e-10;  // the solver's own error out of the comparisons
   s.params.solver.cg_max_iterations = 2000;
   return s;
