@@ -35,11 +35,12 @@ class Backend {
   /// Changes solver/contact/damping parameters between steps.
   virtual void set_params(const SimParams& p) = 0;
   virtual const SimParams& params() const = 0;
-  /// Keeps aside what a step changes (positions, velocities, rotations, the warm start,
-  /// the force filters, the rest flag), so that rollback() can take the same step again
+  /// Keeps aside what a step changes (positions, velocities, the warm start, the force
+  /// filters, the rest flag; rotations where a take would change them), so that
+  /// rollback() can take the same step again
   /// (the converged check of error_control.h). False: this backend cannot.
   virtual bool checkpoint() { return false; }
-  /// Back to the state of the last checkpoint().
+  /// Back to the state of the last checkpoint() (none since the last reset: nothing).
   virtual void rollback() {}
 };
 

@@ -135,10 +135,15 @@ class CpuBackend final : public Backend {
   }
   const CpuWorkCounters& counters() const { return counters_; }
 
-  // The element caches (F, the rotations q_, K blocks) need no copy: they are formed from
-  // the start-of-step positions, and a step taken again from the same positions finds
-  // them as its first take left them, which is what it would have made of them itself.
+  // The element caches (F, the rotations q_, K blocks) need no copy while elements are
+  // kept (corotation_tolerance > 0): they are formed from the start-of-step positions, and
+  // a step taken again from the same positions finds them as its first take left them,
+  // which is what it would have made of them itself. At tolerance 0 every element is
+  // extracted again each take, warm-started from q_, so q_ is kept too.
   bool checkpoint() override {
+    kept_.valid = true;
+    kept_.q.clear();
+    if (p_.solver.corotation_tolerance == 0) kept_.q = q_;
     kept_.x = x_;
     kept_.v = v_;
     kept_.dv = dv_;
@@ -149,6 +154,8 @@ class CpuBackend final : public Backend {
     return true;
   }
   void rollback() override {
+    if (!kept_.valid) return;
+    if (kept_.q.size() == q_.size()) q_ = kept_.q;
     x_ = kept_.x;
     v_ = kept_.v;
     dv_ = kept_.dv;
@@ -236,6 +243,7 @@ class CpuBackend final : public Backend {
     dvprev_.clear();
     last_converged_ = false;
     multigrid_stale_ = true;
+    kept_.valid = false;
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
@@ -393,8 +401,10 @@ class CpuBackend final : public Backend {
       multigrid_reference_tolerance_ = p_.solver.cg_tolerance;
     } else if (p_.solver.cg_tolerance == multigrid_reference_tolerance_ &&
                iterations > 2 * multigrid_reference_iterations_ + 10) {
-      // Only against solves to the same tolerance: the error controller's check solves a
-      // hundred times tighter, and its tolerance moves.
+      // Only against solves to the tolerance of the first one: the error controller's
+      // check solves a hundred times tighter, and its tolerance moves. Once the controller
+      // has moved it, this rule waits for the next build (a solve beyond the rescue
+      // tolerance still marks the levels stale).
       multigrid_stale_ = true;
     }
   }
@@ -854,8 +864,9 @@ class CpuBackend final : public Backend {
   CpuWorkCounters counters_;
   struct Kept {
     std::vector<T> x, v, dv, dvprev;
+    std::vector<Eigen::Quaternion<T>> q;
     std::vector<Eigen::Vector3d> filtered;
-    bool rested = true, last_converged = false;
+    bool rested = true, last_converged = false, valid = false;
   } kept_;                                   // checkpoint()
   int threads_ = 1;                          // trash slots (OpenMP threads)
   unsigned cores_ = std::thread::hardware_concurrency();

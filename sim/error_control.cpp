@@ -5,18 +5,18 @@
 
 namespace palpation::sim {
 
-double finger_force_error(std::span<const FingerOutput> loose, std::span<const FingerOutput> reference) {
+std::optional<double> finger_force_error(std::span<const FingerOutput> loose, std::span<const FingerOutput> reference) {
   double diff = 0, scale = 0;
   bool contact = false;
   const std::size_t n = std::min(loose.size(), reference.size());
   for (std::size_t f = 0; f < n; ++f) {
     contact = contact || loose[f].contacts > 0 || reference[f].contacts > 0;
     const double d = (loose[f].force_raw - reference[f].force_raw).norm(), r = reference[f].force_raw.norm();
-    if (!std::isfinite(d) || !std::isfinite(r)) return INFINITY;
+    if (!std::isfinite(d) || !std::isfinite(r)) return double(INFINITY);
     diff = std::max(diff, d);
     scale = std::max(scale, r);
   }
-  if (!contact) return 0;
+  if (!contact) return std::nullopt;
   return diff / std::max(scale, kForceErrorFloor);
 }
 

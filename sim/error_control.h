@@ -28,6 +28,7 @@
 // reference run (docs/simulation.md, "Error-controlled tolerance").
 #pragma once
 
+#include <optional>
 #include <span>
 
 #include "params.h"
@@ -39,9 +40,9 @@ namespace palpation::sim {
 inline constexpr double kForceErrorFloor = 0.05;
 
 /// The finger-force error of `loose` against `reference`: the largest difference of a
-/// finger's raw force, over the largest reference force (at least kForceErrorFloor).
-/// 0 when neither has a finger in contact.
-double finger_force_error(std::span<const FingerOutput> loose, std::span<const FingerOutput> reference);
+/// finger's raw force, over the largest reference force (at least kForceErrorFloor);
+/// infinite where a force is not finite. None when neither has a finger in contact.
+std::optional<double> finger_force_error(std::span<const FingerOutput> loose, std::span<const FingerOutput> reference);
 
 /// What the controller has done (reports, the bench, tests).
 struct ErrorControlStats {
@@ -63,8 +64,9 @@ class ToleranceController {
   static constexpr double kCheckShare = 0.05;   // a check's error is held to this share of the target
 
   ToleranceController() = default;
-  /// Starts holding `target` (0: off) from `tolerance`, for this precision (float CG
-  /// cannot reach below about 1e-6: its tightest loose tolerance is 1e-3, double 1e-7).
+  /// Starts holding `target` (0: off) from `tolerance`, for this precision (the reference
+  /// solve is 100x tighter, and float CG reaches about 1e-5 at best: its tightest loose
+  /// tolerance is 1e-3, double's 1e-7).
   void start(double target, double tolerance, Precision precision);
   bool on() const { return stats_.target > 0; }
   double target() const { return stats_.target; }
@@ -74,11 +76,20 @@ class ToleranceController {
   double min_tolerance() const { return min_tol_; }
   /// Whether this step, which follows a step in contact, should be a converged check.
   bool check_due() const { return on() && since_check_ >= interval_; }
-  /// A step was taken in contact (checked or not).
-  void count_contact_step() {
-    ++since_check_;
+  /// A step was taken in contact (checked or not); `began`: the first of a new touch,
+  /// which is checked at its next step (a press onto stiffer tissue may need more).
+  void count_contact_step(bool began) {
     ++stats_.contact_steps;
+    if (began) {
+      interval_ = kMinInterval;
+      since_check_ = kMinInterval;
+    } else {
+      ++since_check_;
+    }
   }
+  /// A check that measured nothing (its reference solve did not converge, or no finger
+  /// touched): the tolerance stays, the next check comes after the usual interval.
+  void deferred() { since_check_ = 0; }
   /// The outcome of a check: the loose solve's force error. Moves the tolerance.
   void checked(double error);
   int interval() const { return interval_; }
@@ -88,7 +99,7 @@ class ToleranceController {
   ErrorControlStats stats_;
   double min_tol_ = 1e-7;
   int interval_ = kMinInterval;
-  int since_check_ = kMinInterval;  // the first step in contact is checked
+  int since_check_ = kMinInterval;  // the step after the first in contact is checked
   double ceiling_ = 2 * kMaxTolerance;  // the tightest tolerance that failed a check: loosened to half of it at most
 };
 

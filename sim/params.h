@@ -44,9 +44,9 @@ struct SolverParams {
   Preconditioner preconditioner = Preconditioner::BlockJacobi;
   // > 0: the finger-force error to hold (a fraction of the converged force); the CG
   // tolerance is then chosen and adapted by Simulation (error_control.h), cg_tolerance its
-  // start. 0: cg_tolerance as given, fixed. Scenarios that name no cg_tolerance, the
-  // workstation and sessions hold kDefaultForceError; code that builds SimParams gets a
-  // fixed tolerance unless it asks.
+  // start. 0: cg_tolerance as given, fixed. Scenario files that name no cg_tolerance and
+  // the workstation's patients hold kDefaultForceError; scenarios built in code (the
+  // built-in ones included) get a fixed tolerance unless they ask (--force-error).
   double force_error = 0;
 };
 

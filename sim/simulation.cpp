@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <cstdio>
 #include <stdexcept>
 
@@ -140,6 +141,8 @@ Simulation::Outcome Simulation::advance(std::span<const FingerInput> in, std::sp
   if (!r.ok) {
     r.stats.finite = false;
     for (auto& o : out) o = FingerOutput{};
+    // A tolerance the body blew up at is too loose, whatever the checks said.
+    if (control_.on()) control_.checked(INFINITY);
   }
   return r;
 }
@@ -149,45 +152,66 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
   // Parameters set from outside (the workstation's panel, a new scenario) restart the
   // controller from their tolerance; the tolerance it set itself is its own.
   if (p.solver.force_error != control_.target() || (control_.on() && p.solver.cg_tolerance != control_set_tol_)) {
-    control_.start(p.solver.force_error, p.solver.cg_tolerance, p.solver.precision);
+    control_.start(p.solver.force_error, p.solver.cg_tolerance, backend_->precision());
     control_set_tol_ = -1;
     rescue_base_ = p.solver.cg_rescue_tolerance;
+    cap_base_ = p.solver.cg_max_iterations;
   }
   if (!control_.on()) return backend_->step(in, out);
   // A capped solve is still rescued (SolverParams::cg_rescue_tolerance), but to no
   // tighter than the tolerance the controller chose: a rescue to 1e-3 would make every
-  // looser tolerance 1e-3.
-  auto set_tolerance = [&](double tol) {
-    const double rescue = std::max(rescue_base_, tol);
-    if (p.solver.cg_tolerance == tol && p.solver.cg_rescue_tolerance == rescue) return;
+  // looser tolerance 1e-3. The check's reference solve is rescued to its own tolerance
+  // (and may go to cg_rescue_iterations): a reference stopped at the cap would read low.
+  auto set_tolerance = [&](double tol, bool reference) {
+    const double rescue = reference ? tol : std::max(rescue_base_, tol);
+    const int cap = reference ? std::max(cap_base_, p.solver.cg_rescue_iterations) : cap_base_;
+    if (p.solver.cg_tolerance == tol && p.solver.cg_rescue_tolerance == rescue && p.solver.cg_max_iterations == cap) return;
     p.solver.cg_tolerance = tol;
     p.solver.cg_rescue_tolerance = rescue;
+    p.solver.cg_max_iterations = cap;
     backend_->set_params(p);
   };
-  set_tolerance(control_.tolerance());
+  set_tolerance(control_.tolerance(), false);
   control_set_tol_ = control_.tolerance();
   // A check needs a step in contact to compare: it follows one (a skipped step at rest
   // costs nothing, and no checkpoint is taken then).
   if (!(last_contact_ && control_.check_due() && backend_->checkpoint())) {
     const StepStats st = backend_->step(in, out);
+    const bool began = st.contacts > 0 && !last_contact_;
     last_contact_ = st.contacts > 0;
-    if (last_contact_) control_.count_contact_step();
+    if (last_contact_) control_.count_contact_step(began);
     return st;
   }
   loose_.resize(out.size());
   const StepStats loose = backend_->step(in, loose_);
   last_contact_ = loose.contacts > 0;
-  if (!last_contact_ || !loose.finite) {
-    // Nothing to compare (the finger has left), or a step the guard must see as it is.
+  if (!last_contact_) {
+    // Nothing to compare: the finger has left.
     std::copy(loose_.begin(), loose_.end(), out.begin());
     return loose;
   }
-  control_.count_contact_step();
+  control_.count_contact_step(false);
   backend_->rollback();
-  set_tolerance(control_.reference_tolerance());
-  StepStats st = backend_->step(in, out);
-  control_.checked(finger_force_error(loose_, out));
-  set_tolerance(control_.tolerance());
+  StepStats st;
+  try {
+    set_tolerance(control_.reference_tolerance(), true);
+    st = backend_->step(in, out);
+  } catch (...) {
+    // The backend failed (a CUDA error): whatever replaces it takes the controller's
+    // tolerance, not the reference's.
+    set_tolerance(control_.tolerance(), false);
+    throw;
+  }
+  // A loose step that blew up is an infinite error; a reference that did not reach its
+  // tolerance measures nothing (the check is not scored); forces on neither side (the
+  // finger left during the step) neither.
+  const std::optional<double> e = loose.finite ? finger_force_error(loose_, out) : std::optional<double>(INFINITY);
+  const bool reference_met = st.finite && st.cg_residual <= 1.0001 * control_.reference_tolerance();
+  if (e && (reference_met || !loose.finite))
+    control_.checked(*e);
+  else
+    control_.deferred();
+  set_tolerance(control_.tolerance(), false);
   control_set_tol_ = control_.tolerance();
   st.cg_iterations += loose.cg_iterations;  // the work of the step, both solves
   return st;

@@ -150,7 +150,8 @@ class Simulation {
   int readbacks_ = 0;                    // steps whose guard read the state back
   ToleranceController control_;
   double control_set_tol_ = -1;          // the tolerance the controller last gave the backend
-  double rescue_base_ = 1e-3;            // the rescue tolerance of the parameters it started from
+  double rescue_base_ = 1e-3;            // the rescue tolerance and the cap of the parameters it started from
+  int cap_base_ = 200;
   bool last_contact_ = false;            // the last step touched: a check may follow
   std::vector<FingerOutput> loose_;      // the check's loose outputs
   LogFn log_;

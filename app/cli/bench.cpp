@@ -160,7 +160,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             std::snprintf(tol, sizeof tol, "%.0e", set.tolerance);
           std::printf("%-7s %-9s %-6s %8s %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
                       backend.c_str(), prec.c_str(), tol, set.max_iterations, med, p99, percentile(its, 50), itmax, ferr, derr,
-                      floor_ms, x_floor, tr.finite ? "" : "  NOT FINITE");
+                      floor_ms, x_floor, tr.finite ? (tr.fallbacks ? "  FELL BACK TO THE CPU" : "") : "  NOT FINITE");
           if (set.force_error > 0)
             std::printf("        error controller: CG tolerance %.2e at the end, %d checks (%d over target), worst check %.2e, "
                         "last %.2e; %d divergence resets\n",
@@ -181,6 +181,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"controller_checks", tr.control.checks},
                                       {"controller_worst_check_error", tr.control.worst_error},
                                       {"divergence_resets", tr.divergences},
+                                      {"backend_fallbacks", tr.fallbacks},
                                       {"step_ms_median", med},
                                       {"step_ms_p99", p99},
                                       {"cg_iterations_median", percentile(its, 50)},
@@ -223,7 +224,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     {
       std::ofstream csv(out.path("bench.csv"));
       csv << "mesh,nodes,tetrahedra,backend,device,precision,cg_tolerance,cg_max_iterations,step_ms_median,step_ms_p99,"
-             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit,floor_ms,x_floor,element,preconditioner\n";
+             "cg_iterations_median,cg_iterations_max,force_error,displacement_error,finite,date,commit,floor_ms,x_floor,element,preconditioner,"
+             "force_error_target\n";
       for (const auto& p : report["points"])
         csv << p["mesh"].get<std::string>() << ',' << p["nodes"] << ',' << p["tetrahedra"] << ',' << p["backend"].get<std::string>()
             << ",\"" << p["device"].get<std::string>() << "\"," << p["precision"].get<std::string>() << ',' << p["cg_tolerance"]
@@ -231,7 +233,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             << p["cg_iterations_median"] << ',' << p["cg_iterations_max"] << ',' << p["force_error"] << ','
             << p["displacement_error"] << ',' << (p["finite"].get<bool>() ? "true" : "false") << ',' << report["date"].get<std::string>()
             << ',' << PALPATION_GIT_COMMIT << ',' << p["floor_ms"] << ',' << p["x_floor"] << ','
-            << report["element"].get<std::string>() << ',' << report["preconditioner"].get<std::string>() << '\n';
+            << report["element"].get<std::string>() << ',' << report["preconditioner"].get<std::string>() << ','
+            << p["force_error_target"] << '\n';
     }
     if (can_plot()) {
       PlotSpec plot;

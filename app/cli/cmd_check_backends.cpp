@@ -200,6 +200,9 @@ int run_check(const CheckOptions& o) {
         std::string error;
         try {
           g = run_trace(sg, model, r.backend, o.steps);
+          // The run goes through Simulation, which survives a backend error on the CPU:
+          // that is not the backend under test agreeing.
+          if (g.fallbacks > 0) error = r.backend + " failed and the run went on on the cpu";
         } catch (const std::exception& e) {
           error = e.what();
         }

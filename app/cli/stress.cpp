@@ -358,11 +358,10 @@ StressResult run_stress_case(const StressCase& c, const std::string& backend, co
   std::vector<double> xyz, vel;
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < nsteps; ++k) {
-    // Under the error controller a step's tolerance is the one it held then (it moves at
-    // a check, which may tighten it for the step after).
-    const double held = sim.error_control().target > 0 ? sim.error_control().tolerance : 0;
+    // Under the error controller a step's tolerance is the one it held when the step
+    // began (a check moves it for the steps after; before the first step, the scenario's).
+    const double step_tol = std::max(tol, sim.error_control().target > 0 ? sim.error_control().tolerance : 0.0);
     const sim::StepStats st = sim.step();
-    const double step_tol = std::max({tol, held, sim.error_control().target > 0 ? sim.error_control().tolerance : 0});
     ++r.steps;
     const auto& chk = sim.last_check();
     if (!chk.diverged) {

@@ -46,6 +46,7 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
   }
   tr.control = sim.error_control();
   tr.divergences = sim.divergences();
+  tr.fallbacks = sim.fallbacks();
   return tr;
 }
 

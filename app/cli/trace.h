@@ -20,6 +20,7 @@ struct Trace {
   bool finite = true;
   sim::ErrorControlStats control;          // the error controller at the end (solver.force_error > 0)
   int divergences = 0;                     // steps the guard put back at rest
+  int fallbacks = 0;                       // the backend failed and the run went on on the CPU
 };
 
 /// The steps whose positions a trace keeps: N/4, N/2, 3N/4, N.

@@ -325,6 +325,7 @@ class CudaBackend final : public Backend {
     dv_.zero(stream_);
     dv_prev_.zero(stream_);
     last_converged_ = false;
+    has_kept_ = false;
     p0_.zero(stream_);
     p1_.zero(stream_);
     std::vector<T> q(4 * std::size_t(ne_), T(0));
@@ -344,6 +345,7 @@ class CudaBackend final : public Backend {
 
   // Device-to-device copies in stream order: the next step's kernels follow them.
   bool checkpoint() override {
+    has_kept_ = true;
     kept_x_.copy_from(x_, stream_);
     kept_v_.copy_from(v_, stream_);
     kept_quat_.copy_from(quat_, stream_);
@@ -355,6 +357,7 @@ class CudaBackend final : public Backend {
     return true;
   }
   void rollback() override {
+    if (!has_kept_) return;
     x_.copy_from(kept_x_, stream_);
     v_.copy_from(kept_v_, stream_);
     quat_.copy_from(kept_quat_, stream_);
@@ -679,7 +682,7 @@ class CudaBackend final : public Backend {
   bool last_converged_ = false;  // the last solve reached the tolerance: extrapolate the warm start
   DeviceArray<T> kept_x_, kept_v_, kept_quat_, kept_dv_, kept_dv_prev_;  // checkpoint()
   std::vector<Eigen::Vector3d> kept_filtered_;
-  bool kept_rested_ = true, kept_last_converged_ = false;
+  bool kept_rested_ = true, kept_last_converged_ = false, has_kept_ = false;
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
   DevResult* host_res_ = nullptr;  // mapped pinned memory
