@@ -24,9 +24,12 @@ std::vector<std::string> available_backends() {
   if (cuda_available()) {
     out.push_back("cuda");
     out.push_back("cuda-csr");
+    out.push_back("cuda-bsr");
   }
   return out;
 }
+
+bool is_library_baseline(const std::string& name) { return name == "cuda-csr" || name == "cuda-bsr"; }
 
 namespace {
 
@@ -45,10 +48,10 @@ std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model
   if (name == "cpu") return make_cpu_backend(model, params);
 #ifdef PALPATION_HAVE_CUDA
   std::string why;
-  if (name == "cuda" || name == "cuda-csr") {
+  if (name == "cuda" || is_library_baseline(name)) {
     if (const std::string no = gpu_refusal(params); !no.empty()) throw std::runtime_error("backend " + name + ": " + no);
     if (!cuda_available(&why)) throw std::runtime_error("backend " + name + ": " + why);
-    return name == "cuda" ? make_cuda_backend(model, params) : make_cuda_csr_backend(model, params);
+    return name == "cuda" ? make_cuda_backend(model, params) : make_cuda_baseline_backend(name, model, params);
   }
 #endif
   throw std::runtime_error("backend \"" + name + "\" is not available in this build");

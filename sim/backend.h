@@ -55,9 +55,13 @@ std::unique_ptr<Backend> make_backend(BackendKind kind, const Model& model, cons
 bool cuda_available(std::string* why_not = nullptr);
 
 /// Every backend this build and machine can run, by name: "cpu"; with a GPU also "cuda"
-/// (the fast one) and "cuda-csr" (the textbook baseline: assembled CSR, cuSPARSE SpMV,
-/// cuBLAS dot/axpy, the host driving each CG iteration).
+/// (the fast one), "cuda-csr" (the textbook baseline: assembled CSR, cuSPARSE SpMV,
+/// cuBLAS dot/axpy, the host driving each CG iteration) and "cuda-bsr" (the good first
+/// port: BSR SpMV, the CG scalars on the GPU, the iterations replayed from a CUDA graph).
 std::vector<std::string> available_backends();
+/// True for the GPU backends that exist to be measured against ("cuda-csr", "cuda-bsr"):
+/// ports of the same step onto cuSPARSE and cuBLAS, with the linear element only.
+bool is_library_baseline(const std::string& name);
 /// Makes a backend by name. Throws std::runtime_error for an unknown/unavailable one.
 std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params);
 

@@ -1,5 +1,5 @@
 // The CUDA backends. Declared here, implemented in sim/cuda/ (one file per stage:
-// backend_cuda.cu composes them, baseline.cu is "cuda-csr", floor_bench.cu the floor);
+// backend_cuda.cu composes them, baseline.cu the library baselines, floor_bench.cu the floor);
 // only backend.cpp includes this header, and only in builds with PALPATION_HAVE_CUDA.
 //
 // "cuda"     : the fast backend. Every per-step computation on the GPU: contact
@@ -12,6 +12,9 @@
 // "cuda-csr" : the textbook baseline of the benchmark: the same assembled matrix seen as
 //              a scalar CSR matrix, cuSPARSE SpMV, cuBLAS dot/axpy, the host driving each
 //              CG iteration (a synchronising dot product per reduction).
+// "cuda-bsr" : the good first port: 3x3-block (BSR) SpMV, the dot products and CG scalars
+//              kept on the GPU (cuBLAS device pointer mode), the iterations replayed from a
+//              CUDA graph in chunks of four, one read-back per chunk (baseline.cuh).
 #pragma once
 
 #include <memory>
@@ -29,9 +32,11 @@ bool cuda_probe(std::string* why_not = nullptr);
 /// Throws std::runtime_error when the device cannot be used.
 std::unique_ptr<Backend> make_cuda_backend(const Model& model, const SimParams& params);
 
-/// Makes the textbook baseline (cuSPARSE + cuBLAS, host-driven CG). Throws
-/// std::runtime_error when this build has no cuSPARSE/cuBLAS.
-std::unique_ptr<Backend> make_cuda_csr_backend(const Model& model, const SimParams& params);
+/// Makes the library baseline `name` ("cuda-csr" or "cuda-bsr") in the precision of
+/// params.solver.precision. Throws std::runtime_error when this build has no
+/// cuSPARSE/cuBLAS.
+std::unique_ptr<Backend> make_cuda_baseline_backend(const std::string& name, const Model& model,
+                                                    const SimParams& params);
 
 /// Measures the floor of one CG iteration of the fast backend on this model: the bytes
 /// its iteration must move, the grid-wide barriers it needs, and the bandwidth and

@@ -52,6 +52,10 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     settings = {{3e-2, 1000}, {1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20},
                 {1e-3, 200, sim::kDefaultForceError}};
   }
+  if (!opt.tolerances.empty()) {
+    settings.clear();
+    for (double t : opt.tolerances) settings.push_back({t, 1000});
+  }
   if (opt.force_error > 0) settings = {{1e-3, 200, opt.force_error}};
   const auto avail = sim::available_backends();
   if (opt.backends.empty()) opt.backends = avail;

@@ -12,13 +12,13 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_flag("--quick", o->quick, "Small CPU subset (CI)");
   sub->add_option("--out", o->out, "Folder for bench.json, bench.csv, bench.png");
   sub->add_option("--meshes", o->meshes, "Mesh levels (coarse, paper, fine, xfine)")->delimiter(',');
-  sub->add_option("--backends", o->backends, "Backends (cpu, cuda, cuda-csr)")->delimiter(',');
+  sub->add_option("--backends", o->backends, "Backends (cpu, cuda, cuda-csr, cuda-bsr)")->delimiter(',');
   sub->add_option("--precisions", o->precisions, "double, float")->delimiter(',');
   sub->add_option("--steps", o->steps, "Steps per point")->check(CLI::Range(20, 1000000));
   sub->add_option("--scenario", o->scenario, "Built-in scenario to step (paper-sweep, idle, hertz)");
   sub->add_option("--element", o->element,
                   "Tetrahedral element (linear, nodal-pressure; default: the scenario's, nodal-pressure at Poisson's ratio 0.45 "
-                  "and above). The cuda-csr baseline has the linear one only")
+                  "and above). The cuda-csr and cuda-bsr baselines have the linear one only")
       ->check(CLI::IsMember(sim::element_names()));
   sub->add_option("--preconditioner", o->preconditioner,
                   "CG preconditioner (block-jacobi, multigrid; default: the scenario's). Multigrid runs on the cpu backend only: "
@@ -28,6 +28,10 @@ CommandAction add_bench_command(CLI::App& app) {
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "
                   "the full sweep has one at 0.01 beside its fixed tolerances)")
       ->check(CLI::Range(1e-6, 0.5));
+  sub->add_option("--tolerances", o->tolerances,
+                  "Only these fixed CG tolerances (cap 1,000 iterations) instead of the full sweep, e.g. 1e-3,1e-6")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-12, 0.5));
   auto score = std::make_shared<bool>(false);
   sub->add_flag("--score", *score, "Instead: the time to score a 5-minute exam recording (writes DIR/score-bench.json)");
   auto review = std::make_shared<std::string>();

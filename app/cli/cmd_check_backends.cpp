@@ -1,7 +1,7 @@
 // palpation check-backends: GPU against CPU on the same scenes (agreement).
 //
 // For each scenario (default: paper-sweep and hertz) and element (default: linear and
-// nodal-pressure; the cuda-csr baseline has the linear one only) the CPU backend in double precision
+// nodal-pressure; the library baselines have the linear one only) the CPU backend in double precision
 // and each CUDA backend are stepped for N steps (default 1,000) with a tight CG tolerance
 // (default 1e-10 on both, so that the solvers' own tolerance does not dominate), and
 // compared:
@@ -182,7 +182,7 @@ int run_check(const CheckOptions& o) {
       };
       std::vector<Run> runs;
       for (const auto& b : backends)
-        if (b != "cpu" && !(nodal && b == "cuda-csr"))  // the textbook baseline has the linear element only
+        if (b != "cpu" && !(nodal && sim::is_library_baseline(b)))  // the baselines have the linear element only
           runs.push_back({b, sim::Precision::Double, o.limit});
       // Float on the GPU; "cpu" in --backends adds float on the CPU: the error that float
       // arithmetic itself brings, whichever device runs it.
@@ -265,7 +265,7 @@ CommandAction add_check_backends_command(CLI::App& app) {
   auto o = std::make_shared<CheckOptions>();
   sub->add_option("--scenarios", o->scenarios, "Built-in scenarios (paper-sweep, hertz, ...)")->delimiter(',');
   sub->add_option("--backends", o->backends,
-                  "Backends to check (cuda, cuda-csr; cpu adds float on the CPU against double); default all GPU ones")
+                  "Backends to check (cuda, cuda-csr, cuda-bsr; cpu adds float on the CPU against double); default all GPU ones")
       ->delimiter(',');
   sub->add_option("--elements", o->elements, "tissue.element values to check each scenario with (linear, nodal-pressure)")
       ->delimiter(',')

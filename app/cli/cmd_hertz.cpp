@@ -29,7 +29,7 @@ CommandAction add_hertz_command(CLI::App& app) {
     double radius = 0.01, young = 19000, depth = 0.001, cg_tolerance = 1e-8, limit = 0;
   };
   auto o = std::make_shared<Opts>();
-  sub->add_option("--backend", o->backend, "cpu, cuda or cuda-csr")->capture_default_str();
+  sub->add_option("--backend", o->backend, "cpu, cuda, cuda-csr or cuda-bsr")->capture_default_str();
   sub->add_option("--elements", o->elements, "tissue.element values: linear, nodal-pressure")
       ->delimiter(',')
       ->check(CLI::IsMember(sim::element_names()));

@@ -19,7 +19,7 @@ std::vector<int> snapshot_steps(int steps) { return {steps / 4, steps / 2, 3 * s
 Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::string& backend, int steps) {
   // The guarded step every session takes (Simulation::step: the divergence guard, the
   // error controller), on the backend named: "cpu" and "cuda" as the scenario would make
-  // them, the cuda-csr baseline put in after.
+  // them, a library baseline (cuda-csr, cuda-bsr) put in after.
   sim::Scenario sb = s;
   const bool kind = backend == "cpu" || backend == "cuda";
   sb.backend = kind ? backend : "cpu";

@@ -1,4 +1,5 @@
-// CUDA backends: "cuda" (fast) and "cuda-csr" (textbook baseline). backend_cpu.cpp is the
+// CUDA backends: "cuda" (fast), and the library baselines "cuda-csr" (textbook port) and
+// "cuda-bsr" (good first port) of baseline.cuh. backend_cpu.cpp is the
 // specification; this file composes the stages of sim/cuda/ into the same step on the GPU
 // (docs/gpu-notes.md has the design, the alternatives measured and the numbers), and
 // detects the device.
@@ -23,8 +24,8 @@
 //   The kernels write the small result (finger sums, statistics) into mapped pinned memory:
 //   no copy is queued; the host synchronises once.
 // At rest with no contact only k_detect (contact.cu) runs (GPU detection, the result read
-// the same way). "cuda-csr" shares k_element and k_assemble and replaces k_pcg by the
-// host-driven cuSPARSE/cuBLAS loop of baseline.cu, then k_detect (finish).
+// the same way). The baselines share k_element and k_assemble and replace k_pcg by their
+// cuSPARSE/cuBLAS loop (baseline.cu), then k_detect (finish).
 // The knobs for measurements (environment) are read once per backend: tuning.h.
 #include "backend_cuda.h"
 #include "nodal_pressure.h"
@@ -152,7 +153,7 @@ struct HostLayout {
   }
 };
 
-enum class Solver { Persistent, Csr };
+enum class Solver { Persistent, Csr, Bsr };
 
 /// Stage timing with events (CudaTuning::profile): printed when the backend dies.
 struct Profiler {
@@ -259,9 +260,10 @@ class CudaBackend final : public Backend {
       fused_ = tuning.fused_cg;
     } else {
 #ifdef PALPATION_HAVE_CUSPARSE
-      csr_ = cuda::make_csr_baseline<T>(m_, pcg_args(), stream_);
+      baseline_ = solver_ == Solver::Csr ? cuda::make_csr_baseline<T>(m_, pcg_args(), stream_)
+                                         : cuda::make_bsr_baseline<T>(m_, pcg_args(), stream_);
 #else
-      throw std::runtime_error("backend cuda-csr: this build has no cuSPARSE/cuBLAS");
+      throw std::runtime_error("backend " + name() + ": this build has no cuSPARSE/cuBLAS");
 #endif
     }
     prof_.init(tuning.profile);
@@ -271,12 +273,14 @@ class CudaBackend final : public Backend {
 
   ~CudaBackend() override {
     prof_.report(name() + (std::is_same_v<T, double> ? " double" : " float"));
-    csr_.reset();  // its cuSPARSE/cuBLAS handles work in stream_: gone before the stream
+    baseline_.reset();  // its cuSPARSE/cuBLAS handles work in stream_: gone before the stream
     if (host_res_) cudaFreeHost(host_res_);
     if (stream_) cudaStreamDestroy(stream_);
   }
 
-  std::string name() const override { return solver_ == Solver::Persistent ? "cuda" : "cuda-csr"; }
+  std::string name() const override {
+    return solver_ == Solver::Persistent ? "cuda" : (solver_ == Solver::Csr ? "cuda-csr" : "cuda-bsr");
+  }
   std::string device_name() const override { return device_info().name; }
   Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
   const SimParams& params() const override { return p_; }
@@ -417,7 +421,7 @@ class CudaBackend final : public Backend {
     if (solver_ == Solver::Persistent) {
       launch_pcg(F, k);
     } else {
-      solve_csr(iterations, residual);
+      baseline_->solve(pcg_args(), iterations, residual);
       launch_detect(F, k, false);
     }
     prof_.mark(3, stream_);
@@ -464,7 +468,7 @@ class CudaBackend final : public Backend {
 
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
-  /// The textbook baseline (baseline.cu) has the linear element only.
+  /// The library baselines (baseline.cu) have the linear element only.
   void check_element() const {
     if (nodal() && solver_ != Solver::Persistent)
       throw std::runtime_error("backend " + name() + ": tissue.element \"nodal-pressure\" runs on the cpu and cuda backends");
@@ -664,9 +668,6 @@ class CudaBackend final : public Backend {
     }
   }
 
-  /// The textbook baseline's solve (baseline.cu), then v += dv, x += h v and the rest rule.
-  void solve_csr(int& iterations, double& residual) { csr_->solve(pcg_args(), iterations, residual); }
-
   const Model& m_;
   SimParams p_;
   Solver solver_;
@@ -692,7 +693,7 @@ class CudaBackend final : public Backend {
   std::vector<Eigen::Vector3d> filtered_;
   bool rested_ = true;
   Profiler prof_;
-  std::unique_ptr<CsrBaseline<T>> csr_;  // the baseline's solver ("cuda-csr" only)
+  std::unique_ptr<BaselineSolver<T>> baseline_;  // the library baselines' solver
   Materials mat_;                        // the materials set last (an element change rebuilds from them)
   // The nodal-pressure element only (pressure.cuh): its pattern, on the host and the device.
   NodalPressurePattern np_;
@@ -717,15 +718,23 @@ std::unique_ptr<Backend> make_cuda_backend(const Model& model, const SimParams& 
   return std::make_unique<cuda::CudaBackend<double>>(model, params, cuda::Solver::Persistent);
 }
 
-std::unique_ptr<Backend> make_cuda_csr_backend(const Model& model, const SimParams& params) {
+std::unique_ptr<Backend> make_cuda_baseline_backend(const std::string& name, const Model& model,
+                                                    const SimParams& params) {
 #ifndef PALPATION_HAVE_CUSPARSE
   (void)model;
   (void)params;
-  throw std::runtime_error("backend cuda-csr: this build has no cuSPARSE/cuBLAS");
+  throw std::runtime_error("backend " + name + ": this build has no cuSPARSE/cuBLAS");
 #else
+  cuda::Solver solver;
+  if (name == "cuda-csr")
+    solver = cuda::Solver::Csr;
+  else if (name == "cuda-bsr")
+    solver = cuda::Solver::Bsr;
+  else
+    throw std::runtime_error("backend \"" + name + "\" is not a CUDA baseline (cuda-csr, cuda-bsr)");
   if (params.solver.precision == Precision::Float)
-    return std::make_unique<cuda::CudaBackend<float>>(model, params, cuda::Solver::Csr);
-  return std::make_unique<cuda::CudaBackend<double>>(model, params, cuda::Solver::Csr);
+    return std::make_unique<cuda::CudaBackend<float>>(model, params, solver);
+  return std::make_unique<cuda::CudaBackend<double>>(model, params, solver);
 #endif
 }
 
