@@ -48,6 +48,7 @@ sim::Scenario case_patient(const sim::Scenario& file, const std::string& path, c
   s.young_modulus = file.young_modulus;
   s.poisson_ratio = file.poisson_ratio;
   s.density = file.density;
+  s.layers = file.layers;  // the file's tissue, uniform where it names no layers
   s.inclusions = file.inclusions;
   if (!file.patient.phantom.empty() && !set_phantom_resolution(s, level))
     throw sim::ScenarioError(path + ": patient.resolution: unknown level \"" + level + "\" (coarse, paper, fine)");

@@ -8,6 +8,7 @@
 
 #include "json_reader.h"
 #include "phantom.h"
+#include "tissue_layers.h"
 
 namespace palpation::app::train {
 
@@ -238,6 +239,10 @@ const char* difficulty_name(int grade) {
   }
 }
 
+double surrounding_modulus(const sim::Scenario& s, double depth) {
+  return s.layers.empty() ? s.young_modulus : sim::layer_modulus(s.layers, depth);
+}
+
 std::optional<Difficulty> scenario_difficulty(const sim::Scenario& s) {
   if (!s.patient.mesh.empty() || s.patient.phantom != "breast") return std::nullopt;
   sim::BreastShape dome;
@@ -246,10 +251,11 @@ std::optional<Difficulty> scenario_difficulty(const sim::Scenario& s) {
   Difficulty d;
   bool any = false;
   for (const auto& inc : s.inclusions) {
-    const double hardness = inc.young_modulus / s.young_modulus;
+    const double skin_z = dome.surface_z(inc.center.x(), inc.center.y());
+    const double hardness = inc.young_modulus / surrounding_modulus(s, skin_z - inc.center.z());
     if (!(hardness > 1.2)) continue;
     any = true;
-    const double depth = std::max(0.0, dome.surface_z(inc.center.x(), inc.center.y()) - (inc.center.z() + inc.radii.z()));
+    const double depth = std::max(0.0, skin_z - (inc.center.z() + inc.radii.z()));
     d.detection *= estimate_detection(2.0 * inc.radii.maxCoeff(), depth, hardness);
   }
   if (!any) d.detection = 0.94;  // as generate_case: the pooled clinical specificity
@@ -284,6 +290,11 @@ GeneratedCase generate_case(std::uint64_t seed, const CaseRanges& ranges, const 
   s.patient.base_radius = double(a) / 1e4;
   s.patient.height = double(h) / 1e4;
   s.young_modulus = double(tissue);
+  // The built-in breasts' layers, the fat at the ranges' tissue modulus and the gland at
+  // its published ratio to it, in whole pascals.
+  s.layers = sim::breast_layers();
+  const double fat = s.layers.front().young_modulus;
+  for (auto& layer : s.layers) layer.young_modulus = double(std::llround(layer.young_modulus * double(tissue) / fat));
   s.poisson_ratio = 0.45;
   s.density = 1000.0;
 
@@ -337,7 +348,11 @@ GeneratedCase generate_case(std::uint64_t seed, const CaseRanges& ranges, const 
         inc.shape = ellipsoid ? "ellipsoid" : "sphere";
         inc.center = Eigen::Vector3d(double(std::llround(kBreastAxisX / kMicron) + cx) / 1e6, double(cy) / 1e6, double(cz) / 1e6);
         inc.radii = Eigen::Vector3d(double(radii[0]) / 1e6, double(radii[1]) / 1e6, double(radii[2]) / 1e6);
-        inc.young_modulus = double(tissue * tenths) / 10.0;
+        // Hardness against the layer around the centre (vertically below the skin, as the
+        // depth is measured).
+        const double centre_depth = (skin * 100.0 - double(cz)) / 1e6;
+        const std::int64_t around = std::llround(surrounding_modulus(s, centre_depth));
+        inc.young_modulus = double(around * tenths) / 10.0;
         inc.poisson_ratio = s.poisson_ratio;
         s.inclusions.push_back(inc);
         GeneratedTumour gt;

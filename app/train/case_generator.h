@@ -10,6 +10,12 @@
 //
 // The case's name for trainees says nothing of its tumours ("Generated case 1234"); its
 // difficulty grade is for the instructor and the curriculum.
+//
+// The tissue is layered as the built-in breasts are (sim::breast_layers: subcutaneous fat
+// over glandular tissue, scaled so that the fat has the ranges' tissue modulus), and a
+// tumour's hardness is against the layer around its centre: a tumour 5x the tissue is 5x
+// the fat it sits in near the skin and 5x the gland deeper down, which is what a finger
+// compares it with.
 #pragma once
 
 #include <cstdint>
@@ -30,13 +36,13 @@ struct CaseRanges {
   /// Tissue over the tumour: skin above the tumour's centre (vertically) to its top, m
   /// (the scorer's TumourTruth::depth).
   double depth_min = 0.003, depth_max = 0.03;
-  double hardness_min = 2.0, hardness_max = 13.0;    // tumour / tissue Young's modulus
+  double hardness_min = 2.0, hardness_max = 13.0;    // tumour / its layer's Young's modulus
   double base_radius_min = 0.06, base_radius_max = 0.088;  // m (the library's small to large breasts)
   double height_min = 0.045, height_max = 0.077;     // m
   /// Chance that a tumour is an ellipsoid (axis-aligned, the two shorter radii 0.6 to 1
   /// times the longest) rather than a sphere.
   double ellipsoid_fraction = 0.25;
-  double tissue_young = 19000.0;                     // Pa (the paper's, Krouskop's fat)
+  double tissue_young = 19000.0;                     // Pa, the fat layer's (the paper's, Krouskop's fat)
   std::string resolution = "paper";                  // the scenario's mesh resolution level
 
   // Bounds on the ranges themselves (what a curriculum may ask for).
@@ -72,7 +78,7 @@ void validate(const CaseRanges& r, const std::string& source, const std::string&
 struct GeneratedTumour {
   double diameter = 0;     // m, largest
   double depth = 0;        // m, tissue over its top (vertical)
-  double hardness = 0;     // x tissue
+  double hardness = 0;     // x the tissue of the layer around its centre
   double detection = 0;    // estimated chance a trained examiner finds it (see estimate_detection)
 };
 
@@ -105,10 +111,15 @@ int difficulty_grade(double detection);
 /// "very easy", "easy", "moderate", "hard", "very hard".
 const char* difficulty_name(int grade);
 
+/// The tissue's Young's modulus around a point `depth` m below the skin: the layer's there,
+/// or the uniform tissue's where the scenario has no layers.
+double surrounding_modulus(const sim::Scenario& s, double depth);
+
 /// Estimated detection chance and grade of any breast-phantom scenario (a library patient,
-/// a generated case): each inclusion stiffer than 1.2x the tissue (the scorer's tumour
-/// rule) is a tumour of its largest diameter, the tissue over it (vertically, on the dome)
-/// and its hardness. Other phantoms and meshes: nothing.
+/// a generated case): each inclusion stiffer than 1.2x the tissue around its centre (the
+/// scorer's tumour rule) is a tumour of its largest diameter, the tissue over it
+/// (vertically, on the dome) and its hardness against that tissue. Other phantoms and
+/// meshes: nothing.
 struct Difficulty {
   double detection = 1;
   int grade = 1;

@@ -91,7 +91,7 @@ class TestCases : public QObject {
     for (unsigned char ch : j) h = (h ^ ch) * 1099511628211ull;
     qInfo("seed 1234: %zu tumours, difficulty %d, base radius %.4f, height %.4f, JSON hash %llu", c.scenario.inclusions.size(),
           c.difficulty, c.scenario.patient.base_radius, c.scenario.patient.height, static_cast<unsigned long long>(h));
-    QCOMPARE(h, 2491436305401873305ull);
+    QCOMPARE(h, 17875743711063377574ull);  // since the layered tissue (2491436305401873305 before)
     // Different seeds, different cases.
     std::set<std::string> distinct;
     for (std::uint64_t seed = 0; seed < 20; ++seed) distinct.insert(sim::scenario_to_json(train::generate_case(seed).scenario));
@@ -101,6 +101,7 @@ class TestCases : public QObject {
   void casesKeepTheirRangesAndClearances() {
     train::CaseRanges r;  // the defaults: 0-3 tumours, 0.3-2 cm, 2-13x
     std::array<int, 4> counts{};
+    std::array<int, 2> layer_counts{};  // tumours centred in the fat, in the gland
     std::set<std::string> shapes;
     std::set<int> grades;
     for (std::uint64_t seed = 0; seed < 150; ++seed) {
@@ -123,7 +124,13 @@ class TestCases : public QObject {
         shapes.insert(inc.shape);
         const double diameter = 2 * inc.radii.maxCoeff();
         QVERIFY2(diameter >= r.diameter_min - 1e-9 && diameter <= r.diameter_max + 1e-9, where);
-        const double ratio = inc.young_modulus / s.young_modulus;
+        // Hardness against the layer around the centre: the fat (the ranges' tissue
+        // modulus) within the first centimetre, the gland (1.66x) below it.
+        const double centre_depth = dome.surface_z(inc.center.x(), inc.center.y()) - inc.center.z();
+        const double around = train::surrounding_modulus(s, centre_depth);
+        QCOMPARE(around, centre_depth < 0.010 ? r.tissue_young : std::round(r.tissue_young * 31500.0 / 19000.0));
+        ++layer_counts[centre_depth < 0.010 ? 0 : 1];
+        const double ratio = inc.young_modulus / around;
         QVERIFY2(ratio >= r.hardness_min - 1e-9 && ratio <= r.hardness_max + 1e-9 && ratio <= app::train::CaseRanges::kMaxHardness, where);
         // Depth: tissue over the top, vertically (drawn on 0.1 mm, the centre on 1 um).
         const double depth = dome.surface_z(inc.center.x(), inc.center.y()) - (inc.center.z() + inc.radii.z());
@@ -145,6 +152,9 @@ class TestCases : public QObject {
       }
     }
     for (int n = 0; n <= 3; ++n) QVERIFY2(counts[std::size_t(n)] > 10, qPrintable(QString("%1 tumours").arg(n)));
+    // The default depths (0.3-3 cm over the top) put tumours in both layers.
+    qInfo("tumours centred in the fat: %d, in the gland: %d", layer_counts[0], layer_counts[1]);
+    QVERIFY(layer_counts[0] > 10 && layer_counts[1] > 10);
     QVERIFY(shapes.count("sphere") && shapes.count("ellipsoid"));
     QVERIFY(grades.size() >= 3);  // the default ranges span easy to hard cases
   }
@@ -158,7 +168,8 @@ class TestCases : public QObject {
       QCOMPARE(back.inclusions.size(), c.scenario.inclusions.size());
     }
     // One case with three tumours made into a model at coarse resolution: every tumour has
-    // stiff elements, and the rest is tissue.
+    // stiff elements, and the rest is its layer's tissue (fat, gland, or the harmonic
+    // average of both where an element straddles their boundary).
     train::CaseRanges r;
     r.tumours_min = r.tumours_max = 3;
     r.diameter_min = 0.012;  // big enough for coarse elements to sit inside
@@ -171,7 +182,7 @@ class TestCases : public QObject {
     int tissue = 0;
     for (int e = 0; e < m.materials.size(); ++e) {
       const double E = m.materials.young[std::size_t(e)];
-      if (E == s.young_modulus) {
+      if (E == m.tissue_young[std::size_t(e)]) {
         ++tissue;
         continue;
       }

@@ -368,6 +368,10 @@ class TestTraining : public QObject {
       QCOMPARE(s.inclusions[i].young_modulus, c.scenario.inclusions[i].young_modulus);
     }
     QCOMPARE(s.patient.base_radius, c.scenario.patient.base_radius);
+    // The case's tissue layers come with it (a tumour's hardness is against its layer).
+    QCOMPARE(s.layers.size(), c.scenario.layers.size());
+    QVERIFY(!s.layers.empty());
+    for (std::size_t i = 0; i < s.layers.size(); ++i) QCOMPARE(s.layers[i].young_modulus, c.scenario.layers[i].young_modulus);
     QCOMPARE(s.patient.height, c.scenario.patient.height);
     QCOMPARE(s.patient.resolution, std::string("coarse"));
     QCOMPARE(s.params.solver.precision, ws.params.solver.precision);
