@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "backend.h"
+#include "json_reader.h"
 #include "live/headless_run.h"
 #include "model_cache.h"
 #include "store/output_dir.h"
@@ -46,7 +47,6 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     opt.meshes = {"coarse"};
     if (opt.backends.empty()) opt.backends = {"cpu"};
     opt.steps = std::min(opt.steps, 300);
-    opt.warmup = 20;
     settings = {{1e-6, 500}, {1e-3, 500}, {1e-10, 10}, {1e-3, 500, sim::kDefaultForceError}};
   } else {
     settings = {{3e-2, 1000}, {1e-2, 1000}, {1e-3, 1000}, {1e-4, 1000}, {1e-6, 1000}, {1e-10, 5}, {1e-10, 10}, {1e-10, 20},
@@ -69,7 +69,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
   report["commit"] = PALPATION_GIT_COMMIT;
   report["scenario"] = opt.scenario;
   report["steps"] = opt.steps;
-  report["warmup"] = opt.warmup;
+  report["warmup"] = live::kWarmupSteps;
   report["reference"] = {{"backend", ref_backend}, {"precision", "double"}, {"cg_tolerance", 1e-10}};
   report["points"] = nlohmann::json::array();
   report["floors"] = nlohmann::json::array();
@@ -115,6 +115,17 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
       std::fprintf(stderr, "bench: computing the reference for %s on %s (cached in %s)\n", level.c_str(),
                    ref_backend.c_str(), ref_path.c_str());
       ref = run_trace(sref, model, ref_backend, opt.steps);
+      // Errors against a reference that did not converge measure nothing: refused, and not
+      // cached.
+      if (ref.steps_above_tolerance > 0 || !ref.finite)
+        throw std::runtime_error("bench: the reference on " + level + " did not converge: " +
+                                 std::to_string(ref.steps_above_tolerance) + " of " + std::to_string(opt.steps) +
+                                 " steps ended above CG " + sim::JsonReader::fmt(sref.params.solver.cg_tolerance) +
+                                 " within " + std::to_string(sref.params.solver.cg_max_iterations) +
+                                 " iterations (worst relative residual " + sim::JsonReader::fmt(ref.worst_residual) +
+                                 (ref.finite ? ")" : "; not finite)"));
+      std::fprintf(stderr, "bench: the reference converged at every step (worst relative residual %.2e)\n",
+                   ref.worst_residual);
       save_trace(ref_path, ref);
     }
 
@@ -146,7 +157,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
           sp.params.solver.force_error = set.force_error;
           // Float cannot reach 1e-10: the cap decides; skip loose float points that add nothing.
           Trace tr = run_trace(sp, model, backend, opt.steps);
-          std::vector<double> timed(tr.step_ms.begin() + std::min<std::size_t>(opt.warmup, tr.step_ms.size()), tr.step_ms.end());
+          const std::vector<double> timed = live::after_warmup(tr.step_ms);
           std::vector<double> its(tr.iterations.begin(), tr.iterations.end());
           const double med = percentile(timed, 50), p99 = percentile(timed, 99);
           const double ferr = rel_l2(tr.force, ref.force), derr = displacement_error(tr, ref, model);

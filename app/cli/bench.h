@@ -20,7 +20,6 @@ struct BenchOptions {
   std::vector<std::string> backends;           // empty: every available one
   std::vector<std::string> precisions{"double", "float"};
   int steps = 1000;                            // window length
-  int warmup = 50;                             // steps excluded from timing
   bool quick = false;                          // CI subset: coarse, cpu, few settings
   std::string out;                             // folder for bench.json/csv/png
   std::string scenario = "paper-sweep";

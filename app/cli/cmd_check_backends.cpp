@@ -94,8 +94,8 @@ Comparison compare(const Trace& a, const Trace& ref, const sim::Model& m, int nf
   };
   c.its_mean = mean(a.iterations);
   c.its_mean_ref = mean(ref.iterations);
-  c.ms_median = percentile(a.step_ms, 50);
-  c.ms_median_ref = percentile(ref.step_ms, 50);
+  c.ms_median = percentile(live::after_warmup(a.step_ms), 50);
+  c.ms_median_ref = percentile(live::after_warmup(ref.step_ms), 50);
   return c;
 }
 

@@ -37,6 +37,10 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
     tr.iterations.push_back(st.cg_iterations);
     tr.contacts.push_back(st.contacts);
     tr.finite = tr.finite && st.finite;
+    if (st.solved) {
+      tr.worst_residual = std::max(tr.worst_residual, st.cg_residual);
+      if (!(st.cg_residual <= sim.backend().params().solver.cg_tolerance)) ++tr.steps_above_tolerance;
+    }
     for (int f = 0; f < nf; ++f)
       for (int c = 0; c < 3; ++c) tr.force.push_back(sim.outputs()[f].force[c]);
     if (std::find(snaps.begin(), snaps.end(), k) != snaps.end()) {

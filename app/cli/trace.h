@@ -18,6 +18,8 @@ struct Trace {
   std::vector<double> step_ms;             // (steps) wall time of the backend's step
   std::vector<std::vector<double>> snaps;  // node positions (nnode x 3, m) at snapshot_steps(steps)
   bool finite = true;
+  double worst_residual = 0;               // largest relative CG residual a solved step ended at
+  int steps_above_tolerance = 0;           // solved steps that ended above the CG tolerance
   sim::ErrorControlStats control;          // the error controller at the end (solver.force_error > 0)
   int divergences = 0;                     // steps the guard put back at rest
   int fallbacks = 0;                       // the backend failed and the run went on on the CPU

@@ -21,6 +21,11 @@ double percentile(std::vector<double> v, double p) {
   return v[lo] + (pos - double(lo)) * (v[hi] - v[lo]);
 }
 
+std::vector<double> after_warmup(const std::vector<double>& step_ms) {
+  if (step_ms.size() <= kWarmupSteps) return step_ms;
+  return std::vector<double>(step_ms.begin() + std::ptrdiff_t(kWarmupSteps), step_ms.end());
+}
+
 RunResult run_headless(const sim::Scenario& s, const RunOptions& opt) {
   const auto t0 = clock_type::now();
   sim::Simulation simulation(s, opt.log);
@@ -98,8 +103,10 @@ RunResult run_headless(sim::Simulation& simulation, const RunOptions& opt) {
   j["precision"] = s.params.solver.precision == sim::Precision::Float ? "float" : "double";
   j["dt"] = s.params.solver.dt;
   j["duration"] = s.duration;
-  j["step_ms_median"] = percentile(r.step_ms, 50);
-  j["step_ms_p99"] = percentile(r.step_ms, 99);
+  const std::vector<double> timed = after_warmup(r.step_ms);
+  j["step_ms_median"] = percentile(timed, 50);
+  j["step_ms_p99"] = percentile(timed, 99);
+  j["warmup_steps"] = r.step_ms.size() - timed.size();
   j["cg_iterations_max"] = cg_max;
   {
     double sum = 0;

@@ -32,6 +32,13 @@ struct RunOptions {
   sim::LogFn log;                      // meshing/backend lines
 };
 
+/// Steps left out of every step-time statistic a report quotes (`palpation bench`, `run`,
+/// `session`): the first steps pay for the GPU's module load, first-touch allocations and
+/// cold caches, and would otherwise set the p99 of a short run.
+inline constexpr std::size_t kWarmupSteps = 50;
+/// `step_ms` without its first kWarmupSteps (all of it when it has no more than that).
+std::vector<double> after_warmup(const std::vector<double>& step_ms);
+
 /// Runs the scenario to its duration. Throws ScenarioError / std::runtime_error.
 RunResult run_headless(const sim::Scenario& s, const RunOptions& opt);
 /// Same, on an existing simulation (reset first).

@@ -66,6 +66,15 @@ class TestPaperSweep : public QObject {
     // A fingertip pressed 1.8 cm into 19 kPa tissue: a few newtons (measured 2-6 N from
     // the fine to the coarse mesh); 20 N would mean the contact went unstable.
     QVERIFY(rt.summary["max_force_n"].get<double>() < 20.0);
+    // Step times are quoted without the first kWarmupSteps solved steps, as the bench does.
+    const std::vector<double> timed = app::live::after_warmup(rt.step_ms);
+    QVERIFY(rt.step_ms.size() > app::live::kWarmupSteps);
+    QCOMPARE(timed.size(), rt.step_ms.size() - app::live::kWarmupSteps);
+    QCOMPARE(timed.front(), rt.step_ms[app::live::kWarmupSteps]);
+    QCOMPARE(rt.summary["warmup_steps"].get<std::size_t>(), app::live::kWarmupSteps);
+    QCOMPARE(rt.summary["step_ms_median"].get<double>(), app::live::percentile(timed, 50));
+    const std::vector<double> few(rt.step_ms.begin(), rt.step_ms.begin() + 10);
+    QCOMPARE(app::live::after_warmup(few), few);  // a run shorter than the warm-up keeps all
     const app::cli::SweepAnalysis at = app::cli::analyze_sweep(rt.samples), an = app::cli::analyze_sweep(rn.samples);
     const bool light = rt.summary["steps"].get<int>() < 10000;
     QCOMPARE(int(at.passes.size()), light ? 1 : 4);
