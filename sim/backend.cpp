@@ -1,5 +1,6 @@
 #include "backend.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "backend_cpu.h"
@@ -27,6 +28,19 @@ std::vector<std::string> available_backends() {
     out.push_back("cuda-bsr");
   }
   return out;
+}
+
+void finish_finger_output(FingerOutput& o, Eigen::Vector3d& filtered, double filter_alpha) {
+  if (o.contacts > 0) o.contact_point /= o.contacts;
+  const double fn = o.force_raw.norm();
+  o.normal = fn > 0 ? Eigen::Vector3d(o.force_raw / fn) : Eigen::Vector3d::Zero();
+  filtered += filter_alpha * (o.force_raw - filtered);
+  o.force = filtered;
+}
+
+double force_filter_alpha(double hz, double dt) {
+  constexpr double kPi = 3.14159265358979323846;
+  return 1.0 - std::exp(-2.0 * kPi * hz * dt);
 }
 
 bool is_library_baseline(const std::string& name) { return name == "cuda-csr" || name == "cuda-bsr"; }

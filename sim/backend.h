@@ -59,6 +59,14 @@ bool cuda_available(std::string* why_not = nullptr);
 /// cuBLAS dot/axpy, the host driving each CG iteration) and "cuda-bsr" (the good first
 /// port: BSR SpMV, the CG scalars on the GPU, the iterations replayed from a CUDA graph).
 std::vector<std::string> available_backends();
+/// How every backend ends a finger's output once its contacts are summed: the contact point
+/// averaged over them, the raw force's direction as the normal, and the force low-pass
+/// filtered by one pole at contact.force_filter_hz (`filtered`: the filter's state, carried
+/// from step to step; `filter_alpha`: force_filter_alpha of the step).
+void finish_finger_output(FingerOutput& o, Eigen::Vector3d& filtered, double filter_alpha);
+/// The one-pole filter's weight of a new sample for a cut-off of `hz` at steps of `dt` s.
+double force_filter_alpha(double hz, double dt);
+
 /// True for the GPU backends that exist to be measured against ("cuda-csr", "cuda-bsr"):
 /// ports of the same step onto cuSPARSE and cuBLAS, with the linear element only.
 bool is_library_baseline(const std::string& name);

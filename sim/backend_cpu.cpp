@@ -799,8 +799,7 @@ class CpuBackend final : public Backend {
   // Forces on the fingers at the end-of-step state, low-pass filtered.
   void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
     const double ks = p_.contact.stiffness, ke = p_.contact.damping;
-    const double h = p_.solver.dt;
-    const double a = 1.0 - std::exp(-2.0 * M_PI * p_.contact.force_filter_hz * h);
+    const double a = force_filter_alpha(p_.contact.force_filter_hz, p_.solver.dt);
     surface_bounds();
     contact::detect<T>(fingers, m_.surface, x_.data(), bounds_, contacts_);
     for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
@@ -813,14 +812,7 @@ class CpuBackend final : public Backend {
       o.contact_point += c.p;
       ++o.contacts;
     }
-    for (std::size_t f = 0; f < out.size() && f < fingers.size(); ++f) {
-      FingerOutput& o = out[f];
-      if (o.contacts > 0) o.contact_point /= o.contacts;
-      const double fn = o.force_raw.norm();
-      o.normal = fn > 0 ? Eigen::Vector3d(o.force_raw / fn) : Eigen::Vector3d::Zero();
-      filtered_[f] += a * (o.force_raw - filtered_[f]);
-      o.force = filtered_[f];
-    }
+    for (std::size_t f = 0; f < out.size() && f < fingers.size(); ++f) finish_finger_output(out[f], filtered_[f], a);
   }
 
   const Model& m_;

@@ -230,13 +230,7 @@ ReplayResult replay_steps(const Recording& rec, const ReplayOptions& opt) {
       r.force_scale = scale_at(st.t);
       first_patient = false;
     }
-    for (int k = 0; k < nf; ++k) {
-      const auto& fi = st.fingers[std::size_t(k)];
-      in[std::size_t(k)].position = fi.x;
-      in[std::size_t(k)].velocity = fi.v;
-      in[std::size_t(k)].radius = fi.radius;
-      in[std::size_t(k)].active = fi.active;
-    }
+    store::recorded_inputs(st, in);
     // The workstation's guarded step (a backend error falls back to the CPU from rest, the
     // divergence guard resets the body).
     const bool ok = simulation->advance(in, out, st.h).ok;

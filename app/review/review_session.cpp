@@ -291,13 +291,7 @@ void ReviewSession::run_steps(const std::string& backend) {
       geometry = make_patient_geometry(*simulation, ++generation);
       last_frame = -1e300;
     }
-    for (int k = 0; k < nf; ++k) {
-      const auto& fi = st.fingers[std::size_t(k)];
-      in[std::size_t(k)].position = fi.x;
-      in[std::size_t(k)].velocity = fi.v;
-      in[std::size_t(k)].radius = fi.radius;
-      in[std::size_t(k)].active = fi.active;
-    }
+    store::recorded_inputs(st, in);
     // The workstation's guarded step (sim::Simulation::advance): a backend error falls
     // back to the CPU from rest, the divergence guard resets the body.
     const bool ok = simulation->advance(in, out, st.h).ok;

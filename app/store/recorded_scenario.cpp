@@ -11,4 +11,14 @@ sim::Scenario parse_recorded_scenario(const nlohmann::json& scenario, const std:
   return sim::parse_scenario(s.dump(), where);
 }
 
+void recorded_inputs(const RecordedStep& step, std::span<sim::FingerInput> in) {
+  for (std::size_t k = 0; k < in.size() && k < step.fingers.size(); ++k) {
+    const RecordedStep::Finger& fi = step.fingers[k];
+    in[k].position = fi.x;
+    in[k].velocity = fi.v;
+    in[k].radius = fi.radius;
+    in[k].active = fi.active;
+  }
+}
+
 }  // namespace palpation::app::store

@@ -649,9 +649,7 @@ class CudaBackend final : public Backend {
   }
 
   void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
-    const double h = p_.solver.dt;
-    constexpr double kPi = 3.14159265358979323846;
-    const double a = 1.0 - std::exp(-2.0 * kPi * p_.contact.force_filter_hz * h);
+    const double a = force_filter_alpha(p_.contact.force_filter_hz, p_.solver.dt);
     for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
     for (std::size_t f = 0; f < out.size() && f < fingers.size(); ++f) {
       const double* s = host_res_->finger[f];
@@ -660,11 +658,7 @@ class CudaBackend final : public Backend {
       o.stiffness << s[3], s[4], s[5], s[4], s[6], s[7], s[5], s[7], s[8];
       o.contacts = static_cast<int>(std::lround(s[12]));
       o.contact_point = Eigen::Vector3d(s[9], s[10], s[11]);
-      if (o.contacts > 0) o.contact_point /= o.contacts;
-      const double fn = o.force_raw.norm();
-      o.normal = fn > 0 ? Eigen::Vector3d(o.force_raw / fn) : Eigen::Vector3d::Zero();
-      filtered_[f] += a * (o.force_raw - filtered_[f]);
-      o.force = filtered_[f];
+      finish_finger_output(o, filtered_[f], a);
     }
   }
 
