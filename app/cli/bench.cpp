@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -30,6 +31,12 @@ using store::OutputDir;
 namespace {
 
 using clock_type = std::chrono::steady_clock;
+
+std::string join(const std::vector<std::string>& v) {
+  std::string out;
+  for (const auto& x : v) out += (out.empty() ? "" : ", ") + x;
+  return out;
+}
 
 std::string now_iso() {
   std::time_t now = std::time(nullptr);
@@ -79,9 +86,19 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
               "med_ms", "p99_ms", "it_med", "it_max", "force_err", "disp_err", "floor_ms", "x_floor");
   for (const auto& level : opt.meshes) {
     sim::Scenario s = sim::builtin_scenario(opt.scenario);
+    // A named level, or an edge length in m (a mesh size between the levels: the 800k
+    // tetrahedra of the solver targets, say).
     auto edge = sim::resolution_edge(s.patient.phantom, level);
-    if (!edge) throw sim::ScenarioError("--meshes: unknown level \"" + level + "\"");
     s.patient.resolution = level;
+    if (!edge) {
+      char* end = nullptr;
+      const double e = std::strtod(level.c_str(), &end);
+      if (level.empty() || *end != 0 || !sim::edge_in_range(e))
+        throw sim::ScenarioError("--meshes: \"" + level + "\" is neither a level (" + join(sim::resolution_names()) +
+                                 ") nor an edge length in " + sim::kEdgeRange);
+      edge = e;
+      s.patient.resolution.clear();
+    }
     s.patient.edge = *edge;
     s.params.solver.dt = 0.001;
     if (!opt.element.empty())

@@ -11,7 +11,7 @@ CommandAction add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   sub->add_flag("--quick", o->quick, "Small CPU subset (CI)");
   sub->add_option("--out", o->out, "Folder for bench.json, bench.csv, bench.png");
-  sub->add_option("--meshes", o->meshes, "Mesh levels (coarse, paper, fine, xfine)")->delimiter(',');
+  sub->add_option("--meshes", o->meshes, "Mesh levels (coarse, paper, fine, xfine) or edge lengths in m")->delimiter(',');
   sub->add_option("--backends", o->backends, "Backends (cpu, cuda, cuda-csr, cuda-bsr)")->delimiter(',');
   sub->add_option("--precisions", o->precisions, "double, float")->delimiter(',');
   sub->add_option("--steps", o->steps, "Steps per point")->check(CLI::Range(20, 1000000));
