@@ -40,8 +40,10 @@ SpMat block_diagonal_inverse(const SpMat& A, int b) {
 }
 
 /// Largest eigenvalue of D^-1 A (real and positive: similar to D^-1/2 A D^-1/2), by power
-/// iteration from a fixed start; within a few percent after 20 steps, which is all the
-/// smoother's damping 4 / (3 rho) needs (it stays convergent for rho up to 1.5 times this).
+/// iteration from a fixed start; within a few percent after 20 steps (from below), which
+/// is all the smoothers need: Jacobi's damping 4 / (3 rho) converges for eigenvalues up to
+/// 1.5 times this, the Chebyshev polynomial over [1.1 rho / ratio, 1.1 rho] up to
+/// 1.1 (1 + 1 / ratio) times.
 double spectral_radius(const SpMat& Dinv, const SpMat& A) {
   Eigen::VectorXd v(A.rows());
   for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = 1.0 + 0.5 * std::sin(0.7 * double(i));
@@ -54,6 +56,35 @@ double spectral_radius(const SpMat& Dinv, const SpMat& A) {
     v = y / ny;
   }
   return rho > 0 ? rho : 1.0;
+}
+
+/// `sweeps` damped block-Jacobi sweeps, damping 4 / (3 rho).
+Smoothing jacobi(double rho, int sweeps) {
+  Smoothing s;
+  s.a.assign(std::size_t(sweeps), 0.0);
+  s.c.assign(std::size_t(sweeps), 4.0 / (3.0 * rho));
+  return s;
+}
+
+/// The Chebyshev polynomial of degree `degree` over [hi / ratio, hi], hi = 1.1 rho (the
+/// power iteration's estimate is from below): theta the interval's centre, delta its
+/// half-width, sigma = theta / delta; d_0 = r / theta, then
+/// d_k = rho_k rho_{k-1} d_{k-1} + 2 rho_k / delta D^-1 r_k, rho_0 = 1 / sigma,
+/// rho_k = 1 / (2 sigma - rho_{k-1}).
+Smoothing chebyshev(double rho, int degree, double ratio) {
+  const double hi = 1.1 * rho, lo = hi / ratio;
+  const double theta = 0.5 * (hi + lo), delta = 0.5 * (hi - lo), sigma = theta / delta;
+  Smoothing s;
+  s.a.push_back(0.0);
+  s.c.push_back(1.0 / theta);
+  double rho_old = 1.0 / sigma;
+  for (int k = 1; k < degree; ++k) {
+    const double rho_new = 1.0 / (2.0 * sigma - rho_old);
+    s.a.push_back(rho_new * rho_old);
+    s.c.push_back(2.0 * rho_new / delta);
+    rho_old = rho_new;
+  }
+  return s;
 }
 
 /// Drops the entries of each row of P below `fraction` of the row's largest (not
@@ -174,6 +205,10 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     for (SpMat::InnerIterator it(A0, k); it; ++it)
       if (!std::isfinite(it.value()))
         throw std::runtime_error("amg: the matrix has an entry that is not finite (row " + std::to_string(it.row()) + ")");
+  if (options.degree < 1 || options.coarse_degree < 1 || !(options.chebyshev_ratio > 1))
+    throw std::runtime_error("amg: smoothing of degree " + std::to_string(options.degree) + " / " +
+                             std::to_string(options.coarse_degree) + ", Chebyshev ratio " + std::to_string(options.chebyshev_ratio) +
+                             " (at least 1, 1 and more than 1)");
   // Built aside and swapped in at the end: a build that throws leaves the levels as they were.
   std::vector<Level> levels;
   Eigen::LLT<Eigen::MatrixXd> coarsest;
@@ -201,14 +236,17 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
   for (int depth = 0;; ++depth) {
     Level L;
     L.Dinv = block_diagonal_inverse(A, block);
-    L.omega = 4.0 / (3.0 * spectral_radius(L.Dinv, A));
+    const double rho = spectral_radius(L.Dinv, A);
+    const int degree = depth == 0 ? options.degree : options.coarse_degree;
+    const Smoother smoother = depth == 0 ? options.smoother : options.coarse_smoother;
+    L.smoothing = smoother == Smoother::Chebyshev ? chebyshev(rho, degree, options.chebyshev_ratio) : jacobi(rho, degree);
     if (depth == 0) L.fine_nonzeros = long(A.nonZeros());
     if (depth == 0 && options.keep_finest) L.A = A;
     const bool last = A.rows() <= options.coarse_unknowns || depth + 1 >= options.max_levels;
     // What this level aggregates and smooths the prolongator with, and that damping.
     const SpMat& S = depth == 0 && sparser ? *sparser : A;
     SpMat SDinv;
-    double s_omega = L.omega;
+    double s_omega = 4.0 / (3.0 * rho);
     if (&S != &A && !last) {
       SDinv = block_diagonal_inverse(S, block);
       s_omega = 4.0 / (3.0 * spectral_radius(SDinv, S));
@@ -299,21 +337,17 @@ void Hierarchy::cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& 
     return;
   }
   const Level& L = levels_[k];
-  const Eigen::Index n = r.size();
-  Eigen::VectorXd t(n), s(n), rc(L.R.rows()), ec;
+  const int n = int(r.size());
+  Eigen::VectorXd res(n), d(n), t(n), rc(L.R.rows()), ec;
   e.resize(n);
-  multiply(L.Dinv, r.data(), e.data());
-  e *= L.omega;
-  multiply(L.A, e.data(), t.data());
-  t = r - t;
-  multiply(L.R, t.data(), rc.data());
+  auto mul_a = [&](const double* x, double* y) { multiply(L.A, x, y); };
+  auto mul_dinv = [&](const double* x, double* y) { multiply(L.Dinv, x, y); };
+  smooth(L.smoothing, n, mul_a, mul_dinv, r.data(), e.data(), res.data(), d.data(), t.data(), true, true);
+  multiply(L.R, res.data(), rc.data());
   cycle(k + 1, rc, ec);
-  multiply(L.P, ec.data(), s.data());
-  e += s;
-  multiply(L.A, e.data(), t.data());
-  t = r - t;
-  multiply(L.Dinv, t.data(), s.data());
-  e += L.omega * s;
+  multiply(L.P, ec.data(), t.data());
+  e += t;
+  smooth(L.smoothing, n, mul_a, mul_dinv, r.data(), e.data(), res.data(), d.data(), t.data(), false, false);
 }
 
 void Hierarchy::coarse_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const { cycle(1, r, e); }

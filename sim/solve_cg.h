@@ -3,8 +3,8 @@
 // B the stored blocks, D an optional block diagonal kept apart (the CPU backend keeps the
 // rotated stiffness B from step to step and rebuilds only the mass and contact terms D
 // and the time-step factor). Block-Jacobi preconditioner (inverse of each 3x3 diagonal
-// block of A), or one multigrid V-cycle (amg.h) whose finest-level smoothing is that
-// block-Jacobi; warm start from the initial content of x. OpenMP over rows when
+// block of A), or one multigrid V-cycle (amg.h) whose finest-level smoothing is a
+// polynomial in that block-Jacobi times A; warm start from the initial content of x. OpenMP over rows when
 // `parallel` (both cores, large systems).
 #pragma once
 
@@ -82,12 +82,13 @@ struct Workspace {
   std::vector<T> precond;  // (n / 3 x 12) inverse diagonal blocks, columns of four lanes
   // Multigrid levels below this system (none: block-Jacobi alone), and its scratch.
   const amg::Hierarchy* multigrid = nullptr;
-  std::vector<T> t, s;
+  std::vector<T> t, s, d;
   Eigen::VectorXd coarse_r, coarse_e, fine_e;
   void resize(std::size_t n) {
     if (multigrid) {
       t.resize(n);
       s.resize(n);
+      d.resize(n);
     }
     precond.resize(4 * n);
     r.resize(n);
@@ -233,35 +234,30 @@ inline void thread_rows(int n, int& lo, int& hi) {
   hi = int(std::int64_t(n) * (t + 1) / nt);
 }
 
-/// z = M r for the multigrid preconditioner M: one V-cycle from zero with a damped
-/// block-Jacobi sweep on A before and after the coarse correction (amg.h); returns r . z.
-/// Two products with A, one restriction and one prolongation.
+/// z = M r for the multigrid preconditioner M: one V-cycle from zero with the hierarchy's
+/// finest smoothing (amg::smooth, on A with this block-Jacobi) before and after the coarse
+/// correction (amg.h); returns r . z. 2 m products with A for a smoothing of m steps, one
+/// restriction and one prolongation.
 template <class T>
 T multigrid_cycle(const BlockSystem<T>& A, Workspace<T>& w, const T* __restrict r, T* __restrict z, bool parallel) {
   const amg::Hierarchy& H = *w.multigrid;
   const int n = 3 * A.n;
-  const T omega = T(H.fine_omega());
   const T* P = w.precond.data();
   T* __restrict t = w.t.data();
-  T* __restrict s = w.s.data();
-  precondition(P, r, z, 0, A.n);
-  for (int i = 0; i < n; ++i) z[i] *= omega;
-  multiply(A, z, t, parallel);
-  for (int i = 0; i < n; ++i) t[i] = r[i] - t[i];
+  T* __restrict res = w.s.data();
+  T* __restrict d = w.d.data();
+  auto mul_a = [&](const T* x, T* y) { multiply(A, x, y, parallel); };
+  auto mul_dinv = [&](const T* x, T* y) { precondition(P, x, y, 0, A.n); };
+  amg::smooth(H.fine_smoothing(), n, mul_a, mul_dinv, r, z, res, d, t, true, true);
   w.coarse_r.resize(H.restriction().rows());
-  amg::multiply(H.restriction(), t, w.coarse_r.data());
+  amg::multiply(H.restriction(), res, w.coarse_r.data());
   H.coarse_cycle(w.coarse_r, w.coarse_e);
   w.fine_e.resize(n);
   amg::multiply(H.prolongation(), w.coarse_e.data(), w.fine_e.data());
   for (int i = 0; i < n; ++i) z[i] += T(w.fine_e[i]);
-  multiply(A, z, t, parallel);
-  for (int i = 0; i < n; ++i) t[i] = r[i] - t[i];
-  precondition(P, t, s, 0, A.n);
+  amg::smooth(H.fine_smoothing(), n, mul_a, mul_dinv, r, z, res, d, t, false, false);
   T rz = 0;
-  for (int i = 0; i < n; ++i) {
-    z[i] += omega * s[i];
-    rz += r[i] * z[i];
-  }
+  for (int i = 0; i < n; ++i) rz += r[i] * z[i];
   return rz;
 }
 

@@ -1,12 +1,14 @@
 // The smoothed-aggregation multigrid preconditioner (sim/amg.h): the aggregation covers
 // every node, the V-cycle is a symmetric positive definite operator (what CG needs), CG
 // with it reaches the same solution as a sparse Cholesky, its iteration count does not
-// grow with the mesh the way block-Jacobi's does, and a whole simulation with it (the
-// nodal-pressure element, contact) gives block-Jacobi's forces.
+// grow with the mesh the way block-Jacobi's does, its Chebyshev smoother keeps them from
+// growing more than 2x from Poisson's ratio 0.40 to 0.49, and a whole simulation with it
+// (the nodal-pressure element, contact) gives block-Jacobi's forces.
 #include <QtTest>
 
 #include "relative_error.h"
 
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 
@@ -74,6 +76,67 @@ int iterations(const System& s, const amg::Hierarchy* levels) {
   return res.converged ? res.iterations : -1;
 }
 
+// Any scalar system with 3 unknowns per node as cg's block CSR (every 3x3 block with an
+// entry; column-major blocks, one value of padding).
+struct Blocks {
+  std::vector<int> row_ptr{0}, col;
+  std::vector<double> values;
+  cg::BlockSystem<double> system() const {
+    return cg::BlockSystem<double>{int(row_ptr.size()) - 1, row_ptr.data(), col.data(), values.data()};
+  }
+};
+
+Blocks to_blocks(const amg::SpMat& A) {
+  Blocks b;
+  for (Eigen::Index i = 0; i < A.rows() / 3; ++i) {
+    std::vector<int> cols;
+    for (int r = 0; r < 3; ++r)
+      for (amg::SpMat::InnerIterator it(A, 3 * i + r); it; ++it) cols.push_back(int(it.col()) / 3);
+    std::sort(cols.begin(), cols.end());
+    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+    for (int j : cols) {
+      b.col.push_back(j);
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) b.values.push_back(A.coeff(3 * i + r, 3 * j + c));
+    }
+    b.row_ptr.push_back(int(b.col.size()));
+  }
+  b.values.push_back(0.0);
+  return b;
+}
+
+// The implicit-Euler system of the nodal-pressure element (the volumetric term averaged
+// over each node's elements) on a box of n x (2n/3) x (n/2) cells fixed at its base, at
+// Poisson's ratio nu and a step of 50 ms; and its stiffness without the volumetric term,
+// what the backend aggregates with (amg.h).
+struct NodalSystem {
+  amg::SpMat A, shear;
+  std::vector<Eigen::Vector3d> nodes;
+};
+
+NodalSystem make_nodal_system(int n, double nu) {
+  const double h = 0.05;
+  Model m = build_model(make_box_mesh(Eigen::Vector3d(0.06, 0.04, 0.03), n, 2 * n / 3, n / 2), Material{19000, nu, 1000},
+                        fix_base());
+  NodalSystem s;
+  Eigen::SparseMatrix<double> A = (h * h + h * 0.01) * assemble_stiffness(m, nullptr, Element::NodalPressure);
+  for (int i = 0; i < m.num_free(); ++i)
+    for (int k = 0; k < 3; ++k) A.coeffRef(3 * i + k, 3 * i + k) += (1.0 + h) * m.mass[m.free_nodes[i]];
+  s.A = A;
+  Model shear = m;
+  for (auto& l : shear.materials.lambda) l = 0;  // the linear element at lambda 0: the nodal element's shear part
+  s.shear = amg::SpMat((h * h + h * 0.01) * assemble_stiffness(shear, nullptr, Element::Linear));
+  for (int node : m.free_nodes) s.nodes.push_back(m.rest[node]);
+  return s;
+}
+
+amg::Options chebyshev_options() {
+  amg::Options o;
+  o.smoother = amg::Smoother::Chebyshev;
+  o.degree = 2;
+  return o;
+}
+
 // A 6 x 6 x 3 cm box of nodal-pressure tissue (Poisson's ratio 0.45: the pressure term is
 // in the system) in 4 mm cells, CG to 1e-6, one thread.
 Scenario press_box() {
@@ -114,11 +177,30 @@ class TestMultigrid : public QObject {
   // CG's theory needs a symmetric positive definite preconditioner; the V-cycle is one when
   // its smoothing before and after the coarse correction is the same and convergent.
   // Symmetric to round-off (1e-10 relative to |x| |M y|).
+  void cycleIsSymmetricPositiveDefinite_data() {
+    QTest::addColumn<int>("smoother");
+    QTest::addColumn<int>("degree");
+    QTest::addColumn<int>("coarse_smoother");
+    QTest::newRow("one Jacobi sweep") << int(amg::Smoother::Jacobi) << 1 << int(amg::Smoother::Jacobi);
+    QTest::newRow("two Jacobi sweeps") << int(amg::Smoother::Jacobi) << 2 << int(amg::Smoother::Jacobi);
+    QTest::newRow("Chebyshev, degree 2") << int(amg::Smoother::Chebyshev) << 2 << int(amg::Smoother::Jacobi);
+    QTest::newRow("Chebyshev, degree 3, on every level") << int(amg::Smoother::Chebyshev) << 3 << int(amg::Smoother::Chebyshev);
+  }
   void cycleIsSymmetricPositiveDefinite() {
+    QFETCH(int, smoother);
+    QFETCH(int, degree);
+    QFETCH(int, coarse_smoother);
     const System s = make_system(12);
+    amg::Options o;
+    o.smoother = amg::Smoother(smoother);
+    o.degree = degree;
+    o.coarse_smoother = amg::Smoother(coarse_smoother);
+    o.coarse_degree = degree;
+    o.coarse_unknowns = 120;  // three levels or more: the coarse levels' smoothing is in the cycle
     amg::Hierarchy levels;
-    levels.build(s.A, s.nodes);
-    QVERIFY(levels.stats().levels() >= 2);
+    levels.build(s.A, s.nodes, o);
+    QVERIFY(levels.stats().levels() >= 3);
+    QCOMPARE(levels.fine_smoothing().steps(), degree);
     const int n = 3 * s.m.num_free();
     cg::Workspace<double> w;
     w.multigrid = &levels;
@@ -180,6 +262,43 @@ class TestMultigrid : public QObject {
     const double growth_mg = double(multigrid[1]) / multigrid[0], growth_j = double(jacobi[1]) / jacobi[0];
     QVERIFY2(growth_mg < 1.35 && growth_mg < growth_j,
              qPrintable(QString("iterations grew %1x (block-Jacobi %2x)").arg(growth_mg).arg(growth_j)));
+  }
+
+  // Nearly incompressible tissue (the nodal-pressure element, stiffness-dominated):
+  // from Poisson's ratio 0.40 to 0.49 (lambda / mu from 4 to 49) one Jacobi sweep before
+  // and after the coarse correction leaves the error that is nearly free of volume change
+  // (small eigenvalues of D^-1 A, which lambda dominates) to CG, and its iterations grow
+  // about 2x; the Chebyshev polynomial of degree 2 over [rho / 27, 1.1 rho] damps it too.
+  // Measured on this 12-cell box: Jacobi 22 -> 55 (2.5x), Chebyshev 18 -> 32 (1.78x); on
+  // the Hertz scene at 20 across 103 -> 219 against 61 -> 93 (docs/simulation.md). The
+  // bound is the 2x asked of the multigrid, 12 % above what the box gives.
+  void chebyshevHoldsNearIncompressibleIterations() {
+    const double nus[2] = {0.40, 0.49};
+    int jacobi[2], chebyshev[2];
+    for (int k = 0; k < 2; ++k) {
+      const NodalSystem s = make_nodal_system(12, nus[k]);
+      const Blocks b = to_blocks(s.A);
+      const int n = int(s.A.rows());
+      const Eigen::VectorXd rhs = random_vector(n, 11);
+      auto solve = [&](const amg::Options& o) {
+        amg::Hierarchy levels;
+        levels.build(s.A, s.nodes, o, &s.shear);
+        std::vector<double> x(n, 0.0);
+        cg::Workspace<double> w;
+        w.multigrid = &levels;
+        const auto res = cg::solve(b.system(), rhs.data(), x.data(), 1e-8, 20000, w, false);
+        return res.converged ? res.iterations : -1;
+      };
+      jacobi[k] = solve(amg::Options{});
+      chebyshev[k] = solve(chebyshev_options());
+      qInfo("nu %.2f, %d unknowns: CG iterations to 1e-8 with one Jacobi sweep %d, Chebyshev of degree 2 %d", nus[k], n,
+            jacobi[k], chebyshev[k]);
+      QVERIFY(jacobi[k] > 0 && chebyshev[k] > 0);
+    }
+    const double rj = double(jacobi[1]) / jacobi[0], rc = double(chebyshev[1]) / chebyshev[0];
+    qInfo("0.49 over 0.40: Jacobi %.2fx, Chebyshev %.2fx", rj, rc);
+    QVERIFY2(rc <= 2.0, qPrintable(QString("Chebyshev: %1x").arg(rc)));
+    QVERIFY2(chebyshev[1] < jacobi[1] && rc < rj, "Chebyshev did not take fewer iterations at 0.49, or grew as much");
   }
 
   void badInputIsNamed() {
