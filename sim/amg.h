@@ -70,9 +70,9 @@ struct Options {
   // level is the one for near-incompressible and stiffness-dominated systems: on the Hertz
   // scene (20 across, nodal pressure, CG 1e-8) 61 / 93 / 286 iterations at Poisson's ratio
   // 0.40 / 0.49 / 0.499 against one Jacobi sweep's 103 / 219 / 607 (1.5x from 0.40 to 0.49
-  // against 2.1x), 25 % less time a step at 0.49. Not the default: on the paper sweep (1 ms
+  // against 2.1x), 25-30 % less time a step at 0.49. Not the default: on the paper sweep (1 ms
   // steps, mass-heavy, 0.45) it saves one iteration in seven and each costs 5 products with
-  // the system instead of 3, 15-35 % more time a step (docs/simulation.md).
+  // the system instead of 3, 15-40 % more time a step (docs/simulation.md).
   Smoother smoother = Smoother::Jacobi;
   int degree = 1;
   Smoother coarse_smoother = Smoother::Jacobi;
