@@ -344,7 +344,7 @@ colours = {"coarse": "tab:green", "paper": "tab:blue", "fine": "tab:purple", "xf
 for (mesh, backend, prec), pts in sorted(curves.items()):
     pts.sort()
     ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o" if prec == "double" else "s",
-            linestyle="-" if backend.startswith("cuda") and "csr" not in backend else (":" if backend.startswith("cpu") else "--"),
+            linestyle={"cuda-csr": "--", "cuda-bsr": "-."}.get(backend.split()[0], ":" if backend.startswith("cpu") else "-"),
             color=colours.get(mesh, "black"), label=f"{mesh} {backend} {prec}")
 ax.axvline(1e-2, color="grey", lw=0.8)
 ax.axhline(0.2, color="tab:blue", lw=0.8, ls="-.")

@@ -280,6 +280,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
         auto& c = curves[name];
         c.name = name;
         c.markers = true;
+        c.dashed = sim::is_library_baseline(p["backend"].get<std::string>());  // the ports it is measured against
         c.x.push_back(std::max(p["force_error"].get<double>(), 1e-12));
         c.y.push_back(p["step_ms_median"].get<double>());
       }
