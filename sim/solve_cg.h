@@ -4,8 +4,8 @@
 // rotated stiffness B from step to step and rebuilds only the mass and contact terms D
 // and the time-step factor). Block-Jacobi preconditioner (inverse of each 3x3 diagonal
 // block of A), or one multigrid V-cycle (amg.h) whose finest-level smoothing is a
-// polynomial in that block-Jacobi times A; warm start from the initial content of x. OpenMP over rows when
-// `parallel` (both cores, large systems).
+// polynomial in that block-Jacobi times A; warm start from the initial content of x.
+// OpenMP over rows when `parallel` (both cores, large systems).
 #pragma once
 
 #include <cmath>
