@@ -50,8 +50,8 @@ namespace {
 /// Why a GPU backend cannot run these parameters, or empty: the multigrid preconditioner
 /// has no GPU port (amg.h).
 std::string gpu_refusal(const SimParams& params) {
-  return params.solver.preconditioner == Preconditioner::Multigrid
-             ? "solver.preconditioner \"multigrid\" runs on the cpu backend only (the GPU backends precondition "
+  return is_multigrid(params.solver.preconditioner)
+             ? "solver.preconditioner \"" + std::string(preconditioner_name(params.solver.preconditioner)) + "\" runs on the cpu backend only (the GPU backends precondition "
                "with block-Jacobi)"
              : std::string();
 }

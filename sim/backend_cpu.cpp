@@ -364,7 +364,7 @@ class CpuBackend final : public Backend {
   // finite, a stalled coarsening) leaves this step and the next 1,000 to block-Jacobi.
   void use_multigrid(const cg::BlockSystem<T>& sys) {
     cg_.multigrid = nullptr;
-    if (p_.solver.preconditioner != Preconditioner::Multigrid) return;
+    if (!is_multigrid(p_.solver.preconditioner)) return;
     ++multigrid_steps_;
     if (multigrid_failed_at_ >= 0 && multigrid_steps_ - multigrid_failed_at_ < 1000) return;
     const double ratio = double(sys.scale) / multigrid_scale_;
@@ -373,12 +373,17 @@ class CpuBackend final : public Backend {
       try {
         std::vector<Eigen::Vector3d> nodes(m_.num_free());
         for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
+        amg::Options options;
+        if (p_.solver.preconditioner == Preconditioner::MultigridChebyshev) {
+          options.smoother = amg::Smoother::Chebyshev;
+          options.degree = 2;
+        }
         // The stiffness alone once, the whole system from it.
         const amg::SpMat stiffness = cg::to_sparse(sys);
         if (sys.pressure)
-          multigrid_.build(amg::SpMat(stiffness + cg::pressure_to_sparse(sys)), nodes, {}, &stiffness);
+          multigrid_.build(amg::SpMat(stiffness + cg::pressure_to_sparse(sys)), nodes, options, &stiffness);
         else
-          multigrid_.build(stiffness, nodes);
+          multigrid_.build(stiffness, nodes, options);
       } catch (const std::exception&) {
         multigrid_failed_at_ = multigrid_steps_;
         ++counters_.multigrid_failures;

@@ -14,12 +14,21 @@ enum class Precision { Double, Float };
 /// cheap per iteration, but the iterations grow with the mesh and with Poisson's ratio.
 /// Multigrid: smoothed aggregation (amg.h), 3-4x fewer iterations that grow less with the
 /// mesh, each about five block-Jacobi iterations' time on the CPU (docs/simulation.md);
-/// CPU backend only.
-enum class Preconditioner { BlockJacobi, Multigrid };
-inline const char* preconditioner_name(Preconditioner p) { return p == Preconditioner::Multigrid ? "multigrid" : "block-jacobi"; }
-inline std::vector<std::string> preconditioner_names() { return {"block-jacobi", "multigrid"}; }
+/// CPU backend only. MultigridChebyshev: the same levels smoothed on the finest one by a
+/// Chebyshev polynomial of degree 2 instead of one block-Jacobi sweep: the iterations grow
+/// 1.5x from Poisson's ratio 0.40 to 0.49 (Hertz scene) instead of 2.1x, at two more
+/// products a cycle; for stiffness-dominated, nearly incompressible solves (on the breast at
+/// 1 ms steps it costs more time than it saves).
+enum class Preconditioner { BlockJacobi, Multigrid, MultigridChebyshev };
+inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi; }
+inline const char* preconditioner_name(Preconditioner p) {
+  return p == Preconditioner::Multigrid ? "multigrid"
+                                        : (p == Preconditioner::MultigridChebyshev ? "multigrid-chebyshev" : "block-jacobi");
+}
+inline std::vector<std::string> preconditioner_names() { return {"block-jacobi", "multigrid", "multigrid-chebyshev"}; }
 inline Preconditioner parse_preconditioner(const std::string& name) {
-  return name == "multigrid" ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
+  if (name == "multigrid") return Preconditioner::Multigrid;
+  return name == "multigrid-chebyshev" ? Preconditioner::MultigridChebyshev : Preconditioner::BlockJacobi;
 }
 
 struct SolverParams {

@@ -156,7 +156,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     }
 
     for (const auto& backend : opt.backends) {
-      if (backend != "cpu" && s.params.solver.preconditioner == sim::Preconditioner::Multigrid) {
+      if (backend != "cpu" && sim::is_multigrid(s.params.solver.preconditioner)) {
         std::fprintf(stderr, "bench: skipping %s (the multigrid preconditioner runs on the cpu only)\n", backend.c_str());
         continue;
       }

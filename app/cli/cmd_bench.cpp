@@ -21,7 +21,7 @@ CommandAction add_bench_command(CLI::App& app) {
                   "and above). The cuda-csr and cuda-bsr baselines have the linear one only")
       ->check(CLI::IsMember(sim::element_names()));
   sub->add_option("--preconditioner", o->preconditioner,
-                  "CG preconditioner (block-jacobi, multigrid; default: the scenario's). Multigrid runs on the cpu backend only: "
+                  "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev; default: the scenario's). Multigrid runs on the cpu backend only: "
                   "the GPU backends are skipped")
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--force-error", o->force_error,

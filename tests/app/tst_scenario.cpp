@@ -185,6 +185,18 @@ class TestScenario : public QObject {
     } catch (const std::runtime_error& e) {
       QVERIFY2(QString(e.what()).contains("multigrid"), e.what());
     }
+    // The Chebyshev-smoothed variant reads, writes and is refused by the GPU the same way.
+    const sim::Scenario ch =
+        sim::parse_scenario(with("\"solver\": {\"preconditioner\": \"multigrid-chebyshev\"}"), "case.json");
+    QVERIFY(ch.params.solver.preconditioner == sim::Preconditioner::MultigridChebyshev);
+    QVERIFY(sim::parse_scenario(sim::scenario_to_json(ch), "case.json").params.solver.preconditioner ==
+            sim::Preconditioner::MultigridChebyshev);
+    try {
+      sim::make_backend(sim::BackendKind::Cuda, m, ch.params);
+      QFAIL("the cuda backend took the multigrid-chebyshev preconditioner");
+    } catch (const std::runtime_error& e) {
+      QVERIFY2(QString(e.what()).contains("multigrid-chebyshev"), e.what());
+    }
   }
 
   // Tissue layers read, write and read back as they were; the layered built-in sweep has
