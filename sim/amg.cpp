@@ -358,6 +358,12 @@ void Hierarchy::full_cycle(const Eigen::VectorXd& r, Eigen::VectorXd& e) const {
   cycle(0, r, e);
 }
 
+Eigen::MatrixXd Hierarchy::coarsest_inverse() const {
+  if (levels_.empty()) return {};
+  const Eigen::Index n = levels_.back().A.rows();
+  return coarsest_.solve(Eigen::MatrixXd::Identity(n, n));
+}
+
 Stats Hierarchy::stats() const {
   Stats s;
   for (std::size_t k = 0; k < levels_.size(); ++k) {

@@ -123,7 +123,7 @@ class Hierarchy {
 
   Stats stats() const;
 
- private:
+  /// One level, as the cycles use it (for a copy elsewhere: the GPU's, sim/cuda/multigrid.cuh).
   struct Level {
     SpMat A;     // this level's operator (empty on the finest: the solver applies its own)
     SpMat Dinv;  // inverse of A's diagonal blocks (block diagonal)
@@ -132,6 +132,12 @@ class Hierarchy {
     Smoothing smoothing;
     long fine_nonzeros = 0;  // the finest level's A (for stats)
   };
+  /// The levels, the finest first; the last is the coarsest (its operator alone).
+  const std::vector<Level>& levels() const { return levels_; }
+  /// The coarsest level's operator inverted, dense (what its Cholesky solve applies).
+  Eigen::MatrixXd coarsest_inverse() const;
+
+ private:
   void cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& e) const;
 
   std::vector<Level> levels_;  // levels_[0] the finest; the last one coarsest (A only)

@@ -40,6 +40,7 @@
 
 #include "contact_sphere.h"
 #include "fem_corotational.h"
+#include "multigrid_keeper.h"
 #include "lanes4.h"
 #include "nodal_pressure.h"
 #include "solve_cg.h"
@@ -126,7 +127,7 @@ class CpuBackend final : public Backend {
     // until the next full assembly. Any change of tolerance assembles afresh.
     if (p.solver.corotation_tolerance != p_.solver.corotation_tolerance) assembled_ = false;
     const bool element_changed = p.element != p_.element;
-    if (p.solver.preconditioner != p_.solver.preconditioner) multigrid_stale_ = true;
+    if (p.solver.preconditioner != p_.solver.preconditioner) multigrid_.invalidate();
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
@@ -168,7 +169,7 @@ class CpuBackend final : public Backend {
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
     if (&mat != &mat_) mat_ = mat;
-    multigrid_stale_ = true;  // another system: the multigrid levels are built again
+    multigrid_.invalidate();  // another system: the multigrid levels are built again
     lambda_.resize(ne);
     mu_.resize(ne);
     // The nodal-pressure element takes lambda out of the element blocks into its nodal term.
@@ -242,7 +243,7 @@ class CpuBackend final : public Backend {
     std::fill(dv_.begin(), dv_.end(), T(0));
     dvprev_.clear();
     last_converged_ = false;
-    multigrid_stale_ = true;
+    multigrid_.invalidate();
     kept_.valid = false;
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
@@ -353,66 +354,20 @@ class CpuBackend final : public Backend {
  private:
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
-  // The multigrid levels are built from this step's system the first time they are
-  // needed, and again: after a reset, a change of materials, element or preconditioner;
-  // when the stiffness's weight (from dt) is more than twice or less than half the one
-  // they were built with, at most once every 100 steps (the real-time loop sets dt from
-  // the last step's time, and a rebuild's own slow step must not set off the next); and
-  // when a solve ended beyond its tolerance and the rescue tolerance (or not finite) or
-  // needed twice the iterations of the first solve after the build, and ten more (the
-  // system drifted: rotations, contact). A build that throws (a system that is not
-  // finite, a stalled coarsening) leaves this step and the next 1,000 to block-Jacobi.
+  // The levels below this step's system, when the preconditioner is a multigrid and they
+  // are due (multigrid_keeper.h).
   void use_multigrid(const cg::BlockSystem<T>& sys) {
-    cg_.multigrid = nullptr;
-    if (!is_multigrid(p_.solver.preconditioner)) return;
-    ++multigrid_steps_;
-    if (multigrid_failed_at_ >= 0 && multigrid_steps_ - multigrid_failed_at_ < 1000) return;
-    const double ratio = double(sys.scale) / multigrid_scale_;
-    const bool dt_moved = !(ratio <= 2.0 && ratio >= 0.5) && multigrid_steps_ - multigrid_built_at_ >= 100;
-    if (!multigrid_.built() || multigrid_stale_ || dt_moved) {
-      try {
-        std::vector<Eigen::Vector3d> nodes(m_.num_free());
-        for (int i = 0; i < m_.num_free(); ++i) nodes[i] = m_.rest[m_.free_nodes[i]];
-        amg::Options options;
-        if (p_.solver.preconditioner == Preconditioner::MultigridChebyshev) {
-          options.smoother = amg::Smoother::Chebyshev;
-          options.degree = 2;
-        }
-        // The stiffness alone once, the whole system from it.
-        const amg::SpMat stiffness = cg::to_sparse(sys);
-        if (sys.pressure)
-          multigrid_.build(amg::SpMat(stiffness + cg::pressure_to_sparse(sys)), nodes, options, &stiffness);
-        else
-          multigrid_.build(stiffness, nodes, options);
-      } catch (const std::exception&) {
-        multigrid_failed_at_ = multigrid_steps_;
-        ++counters_.multigrid_failures;
-        return;
-      }
-      multigrid_failed_at_ = -1;
-      multigrid_scale_ = double(sys.scale);
-      multigrid_stale_ = false;
-      multigrid_reference_iterations_ = -1;
-      multigrid_built_at_ = multigrid_steps_;
-      ++counters_.multigrid_builds;
-    }
-    cg_.multigrid = &multigrid_;
+    const bool use = multigrid_.prepare(
+        p_.solver.preconditioner, double(sys.scale),
+        [&](amg::Hierarchy& levels, const amg::Options& options) {
+          // The stiffness alone once, the whole system from it.
+          const amg::SpMat stiffness = cg::to_sparse(sys);
+          MultigridKeeper::build(levels, m_, stiffness, sys.pressure ? cg::pressure_to_sparse(sys) : amg::SpMat(), options);
+        },
+        counters_.multigrid_builds, counters_.multigrid_failures);
+    cg_.multigrid = use ? &multigrid_.levels() : nullptr;
   }
-  void note_multigrid_iterations(int iterations, bool solved) {
-    if (!solved) {
-      multigrid_stale_ = true;
-    } else if (multigrid_reference_iterations_ < 0) {
-      multigrid_reference_iterations_ = iterations;
-      multigrid_reference_tolerance_ = p_.solver.cg_tolerance;
-    } else if (p_.solver.cg_tolerance == multigrid_reference_tolerance_ &&
-               iterations > 2 * multigrid_reference_iterations_ + 10) {
-      // Only against solves to the tolerance of the first one: the error controller's
-      // check solves a hundred times tighter, and its tolerance moves. Once the controller
-      // has moved it, this rule waits for the next build (a solve beyond the rescue
-      // tolerance still marks the levels stale).
-      multigrid_stale_ = true;
-    }
-  }
+  void note_multigrid_iterations(int iterations, bool solved) { multigrid_.note(iterations, solved, p_.solver.cg_tolerance); }
 
   // threads: 1 = serial, >= 2 = always parallel (OpenMP's team), 0 = where it pays.
   bool parallel() const {
@@ -843,14 +798,7 @@ class CpuBackend final : public Backend {
   std::vector<T> dvprev_;                    // (nfree x 3) the solution before dv_ (warm start)
   std::vector<T> b0_;                        // (nfree x 3 + trash) sum of K_e (R_e - I) X_e, kept with K
   cg::Workspace<T> cg_;
-  amg::Hierarchy multigrid_;                  // levels below the system (Preconditioner::Multigrid)
-  double multigrid_scale_ = 0;               // the weight of K (from dt) they were built with
-  bool multigrid_stale_ = false;
-  int multigrid_reference_iterations_ = -1;  // iterations of the first solve after a build
-  double multigrid_reference_tolerance_ = 0;  // ... and its tolerance
-  long multigrid_steps_ = 0;                 // steps that asked for the multigrid
-  long multigrid_built_at_ = 0;              // ... at the last build
-  long multigrid_failed_at_ = -1;            // ... at the last failed build, or -1
+  MultigridKeeper multigrid_;  // the levels below the system (Preconditioner::Multigrid*) and when to rebuild them
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
   contact::Bounds bounds_;

@@ -24,6 +24,10 @@
 #          and xfine in double at CG 1e-3 and 1e-6 (the equal-error comparison)
 #   baselines that comparison alone, one bench run per mesh of BASELINE_MESHES, with the
 #          speed-ups printed (baselines.csv, baselines.txt). Not a default stage
+#   multigrid block-Jacobi against the multigrid preconditioners on CUDA, one bench run per
+#          preconditioner and mesh of MG_MESHES (default paper,xfine,0.00201: the 800k-tet
+#          breast), double, CG 1e-3 and 1e-6 and the force error held at 1 % (multigrid.csv,
+#          multigrid.txt). Not a default stage
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   control the error-controlled tolerance against the fixed ones: bench (all tolerances and
 #          fe1%) and palpation session with --force-error 0 and 0.01, on CONTROL_MESHES
@@ -105,6 +109,7 @@ export PATH=/usr/local/cuda/bin:$PATH
 STAGES=${*:-build check hertz micro bench idle sweep}
 BENCH_MESHES=${BENCH_MESHES:-coarse,paper,xfine}
 BASELINE_MESHES=${BASELINE_MESHES:-paper,xfine}
+MG_MESHES=${MG_MESHES:-paper,xfine,0.00201}
 BENCH_TIMEOUT=${BENCH_TIMEOUT:-330}
 LOG=$OUT/run.log
 exec > >(tee -a "$LOG") 2>&1
@@ -391,6 +396,34 @@ for (mesh, tol, b), r in sorted(pts.items()):
     def ratio(x): return f'{float(x["step_ms_median"]) / t:8.2f}' if x else "       -"
     errs = "/".join(f'{float(x["force_error"]):.1e}' if x else "-" for x in (r, o["cuda-bsr"], o["cuda-csr"]))
     print(f"{mesh:7s} {float(tol):.0e}  {cell(r)}  {cell(o['cuda-bsr'])}  {cell(o['cuda-csr'])}  {ratio(o['cuda-bsr'])}  {ratio(o['cuda-csr'])}  {errs}")
+EOF
+fi
+
+if has multigrid; then
+  # The same meshes and tolerances under each preconditioner; the reference (block-Jacobi,
+  # CG 1e-10) computed by the first run of a mesh and cached for the others.
+  rm -f "$OUT/multigrid.csv"
+  for m in ${MG_MESHES//,/ }; do
+    for pc in block-jacobi multigrid multigrid-chebyshev; do
+      say "multigrid: $m, $pc, double, CG 1e-3, 1e-6 and the force error held at 1 %"
+      rm -rf "/tmp/palpation-mg-$m-$pc"
+      timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda --precisions double --preconditioner "$pc" \
+        --tolerances 1e-3,1e-6 --force-error 0.01 --out "/tmp/palpation-mg-$m-$pc" | tee -a "$OUT/multigrid.txt"
+      say "multigrid $m $pc exit ${PIPESTATUS[0]}"
+      f=/tmp/palpation-mg-$m-$pc/bench.csv
+      [[ -f $f ]] && { [[ -f $OUT/multigrid.csv ]] && tail -n +2 "$f" >>"$OUT/multigrid.csv" || cp "$f" "$OUT/multigrid.csv"; }
+    done
+  done
+  [[ -f $OUT/multigrid.csv ]] && python3 - "$OUT/multigrid.csv" <<'EOF'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+print("mesh        setting  preconditioner        median ms  p99 ms   CG it. median/max  force error  vs block-Jacobi")
+base = {(r["mesh"], r["cg_tolerance"]): float(r["step_ms_median"]) for r in rows if r["preconditioner"] == "block-jacobi"}
+for r in rows:
+    t = float(r["step_ms_median"]); b = base.get((r["mesh"], r["cg_tolerance"]))
+    print(f'{r["mesh"]:11s} {r["cg_tolerance"]:8s} {r["preconditioner"]:20s} {t:9.3f} {float(r["step_ms_p99"]):8.3f}  '
+          f'{float(r["cg_iterations_median"]):6.0f} / {float(r["cg_iterations_max"]):5.0f}  {float(r["force_error"]):11.2e}  '
+          + (f'{b / t:6.2f}x' if b else "-"))
 EOF
 fi
 

@@ -63,7 +63,10 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     settings.clear();
     for (double t : opt.tolerances) settings.push_back({t, 1000});
   }
-  if (opt.force_error > 0) settings = {{1e-3, 200, opt.force_error}};
+  if (opt.force_error > 0) {
+    if (opt.tolerances.empty()) settings.clear();
+    settings.push_back({1e-3, 200, opt.force_error});
+  }
   const auto avail = sim::available_backends();
   if (opt.backends.empty()) opt.backends = avail;
   for (const auto& b : opt.backends)
@@ -156,8 +159,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     }
 
     for (const auto& backend : opt.backends) {
-      if (backend != "cpu" && sim::is_multigrid(s.params.solver.preconditioner)) {
-        std::fprintf(stderr, "bench: skipping %s (the multigrid preconditioner runs on the cpu only)\n", backend.c_str());
+      if (sim::is_library_baseline(backend) && sim::is_multigrid(s.params.solver.preconditioner)) {
+        std::fprintf(stderr, "bench: skipping %s (the multigrid preconditioner runs on the cpu and cuda backends)\n", backend.c_str());
         continue;
       }
       if (backend == "cpu" && !opt.quick && (level == "xfine") &&

@@ -21,12 +21,12 @@ CommandAction add_bench_command(CLI::App& app) {
                   "and above). The cuda-csr and cuda-bsr baselines have the linear one only")
       ->check(CLI::IsMember(sim::element_names()));
   sub->add_option("--preconditioner", o->preconditioner,
-                  "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev; default: the scenario's). Multigrid runs on the cpu backend only: "
-                  "the GPU backends are skipped")
+                  "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev; default: the scenario's). Multigrid runs on the cpu and cuda backends: "
+                  "the library baselines are skipped")
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--force-error", o->force_error,
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "
-                  "the full sweep has one at 0.01 beside its fixed tolerances)")
+                  "the full sweep has one at 0.01 beside its fixed tolerances), beside those of --tolerances when given")
       ->check(CLI::Range(1e-6, 0.5));
   sub->add_option("--tolerances", o->tolerances,
                   "Only these fixed CG tolerances (cap 1,000 iterations) instead of the full sweep, e.g. 1e-3,1e-6")

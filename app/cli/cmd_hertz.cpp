@@ -44,7 +44,7 @@ CommandAction add_hertz_command(CLI::App& app) {
   sub->add_option("--cg-tolerance", o->cg_tolerance, "CG relative tolerance")->check(CLI::Range(1e-14, 1e-2));
   sub->add_option("--limit", o->limit, "Exit 1 when |F / Hertz - 1| exceeds this in any row (0: never)")
       ->check(CLI::Range(0.0, 10.0));
-  sub->add_option("--preconditioner", o->preconditioner, "CG preconditioner: block-jacobi, multigrid or multigrid-chebyshev (cpu backend only)")
+  sub->add_option("--preconditioner", o->preconditioner, "CG preconditioner: block-jacobi, multigrid or multigrid-chebyshev (multigrid: cpu and cuda backends)")
       ->check(CLI::IsMember(sim::preconditioner_names()))
       ->capture_default_str();
   sub->add_option("--out", o->out, "Folder for hertz.json");

@@ -28,6 +28,7 @@
 // cuSPARSE/cuBLAS loop (baseline.cu), then k_detect (finish).
 // The knobs for measurements (environment) are read once per backend: tuning.h.
 #include "backend_cuda.h"
+#include "multigrid_keeper.h"
 #include "nodal_pressure.h"
 
 #include <cuda_runtime.h>
@@ -49,6 +50,7 @@
 #include "cuda/contact.cuh"
 #include "cuda/device_info.h"
 #include "cuda/element.cuh"
+#include "cuda/multigrid.cuh"
 #include "cuda/pcg.cuh"
 #include "cuda/pressure.cuh"
 #include "cuda/tuning.h"
@@ -205,6 +207,7 @@ class CudaBackend final : public Backend {
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
     check_element();  // before anything is allocated: a throwing constructor frees nothing
     const CudaTuning tuning = CudaTuning::from_environment();
+    tuning_ = tuning;
     CU(cudaSetDevice(d.device));
     CU(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
     nn_ = m_.num_nodes();
@@ -289,7 +292,12 @@ class CudaBackend final : public Backend {
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
+    if (solver_ != Solver::Persistent && is_multigrid(p.solver.preconditioner))
+      throw std::runtime_error("backend " + name() + ": solver.preconditioner \"" +
+                               std::string(preconditioner_name(p.solver.preconditioner)) +
+                               "\" runs on the cpu and cuda backends (the library baselines precondition with block-Jacobi)");
     const bool element_changed = p.element != p_.element;
+    if (p.solver.preconditioner != p_.solver.preconditioner) multigrid_.invalidate();
     const SimParams old = p_;
     p_ = p;
     if (element_changed) {
@@ -318,7 +326,9 @@ class CudaBackend final : public Backend {
       upload_pressure_pattern();
       const std::vector<double> w = nodal_pressure_weights(m_, np_, mat.lambda);
       npw_.upload(std::vector<T>(w.begin(), w.end()), stream_);
+      npw_host_ = w;
     }
+    multigrid_.invalidate();  // another system: the multigrid levels are built again
     rested_ = false;
   }
 
@@ -330,6 +340,7 @@ class CudaBackend final : public Backend {
     dv_prev_.zero(stream_);
     last_converged_ = false;
     has_kept_ = false;
+    multigrid_.invalidate();
     p0_.zero(stream_);
     p1_.zero(stream_);
     std::vector<T> q(4 * std::size_t(ne_), T(0));
@@ -418,8 +429,9 @@ class CudaBackend final : public Backend {
     prof_.mark(2, stream_);
     int iterations = 0;
     double residual = 0;
+    const bool mg = solver_ == Solver::Persistent && use_multigrid();
     if (solver_ == Solver::Persistent) {
-      launch_pcg(F, k);
+      launch_pcg(F, k, mg);
     } else {
       baseline_->solve(pcg_args(), iterations, residual);
       launch_detect(F, k, false);
@@ -438,6 +450,9 @@ class CudaBackend final : public Backend {
     }
     st.cg_iterations = iterations;
     st.cg_residual = residual;
+    // A solve beyond its tolerance and the rescue tolerance says the levels no longer fit.
+    if (mg) multigrid_.note(iterations, residual <= std::max(p_.solver.cg_tolerance, p_.solver.cg_rescue_tolerance),
+                            p_.solver.cg_tolerance);
     // The next step extrapolates its warm start only after a converged solve: with the
     // iterations capped below convergence, extrapolating the truncation error doubles it.
     last_converged_ = residual <= p_.solver.cg_tolerance;
@@ -612,7 +627,35 @@ class CudaBackend final : public Backend {
     cuda::launch_assemble(stream_, a);
   }
 
-  PcgArgs<T> pcg_args() {
+  /// The multigrid levels for this step's solve, built (on the host, from the system
+  /// assembled on the device) and copied to the device when due (multigrid_keeper.h); false:
+  /// block-Jacobi.
+  bool use_multigrid() {
+    const T h = T(p_.solver.dt);
+    const T scale = h * h + h * T(p_.damping.stiffness);  // as the CPU backend's system
+    return multigrid_.prepare(
+        p_.solver.preconditioner, double(scale),
+        [&](amg::Hierarchy& levels, const amg::Options& options) {
+          std::vector<double> vals, b;
+          download(vals_, vals);  // waits for the assembly
+          const amg::SpMat stiffness = block_rows_to_sparse(nf_, m_.row_ptr, m_.col, vals);
+          amg::SpMat pressure;
+          if (nodal()) {
+            download(npb_, b);
+            pressure = nodal_pressure_to_sparse(np_, nf_, b, npw_host_, double(pressure_dev().scale));
+          }
+          MultigridKeeper::build(levels, m_, stiffness, pressure, options);
+          mg_levels_.upload(levels, stream_);
+          if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
+          if (mg_r_.size() != 3 * std::size_t(nf_)) {
+            mg_r_.alloc(3 * std::size_t(nf_));
+            mg_d_.alloc(3 * std::size_t(nf_));
+          }
+        },
+        multigrid_builds_, multigrid_failures_);
+  }
+
+  PcgArgs<T> pcg_args(bool multigrid = false) {
     PcgArgs<T> a{};
     a.n = nf_;
     a.row_ptr = row_ptr_.get();
@@ -641,11 +684,16 @@ class CudaBackend final : public Backend {
     a.pres = pressure_dev();
     a.scr = scratch_.get();
     a.res = dev_res_;
+    if (multigrid) {
+      a.mg = mg_levels_.dev();
+      a.mg_r = mg_r_.get();
+      a.mg_d = mg_d_.get();
+    }
     return a;
   }
 
-  void launch_pcg(const FingersArg& F, const StepConsts& k) {
-    cuda::launch_pcg(stream_, launch_, pcg_args(), detect_args(), F, k);
+  void launch_pcg(const FingersArg& F, const StepConsts& k, bool multigrid) {
+    cuda::launch_pcg(stream_, multigrid ? mg_launch_ : launch_, pcg_args(multigrid), detect_args(), F, k);
   }
 
   void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
@@ -691,9 +739,18 @@ class CudaBackend final : public Backend {
   Materials mat_;                        // the materials set last (an element change rebuilds from them)
   // The nodal-pressure element only (pressure.cuh): its pattern, on the host and the device.
   NodalPressurePattern np_;
+  std::vector<double> npw_host_;  // its weights W (what the multigrid levels are built from)
   DeviceArray<int> np_row_ptr_, np_col_, np_t_row_ptr_, np_t_node_, np_t_pair_, np_pinc_ptr_, np_pinc_, np_inc_ptr_, np_inc_,
       diag_block_;
   DeviceArray<T> npb_, npw_, npi_, np_rest_part_;
+  // The multigrid preconditioner (Preconditioner::Multigrid*): when its levels are built,
+  // their copy on the device, the kernel that runs them and its scratch.
+  CudaTuning tuning_;
+  MultigridKeeper multigrid_;
+  cuda::MultigridDevice mg_levels_;
+  PcgLaunch mg_launch_;
+  DeviceArray<T> mg_r_, mg_d_;
+  long multigrid_builds_ = 0, multigrid_failures_ = 0;
 };
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cooperative_groups.h>
 
 #include "cuda/device_info.h"
+#include "cuda/multigrid.cuh"
 
 namespace palpation::sim::cuda {
 
@@ -145,6 +146,101 @@ struct Ring {
   }
 };
 
+/// y = A u on the finest level: the kernel's own operator, the nodal-pressure term's
+/// pressures of u formed first (one barrier more); emit(i, c, y) as spmv_groups.
+template <class T, int B, class Fetch, class Emit, class Bar>
+__device__ __forceinline__ void fine_product(const PcgArgs<T>& a, const RowCache<T, B>& rc, Fetch fetch, Emit emit, Bar bar,
+                                             int tid, int nthreads) {
+  if (a.pres.b) {
+    pressure_rows<T, kGroup>(a.pres, a.nnode, fetch, tid, nthreads);
+    bar();
+  }
+  spmv_groups<T, B>(a, rc, fetch, emit);
+}
+
+/// z = M r for the multigrid preconditioner: solve_cg.h's multigrid_cycle (the finest
+/// level's smoothing on this operator with its block-Jacobi before and after the coarse
+/// correction of multigrid.cuh). r's rows of this thread (block rows tid, tid + nthreads,
+/// ...) complete on entry, every other row after a barrier. Returns this thread's share of
+/// r . z, summed over the rows it wrote last (no barrier at the end).
+template <class T, int B, class Bar>
+__device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc, Bar bar, int tid, int nthreads) {
+  const MgDev& M = *a.mg;
+  const MgLevelDev& F = M.lv[0];
+  const T* __restrict r = a.r;
+  T* z = a.z;
+  T* res = a.mg_r;
+  T* d = a.mg_d;
+  const int steps = F.steps;
+  auto of = [](const T* v) { return [v](int j, int c) { return v[3 * j + c]; }; };
+  // Pre-smoothing from zero, the residual after it (amg::smooth).
+  {
+    const T c0 = T(F.c[0]);
+    for (int i = tid; i < a.n; i += nthreads) {
+      T t[3];
+      block_jacobi_row(a.P, r, i, t);
+#pragma unroll
+      for (int c = 0; c < 3; ++c) {
+        res[3 * i + c] = r[3 * i + c];
+        d[3 * i + c] = c0 * t[c];
+        z[3 * i + c] = c0 * t[c];
+      }
+    }
+  }
+  bar();
+  for (int k = 1; k < steps; ++k) {
+    fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
+    bar();
+    const T ak = T(F.a[k]), ck = T(F.c[k]);
+    for (int i = tid; i < a.n; i += nthreads) {
+      T t[3];
+      block_jacobi_row(a.P, res, i, t);
+#pragma unroll
+      for (int c = 0; c < 3; ++c) {
+        const T dn = ak * d[3 * i + c] + ck * t[c];
+        d[3 * i + c] = dn;
+        z[3 * i + c] += dn;
+      }
+    }
+    bar();
+  }
+  fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
+  bar();
+  // The coarse correction: restrict, cycle, prolong and add.
+  const MgLevelDev& L1 = M.lv[1];
+  csr_groups(F.R, [&](int j) { return res[j]; }, [&](int i, double y) { L1.b[i] = y; });
+  bar();
+  mg_coarse_cycle(M, bar);
+  csr_groups(F.P, [&](int j) { return L1.x[j]; }, [&](int i, double y) { z[i] += T(y); });
+  bar();
+  // Post-smoothing from z, and r . z over the rows this thread wrote last.
+  fine_product(a, rc, of(z), [&](int i, int c, T y) { res[3 * i + c] = r[3 * i + c] - y; }, bar, tid, nthreads);
+  bar();
+  double rz = 0;
+  for (int k = 0; k < steps; ++k) {
+    if (k > 0) {
+      fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
+      bar();
+    }
+    const T ak = T(F.a[k]), ck = T(F.c[k]);
+    const bool last = k + 1 == steps;
+    for (int i = tid; i < a.n; i += nthreads) {
+      T t[3];
+      block_jacobi_row(a.P, res, i, t);
+#pragma unroll
+      for (int c = 0; c < 3; ++c) {
+        const T dn = k == 0 ? ck * t[c] : ak * d[3 * i + c] + ck * t[c];
+        d[3 * i + c] = dn;
+        const T zn = z[3 * i + c] + dn;
+        z[3 * i + c] = zn;
+        if (last) rz += double(r[3 * i + c]) * double(zn);
+      }
+    }
+    if (!last) bar();
+  }
+  return rz;
+}
+
 /// The whole PCG of solve_cg.h (same warm start, restart rule, stopping rule and
 /// breakdown test) in one persistent cooperative kernel, then the state update, the rest
 /// rule and the finger outputs. Per iteration two grid barriers: the search direction
@@ -153,11 +249,15 @@ struct Ring {
 /// p over every node, before the SpMV adds B^T of them to each row. B > 0: the first row
 /// of each lane group is held in registers (k_pcg is then launched with at most two
 /// blocks per multiprocessor).
-template <class T, int B>
+template <class T, int B, bool MG>
 __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> a, DetectArgs<T> d, FingersArg F, StepConsts k) {
   coop::grid_group grid = coop::this_grid();
   const int tid = blockIdx.x * blockDim.x + threadIdx.x, nthreads = gridDim.x * blockDim.x;
   Ring ring;
+  auto bar = [&] {
+    grid.sync();
+    ring.skip(a.scr);
+  };
   RowCache<T, B> rc;
   load_row_cache(a, rc);
 
@@ -197,9 +297,12 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
             a.x[3 * i + c] = T(0);
             a.r[3 * i + c] = a.b[3 * i + c];
           }
-        precondition_row(a.P, a.r, a.z, i);
-        for (int c = 0; c < 3; ++c) acc[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
+        if constexpr (!MG) {
+          precondition_row(a.P, a.r, a.z, i);
+          for (int c = 0; c < 3; ++c) acc[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
+        }
       }
+      if constexpr (MG) acc[0] = mg_precondition(a, rc, bar, tid, nthreads);
       block_sum_atomic<1>(acc, ring.slot(a.scr));
     }
     grid.sync();
@@ -265,10 +368,10 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
             a.x[3 * i + c] += alpha * pnew[3 * i + c];
             a.r[3 * i + c] -= alpha * a.q[3 * i + c];
           }
-          precondition_row(a.P, a.r, a.z, i);
+          if constexpr (!MG) precondition_row(a.P, a.r, a.z, i);
           for (int c = 0; c < 3; ++c) {
             const double rr = double(a.r[3 * i + c]);
-            acc2[0] += rr * double(a.z[3 * i + c]);
+            if constexpr (!MG) acc2[0] += rr * double(a.z[3 * i + c]);
             acc2[1] += rr * rr;
           }
         }
@@ -277,8 +380,20 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       grid.sync();
       double rr2[2];
       ring.take<2>(a.scr, rr2);
-      const T rz_new = T(rr2[0]);
+      T rz_new = T(rr2[0]);
       rnorm = sqrt(T(rr2[1]));
+      if constexpr (MG) {
+        // The V-cycle only where the loop goes on (its z would not be used).
+        const int nit = it + 1;
+        if ((nit < a.max_it && rnorm > a.tol * bnorm) || (nit < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
+          double acc[1] = {mg_precondition(a, rc, bar, tid, nthreads)};
+          block_sum_atomic<1>(acc, ring.slot(a.scr));
+          grid.sync();
+          double rz1[1];
+          ring.take<1>(a.scr, rz1);
+          rz_new = T(rz1[0]);
+        }
+      }
       beta = rz_new / rz;
       rz = rz_new;
       T* tmp = pold;
@@ -313,10 +428,8 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   if (blockIdx.x == 0) finalize_result(a.scr, a.res, true);
 }
 
-}  // namespace
-
-template <class T>
-PcgLaunch pcg_launch(int n, const CudaTuning& tuning) {
+template <class T, bool MG>
+PcgLaunch pcg_launch_of(int n, const CudaTuning& tuning) {
   const DeviceInfo& d = device_info();
   PcgLaunch L;
   L.block = tuning.pcg_block;
@@ -325,27 +438,34 @@ PcgLaunch pcg_launch(int n, const CudaTuning& tuning) {
   const int cap_per_sm = tuning.pcg_blocks_per_sm;
   // Register-resident rows when one pass of lane groups covers every row.
   int per_sm_c = 0;
-  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks>, L.block, 0));
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks, MG>, L.block, 0));
   if (cap_per_sm > 0) per_sm_c = std::min(per_sm_c, cap_per_sm);
   const int need = (n + rows_per_block - 1) / rows_per_block;
   if (tuning.rows_in_registers && per_sm_c > 0 && need <= per_sm_c * d.sms) {
-    L.fn = reinterpret_cast<const void*>(&k_pcg<T, kCacheBlocks>);
+    L.fn = reinterpret_cast<const void*>(&k_pcg<T, kCacheBlocks, MG>);
     L.cached = true;
     L.grid = std::max(need, 1);
     if (forced > 0) L.grid = std::min(forced, per_sm_c * d.sms);
     return L;
   }
   int per_sm = 0;
-  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0>, L.block, 0));
+  CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0, MG>, L.block, 0));
   per_sm = std::max(per_sm, 1);
   if (cap_per_sm > 0) per_sm = std::min(per_sm, cap_per_sm);
   const int max_blocks = per_sm * d.sms;
   // Enough blocks that each lane group gets about one block row per SpMV pass; more only
   // makes the barriers dearer.
-  L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0>);
+  L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0, MG>);
   L.grid = std::clamp(need, 1, max_blocks);
   if (forced > 0) L.grid = std::min(forced, max_blocks);
   return L;
+}
+
+}  // namespace
+
+template <class T>
+PcgLaunch pcg_launch(int n, const CudaTuning& tuning, bool multigrid) {
+  return multigrid ? pcg_launch_of<T, true>(n, tuning) : pcg_launch_of<T, false>(n, tuning);
 }
 
 template <class T>
@@ -359,8 +479,8 @@ void launch_pcg(cudaStream_t s, const PcgLaunch& L, const PcgArgs<T>& a, const D
   CU(cudaLaunchCooperativeKernel(L.fn, dim3(L.grid), dim3(L.block), args, 0, s));
 }
 
-template PcgLaunch pcg_launch<float>(int, const CudaTuning&);
-template PcgLaunch pcg_launch<double>(int, const CudaTuning&);
+template PcgLaunch pcg_launch<float>(int, const CudaTuning&, bool);
+template PcgLaunch pcg_launch<double>(int, const CudaTuning&, bool);
 template void launch_pcg<float>(cudaStream_t, const PcgLaunch&, const PcgArgs<float>&, const DetectArgs<float>&,
                                 const FingersArg&, const StepConsts&);
 template void launch_pcg<double>(cudaStream_t, const PcgLaunch&, const PcgArgs<double>&, const DetectArgs<double>&,

@@ -13,6 +13,8 @@
 
 namespace palpation::sim::cuda {
 
+struct MgDev;  // multigrid.cuh
+
 template <class T>
 struct PcgArgs {
   int n;  // block rows (free nodes)
@@ -41,18 +43,33 @@ struct PcgArgs {
   int rescue_it;
   int fused;  // 1: search direction updated inside the SpMV (2 barriers per iteration)
   PressureDev<T> pres;  // the nodal-pressure term (pressure.cuh); off when pres.b is null
+  // The multigrid preconditioner (multigrid.cuh) in place of block-Jacobi, with its
+  // finest level's scratch (3 n each); off when mg is null.
+  const MgDev* mg;
+  T* mg_r;
+  T* mg_d;
   DevScratch* scr;
   DevResult* res;
 };
 
-/// z_i = P_i r_i: block row i of the block-Jacobi preconditioner (P: n x 9, row-major).
+/// t = P_i r_i: block row i of the block-Jacobi preconditioner (P: n x 9, row-major).
 template <class T>
-__device__ __forceinline__ void precondition_row(const T* P, const T* r, T* z, int i) {
+__device__ __forceinline__ void block_jacobi_row(const T* P, const T* r, int i, T (&t)[3]) {
   const T* Pi = P + 9 * i;
   const T r0 = r[3 * i], r1 = r[3 * i + 1], r2 = r[3 * i + 2];
-  z[3 * i] = Pi[0] * r0 + Pi[1] * r1 + Pi[2] * r2;
-  z[3 * i + 1] = Pi[3] * r0 + Pi[4] * r1 + Pi[5] * r2;
-  z[3 * i + 2] = Pi[6] * r0 + Pi[7] * r1 + Pi[8] * r2;
+  t[0] = Pi[0] * r0 + Pi[1] * r1 + Pi[2] * r2;
+  t[1] = Pi[3] * r0 + Pi[4] * r1 + Pi[5] * r2;
+  t[2] = Pi[6] * r0 + Pi[7] * r1 + Pi[8] * r2;
+}
+
+/// z_i = P_i r_i.
+template <class T>
+__device__ __forceinline__ void precondition_row(const T* P, const T* r, T* z, int i) {
+  T t[3];
+  block_jacobi_row(P, r, i, t);
+  z[3 * i] = t[0];
+  z[3 * i + 1] = t[1];
+  z[3 * i + 2] = t[2];
 }
 
 /// v += dv, x += h v over the free nodes; block maxima of |v| and |dv| into the scratch,
@@ -120,9 +137,10 @@ struct PcgLaunch {
 };
 
 /// The launch configuration of k_pcg for n block rows on this device, with the knobs of
-/// `tuning` (pcg_block, pcg_grid, pcg_blocks_per_sm, rows_in_registers).
+/// `tuning` (pcg_block, pcg_grid, pcg_blocks_per_sm, rows_in_registers); `multigrid`: the
+/// kernel preconditioned by the multigrid (PcgArgs::mg) instead of block-Jacobi.
 template <class T>
-PcgLaunch pcg_launch(int n, const CudaTuning& tuning);
+PcgLaunch pcg_launch(int n, const CudaTuning& tuning, bool multigrid = false);
 
 /// Launches the persistent kernel L.fn (cooperative) in stream s.
 template <class T>

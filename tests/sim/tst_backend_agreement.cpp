@@ -195,26 +195,43 @@ class TestBackendAgreement : public QObject {
   void doubleAgreesWithCpu_data() {
     QTest::addColumn<QString>("backend");
     QTest::addColumn<bool>("nodal");
-    QTest::newRow("cuda") << "cuda" << false;
-    QTest::newRow("cuda-csr") << "cuda-csr" << false;
-    QTest::newRow("cuda-bsr") << "cuda-bsr" << false;
-    QTest::newRow("cuda nodal-pressure") << "cuda" << true;
+    QTest::addColumn<QString>("preconditioner");
+    QTest::newRow("cuda") << "cuda" << false << "block-jacobi";
+    QTest::newRow("cuda-csr") << "cuda-csr" << false << "block-jacobi";
+    QTest::newRow("cuda-bsr") << "cuda-bsr" << false << "block-jacobi";
+    QTest::newRow("cuda nodal-pressure") << "cuda" << true << "block-jacobi";
+    // The multigrid's levels built on the host from the system the GPU assembled, its
+    // V-cycle run inside the persistent kernel: the CPU's preconditioner, so the same
+    // iterations and forces.
+    QTest::newRow("cuda multigrid") << "cuda" << false << "multigrid";
+    QTest::newRow("cuda multigrid nodal-pressure") << "cuda" << true << "multigrid";
+    QTest::newRow("cuda multigrid-chebyshev nodal-pressure") << "cuda" << true << "multigrid-chebyshev";
   }
   void doubleAgreesWithCpu() {
     QFETCH(QString, backend);
     QFETCH(bool, nodal);
+    QFETCH(QString, preconditioner);
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): GPU/CPU agreement not checked").c_str());
     Scenario s = hertz_coarse();
     // Named either way: the scene's Poisson's ratio (0.45) would resolve an unnamed element
     // to the nodal-pressure one, which the library baselines do not have.
     s.params.element = nodal ? Element::NodalPressure : Element::Linear;
+    s.params.solver.preconditioner = parse_preconditioner(preconditioner.toStdString());
     const Model m = build_scenario_model(s, patient_mesh(s));
     const Trace cpu = run(s, m, "cpu", 700);
     const Trace gpu = run(s, m, backend.toStdString(), 700);
     const double ef = relative_error(gpu.force, cpu.force), ex = relative_error(gpu.x, cpu.x);
-    qInfo("%s double against cpu double (Hertz, coarse box, 700 steps, %s element): force error %.2e, position error %.2e",
-          qPrintable(backend), nodal ? "nodal-pressure" : "linear", ef, ex);
+    qInfo("%s double against cpu double (Hertz, coarse box, 700 steps, %s element, %s): force error %.2e, position error %.2e",
+          qPrintable(backend), nodal ? "nodal-pressure" : "linear", qPrintable(preconditioner), ef, ex);
+    if (is_multigrid(s.params.solver.preconditioner)) {
+      // The levels did their work on the GPU: far fewer iterations than block-Jacobi's.
+      Scenario bj = s;
+      bj.params.solver.preconditioner = Preconditioner::BlockJacobi;
+      const long bj_iterations = run(bj, m, "cpu", 700).iterations;
+      qInfo("CG iterations with block-Jacobi on the cpu: %ld", bj_iterations);
+      QVERIFY2(2 * gpu.iterations < bj_iterations, qPrintable(QString("%1 against %2").arg(gpu.iterations).arg(bj_iterations)));
+    }
     QVERIFY2(ef <= 1e-6, qPrintable(QString("force error %1").arg(ef)));
     QVERIFY2(ex <= 1e-6, qPrintable(QString("position error %1").arg(ex)));
     // The same algorithm (warm start, restart and stopping rules): the same iterations, up

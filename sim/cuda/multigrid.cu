@@ -1,0 +1,82 @@
+// The multigrid levels copied to the device (see multigrid.cuh).
+#include "cuda/multigrid.cuh"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace palpation::sim::cuda {
+
+CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s) {
+  CsrDev d;
+  d.rows = int(M.rows());
+  auto& ptr = ints_.emplace_back();
+  ptr.upload(M.outerIndexPtr(), std::size_t(M.rows()) + 1, s);
+  auto& col = ints_.emplace_back();
+  col.upload(M.innerIndexPtr(), std::size_t(M.nonZeros()), s);
+  auto& val = dbls_.emplace_back();
+  val.upload(M.valuePtr(), std::size_t(M.nonZeros()), s);
+  d.ptr = ptr.get();
+  d.col = col.get();
+  d.val = val.get();
+  return d;
+}
+
+double* MultigridDevice::vec(int n) {
+  auto& v = dbls_.emplace_back();
+  v.alloc(std::size_t(n));
+  return v.get();
+}
+
+void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
+  const auto& levels = h.levels();
+  const int L = int(levels.size());
+  if (L < 2 || L > kMgMaxLevels)
+    throw std::runtime_error("cuda multigrid: " + std::to_string(L) + " levels (2 to " + std::to_string(kMgMaxLevels) +
+                             " run on the GPU)");
+  for (const auto& lv : levels)
+    if (lv.smoothing.steps() > kMgMaxSteps)
+      throw std::runtime_error("cuda multigrid: a smoothing of degree " + std::to_string(lv.smoothing.steps()) +
+                               " (at most " + std::to_string(kMgMaxSteps) + " on the GPU)");
+  CU(cudaStreamSynchronize(s));  // the kernels of earlier steps may still read the old levels
+  ints_.clear();
+  dbls_.clear();
+  MgDev m;
+  m.levels = L;
+  for (int k = 0; k < L; ++k) {
+    const auto& src = levels[std::size_t(k)];
+    MgLevelDev& dst = m.lv[k];
+    dst.n = k == 0 ? int(src.P.rows()) : int(src.A.rows());
+    if (k > 0) {
+      dst.A = csr(src.A, s);
+      dst.b = vec(dst.n);
+      dst.x = vec(dst.n);
+      dst.r = vec(dst.n);
+      dst.d = vec(dst.n);
+    }
+    if (k + 1 < L) {
+      if (k > 0) dst.Dinv = csr(src.Dinv, s);
+      dst.P = csr(src.P, s);
+      dst.R = csr(src.R, s);
+      dst.steps = src.smoothing.steps();
+      for (int j = 0; j < dst.steps; ++j) {
+        dst.a[j] = src.smoothing.a[std::size_t(j)];
+        dst.c[j] = src.smoothing.c[std::size_t(j)];
+      }
+    }
+  }
+  // The coarsest solve as one more matrix: its inverse, every row full.
+  const Eigen::MatrixXd inv = h.coarsest_inverse();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(std::size_t(inv.size()));
+  for (Eigen::Index i = 0; i < inv.rows(); ++i)
+    for (Eigen::Index j = 0; j < inv.cols(); ++j) t.emplace_back(int(i), int(j), inv(i, j));
+  amg::SpMat dense(inv.rows(), inv.cols());
+  dense.setFromTriplets(t.begin(), t.end());
+  dense.makeCompressed();
+  m.coarsest_inverse = csr(dense, s);
+  desc_.upload(&m, 1, s);
+  levels_ = L;
+}
+
+}  // namespace palpation::sim::cuda

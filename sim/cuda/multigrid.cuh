@@ -1,0 +1,156 @@
+// The multigrid preconditioner on the GPU: the levels that amg::Hierarchy builds on the
+// host (amg.h; when, multigrid_keeper.h), copied to the device, and the device pieces of
+// its V-cycle that the persistent PCG kernel (pcg.cu) runs between grid barriers.
+//
+// The V-cycle is solve_cg.h's multigrid_cycle and amg.cpp's Hierarchy::cycle step for
+// step: the finest level smoothed on the kernel's own operator with its block-Jacobi, the
+// coarse levels in double on their stored operators, the coarsest solved by its inverse
+// (dense, applied as one more matrix: the Cholesky solve's result to rounding). Every
+// matrix is scalar CSR, read by groups of kGroup lanes per row; a barrier follows each
+// product whose result another thread reads.
+#pragma once
+
+#include <deque>
+
+#include "amg.h"
+#include "cuda/common.cuh"
+
+namespace palpation::sim::cuda {
+
+constexpr int kMgMaxLevels = 8;  // amg::Options::max_levels
+constexpr int kMgMaxSteps = 4;   // the smoothing's degree
+
+/// A scalar CSR matrix on the device.
+struct CsrDev {
+  int rows = 0;
+  const int* ptr = nullptr;
+  const int* col = nullptr;
+  const double* val = nullptr;
+};
+
+/// One level: its operator and inverse diagonal blocks (levels >= 1), its prolongation
+/// from the next level and restriction to it (all but the coarsest), its smoothing
+/// (amg::Smoothing), and its vectors (levels >= 1; the finest uses the kernel's).
+struct MgLevelDev {
+  int n = 0;
+  CsrDev A, Dinv, P, R;
+  int steps = 0;
+  double a[kMgMaxSteps] = {}, c[kMgMaxSteps] = {};
+  double* b = nullptr;  // right-hand side (the restricted residual)
+  double* x = nullptr;  // correction
+  double* r = nullptr;  // residual
+  double* d = nullptr;  // smoothing direction
+};
+
+struct MgDev {
+  int levels = 0;
+  MgLevelDev lv[kMgMaxLevels];
+  CsrDev coarsest_inverse;  // the last level's operator inverted, as full rows
+};
+
+/// The levels on the device. upload() copies a built hierarchy (throws std::runtime_error
+/// on one the kernel cannot run: one level, too many, too high a degree); dev() is the
+/// descriptor's device address, null before the first upload.
+class MultigridDevice {
+ public:
+  void upload(const amg::Hierarchy& h, cudaStream_t s);
+  const MgDev* dev() const { return desc_.size() ? desc_.get() : nullptr; }
+  int levels() const { return levels_; }
+
+ private:
+  CsrDev csr(const amg::SpMat& M, cudaStream_t s);
+  double* vec(int n);
+  std::deque<DeviceArray<int>> ints_;
+  std::deque<DeviceArray<double>> dbls_;
+  DeviceArray<MgDev> desc_;
+  int levels_ = 0;
+};
+
+#ifdef __CUDACC__
+
+/// y_row = sum_k M_row,k x(col_k) for every row, then emit(row, y_row) on one lane. Groups
+/// of kGroup lanes per row; warp-uniform loop bounds (every lane takes part in every
+/// shuffle).
+template <class Fetch, class Emit>
+__device__ __forceinline__ void csr_groups(const CsrDev& M, Fetch fetch, Emit emit) {
+  constexpr int G = kGroup, RPW = 32 / G;
+  const int lane = threadIdx.x & 31, gl = lane % G, gw = lane / G;
+  const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
+  const int nwarps = (gridDim.x * blockDim.x) >> 5;
+  for (int base = warp * RPW; base < M.rows; base += nwarps * RPW) {
+    const int row = base + gw;
+    double y = 0;
+    if (row < M.rows)
+      for (int k = M.ptr[row] + gl; k < M.ptr[row + 1]; k += G) y += M.val[k] * double(fetch(M.col[k]));
+#pragma unroll
+    for (int o = G / 2; o > 0; o >>= 1) y += __shfl_xor_sync(0xffffffffu, y, o);
+    if (row < M.rows && gl == 0) emit(row, y);
+  }
+}
+
+/// One coarse level's smoothing (amg::smooth) of L.b into L.x, with a barrier after each
+/// product that another row reads. from_zero: L.x is taken as zero; residual: L.r holds
+/// L.b - A L.x on return. Ends on a barrier.
+template <class Bar>
+__device__ void mg_smooth(const MgLevelDev& L, bool from_zero, bool residual, Bar bar) {
+  if (from_zero) {
+    // r = b; d = c0 D^-1 b; x = d (D^-1 reads its own node's rows of b, complete).
+    const double c0 = L.c[0];
+    csr_groups(L.Dinv, [&](int j) { return L.b[j]; }, [&](int i, double t) {
+      L.r[i] = L.b[i];
+      L.d[i] = c0 * t;
+      L.x[i] = c0 * t;
+    });
+  } else {
+    csr_groups(L.A, [&](int j) { return L.x[j]; }, [&](int i, double y) { L.r[i] = L.b[i] - y; });
+    bar();
+    const double c0 = L.c[0];
+    csr_groups(L.Dinv, [&](int j) { return L.r[j]; }, [&](int i, double t) {
+      L.d[i] = c0 * t;
+      L.x[i] += c0 * t;
+    });
+  }
+  bar();
+  for (int k = 1; k < L.steps; ++k) {
+    csr_groups(L.A, [&](int j) { return L.d[j]; }, [&](int i, double y) { L.r[i] -= y; });
+    bar();
+    const double ak = L.a[k], ck = L.c[k];
+    csr_groups(L.Dinv, [&](int j) { return L.r[j]; }, [&](int i, double t) {
+      L.d[i] = ak * L.d[i] + ck * t;
+      L.x[i] += L.d[i];
+    });
+    bar();
+  }
+  if (residual) {
+    csr_groups(L.A, [&](int j) { return L.d[j]; }, [&](int i, double y) { L.r[i] -= y; });
+    bar();
+  }
+}
+
+/// Hierarchy::coarse_cycle: lv[1].x ~ A_1^{-1} lv[1].b, lv[1].b complete on entry. Ends on
+/// a barrier.
+template <class Bar>
+__device__ void mg_coarse_cycle(const MgDev& M, Bar bar) {
+  const int L = M.levels;
+  for (int k = 1; k + 1 < L; ++k) {
+    const MgLevelDev& lv = M.lv[k];
+    mg_smooth(lv, true, true, bar);
+    const MgLevelDev& next = M.lv[k + 1];
+    csr_groups(lv.R, [&](int j) { return lv.r[j]; }, [&](int i, double y) { next.b[i] = y; });
+    bar();
+  }
+  const MgLevelDev& last = M.lv[L - 1];
+  csr_groups(M.coarsest_inverse, [&](int j) { return last.b[j]; }, [&](int i, double y) { last.x[i] = y; });
+  bar();
+  for (int k = L - 2; k >= 1; --k) {
+    const MgLevelDev& lv = M.lv[k];
+    const MgLevelDev& next = M.lv[k + 1];
+    csr_groups(lv.P, [&](int j) { return next.x[j]; }, [&](int i, double y) { lv.x[i] += y; });
+    bar();
+    mg_smooth(lv, false, false, bar);
+  }
+}
+
+#endif  // __CUDACC__
+
+}  // namespace palpation::sim::cuda

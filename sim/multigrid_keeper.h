@@ -1,0 +1,125 @@
+// When a backend's multigrid levels (amg.h) are built and rebuilt: one policy for the CPU
+// and the CUDA backends, so that both precondition the same step with levels built from
+// the same system.
+//
+// The levels are built from a step's system the first time they are needed, and again:
+// after invalidate() (a reset, a change of materials, element or preconditioner); when
+// the stiffness's weight (from dt) is more than twice or less than half the one they were
+// built with, at most once every 100 steps (the real-time loop sets dt from the last
+// step's time, and a rebuild's own slow step must not set off the next); and when a solve
+// ended beyond its tolerance and the rescue tolerance (or not finite) or needed twice the
+// iterations of the first solve after the build, and ten more (the system drifted:
+// rotations, contact). A build that throws (a system that is not finite, a stalled
+// coarsening) leaves this step and the next 1,000 to block-Jacobi.
+#pragma once
+
+#include <exception>
+#include <vector>
+
+#include "amg.h"
+#include "model.h"
+#include "nodal_pressure.h"
+#include "params.h"
+
+namespace palpation::sim {
+
+class MultigridKeeper {
+ public:
+  /// The options the levels of preconditioner `p` are built with.
+  static amg::Options options(Preconditioner p) {
+    amg::Options o;
+    if (p == Preconditioner::MultigridChebyshev) {
+      o.smoother = amg::Smoother::Chebyshev;
+      o.degree = 2;
+    }
+    return o;
+  }
+
+  /// Before a solve preconditioned by `p` of a system whose stiffness weight is `scale`:
+  /// builds the levels when they are due, by build(levels, options) (which may throw), and
+  /// says whether this solve uses them. `builds` and `failures` count the builds done and
+  /// those that threw.
+  template <class Build>
+  bool prepare(Preconditioner p, double scale, Build&& build, long& builds, long& failures) {
+    if (!is_multigrid(p)) return false;
+    ++steps_;
+    if (failed_at_ >= 0 && steps_ - failed_at_ < 1000) return false;
+    const double ratio = scale / scale_;
+    const bool dt_moved = !(ratio <= 2.0 && ratio >= 0.5) && steps_ - built_at_ >= 100;
+    if (!levels_.built() || stale_ || dt_moved) {
+      try {
+        build(levels_, options(p));
+      } catch (const std::exception&) {
+        failed_at_ = steps_;
+        ++failures;
+        return false;
+      }
+      failed_at_ = -1;
+      scale_ = scale;
+      stale_ = false;
+      reference_iterations_ = -1;
+      built_at_ = steps_;
+      ++builds;
+    }
+    return true;
+  }
+
+  /// After a solve that used the levels: `solved` when it ended within its tolerance or
+  /// the rescue tolerance, `tolerance` the one it was asked for.
+  void note(int iterations, bool solved, double tolerance) {
+    if (!solved) {
+      stale_ = true;
+    } else if (reference_iterations_ < 0) {
+      reference_iterations_ = iterations;
+      reference_tolerance_ = tolerance;
+    } else if (tolerance == reference_tolerance_ && iterations > 2 * reference_iterations_ + 10) {
+      // Only against solves to the tolerance of the first one: the error controller's
+      // check solves a hundred times tighter, and its tolerance moves. Once the controller
+      // has moved it, this rule waits for the next build (a solve beyond the rescue
+      // tolerance still marks the levels stale).
+      stale_ = true;
+    }
+  }
+
+  /// Builds `levels` below a system of `model`'s free nodes (their rest positions): its
+  /// part without the nodal-pressure term `stiffness` and that term `pressure` (empty
+  /// without one). The finest level aggregates over the stiffness alone (amg.h).
+  static void build(amg::Hierarchy& levels, const Model& model, const amg::SpMat& stiffness, const amg::SpMat& pressure,
+                    const amg::Options& options) {
+    std::vector<Eigen::Vector3d> nodes(model.num_free());
+    for (int i = 0; i < model.num_free(); ++i) nodes[i] = model.rest[model.free_nodes[i]];
+    if (pressure.nonZeros() > 0)
+      levels.build(amg::SpMat(stiffness + pressure), nodes, options, &stiffness);
+    else
+      levels.build(stiffness, nodes, options);
+  }
+
+  /// The levels are built again before the next solve that uses them.
+  void invalidate() { stale_ = true; }
+
+  const amg::Hierarchy& levels() const { return levels_; }
+
+ private:
+  amg::Hierarchy levels_;
+  double scale_ = 0;               // the weight of K (from dt) they were built with
+  bool stale_ = false;
+  int reference_iterations_ = -1;  // iterations of the first solve after a build
+  double reference_tolerance_ = 0;  // ... and its tolerance
+  long steps_ = 0;                 // steps that asked for the multigrid
+  long built_at_ = 0;              // ... at the last build
+  long failed_at_ = -1;            // ... at the last failed build, or -1
+};
+
+/// A system stored by block rows of three scalar rows each (the CUDA assembly's layout,
+/// sim/cuda/assembly.cuh: block row i's nine values per block, row by row across its
+/// blocks, at 9 row_ptr[i]) as the scalar matrix the levels are built from.
+amg::SpMat block_rows_to_sparse(int n, const std::vector<int>& row_ptr, const std::vector<int>& col,
+                                const std::vector<double>& vals);
+
+/// scale * B^T W B of the nodal-pressure term (nodal_pressure.h) over `nfree` free nodes,
+/// its couplings b (3 per pair) and weights w (per node) given: what the levels add to the
+/// stiffness.
+amg::SpMat nodal_pressure_to_sparse(const NodalPressurePattern& pattern, int nfree, const std::vector<double>& b,
+                                    const std::vector<double>& w, double scale);
+
+}  // namespace palpation::sim
