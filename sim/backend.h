@@ -42,6 +42,11 @@ class Backend {
   virtual bool checkpoint() { return false; }
   /// Back to the state of the last checkpoint() (none since the last reset: nothing).
   virtual void rollback() {}
+  /// rollback(), and the next take's CG starts from the solution of the take just undone
+  /// instead of the warm start's extrapolation: the same step's system solved again, to a
+  /// tighter tolerance (the converged check's reference), goes on from where the first
+  /// take stopped. The steps after it extrapolate as after any take. By default: rollback().
+  virtual void rollback_for_reference() { rollback(); }
 };
 
 enum class BackendKind { Auto, Cpu, Cuda };

@@ -31,6 +31,7 @@
 #include <fstream>
 #include <limits>
 #include <thread>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -165,6 +166,12 @@ class CpuBackend final : public Backend {
     rested_ = kept_.rested;
     last_converged_ = kept_.last_converged;
   }
+  void rollback_for_reference() override {
+    if (!kept_.valid) return;
+    reuse_dv_.swap(dv_);  // the undone take's solution (dv_ is restored below)
+    rollback();
+    reuse_pending_ = true;
+  }
 
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
@@ -245,6 +252,7 @@ class CpuBackend final : public Backend {
     last_converged_ = false;
     multigrid_.invalidate();
     kept_.valid = false;
+    reuse_pending_ = false;
     for (auto& q : q_) q.setIdentity();
     filtered_.clear();
     rested_ = p_.gravity.squaredNorm() == 0;
@@ -256,6 +264,7 @@ class CpuBackend final : public Backend {
 
   StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
     StepStats st;
+    const bool reuse = std::exchange(reuse_pending_, false);  // rollback_for_reference() just before
     const T h = T(p_.solver.dt);
     const int nf = m_.num_free();
     if (filtered_.size() != fingers.size()) filtered_.assign(fingers.size(), Eigen::Vector3d::Zero());
@@ -291,7 +300,12 @@ class CpuBackend final : public Backend {
     // cg::solve, which then starts from zero. Only after a converged solve: with the
     // iterations capped below convergence, extrapolating the truncation error doubles it
     // every step (the capped bench settings diverged).
-    if (dvprev_.size() == dv_.size() && last_converged_) {
+    if (reuse && reuse_dv_.size() == dv_.size()) {
+      // rollback_for_reference(): from the undone take's solution; the previous step's
+      // solution is kept for the next extrapolation, as an extrapolating take keeps it.
+      dvprev_ = dv_;
+      dv_.swap(reuse_dv_);
+    } else if (dvprev_.size() == dv_.size() && last_converged_) {
       for (std::size_t i = 0; i < dv_.size(); ++i) {
         const T cur = dv_[i];
         dv_[i] = T(2) * cur - dvprev_[i];
@@ -364,7 +378,7 @@ class CpuBackend final : public Backend {
           const amg::SpMat stiffness = cg::to_sparse(sys);
           MultigridKeeper::build(levels, m_, stiffness, sys.pressure ? cg::pressure_to_sparse(sys) : amg::SpMat(), options);
         },
-        counters_.multigrid_builds, counters_.multigrid_failures);
+        [](const amg::Hierarchy&) {}, counters_.multigrid_builds, counters_.multigrid_failures);
     cg_.multigrid = use ? &multigrid_.levels() : nullptr;
   }
   void note_multigrid_iterations(int iterations, bool solved) { multigrid_.note(iterations, solved, p_.solver.cg_tolerance); }
@@ -813,6 +827,8 @@ class CpuBackend final : public Backend {
     std::vector<Eigen::Vector3d> filtered;
     bool rested = true, last_converged = false, valid = false;
   } kept_;                                   // checkpoint()
+  std::vector<T> reuse_dv_;                  // rollback_for_reference(): the undone take's solution
+  bool reuse_pending_ = false;               // ... which the next take starts from
   int threads_ = 1;                          // trash slots (OpenMP threads)
   unsigned cores_ = std::thread::hardware_concurrency();
 };

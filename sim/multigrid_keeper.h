@@ -36,11 +36,12 @@ class MultigridKeeper {
   }
 
   /// Before a solve preconditioned by `p` of a system whose stiffness weight is `scale`:
-  /// builds the levels when they are due, by build(levels, options) (which may throw), and
-  /// says whether this solve uses them. `builds` and `failures` count the builds done and
-  /// those that threw.
-  template <class Build>
-  bool prepare(Preconditioner p, double scale, Build&& build, long& builds, long& failures) {
+  /// builds the levels when they are due, by build(levels, options) (a throw: this step
+  /// and the next 1,000 run block-Jacobi), then after_build(levels) (a copy of them
+  /// elsewhere: what it throws goes to the caller), and says whether this solve uses them.
+  /// `builds` and `failures` count the builds done and those that threw.
+  template <class Build, class AfterBuild>
+  bool prepare(Preconditioner p, double scale, Build&& build, AfterBuild&& after_build, long& builds, long& failures) {
     if (!is_multigrid(p)) return false;
     ++steps_;
     if (failed_at_ >= 0 && steps_ - failed_at_ < 1000) return false;
@@ -54,6 +55,7 @@ class MultigridKeeper {
         ++failures;
         return false;
       }
+      after_build(levels_);
       failed_at_ = -1;
       scale_ = scale;
       stale_ = false;

@@ -191,7 +191,7 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
     return loose;
   }
   control_.count_contact_step(false);
-  backend_->rollback();
+  backend_->rollback_for_reference();  // the reference solve goes on from the loose solution
   StepStats st;
   try {
     set_tolerance(control_.reference_tolerance(), true);

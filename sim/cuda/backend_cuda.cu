@@ -42,6 +42,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "cuda/assembly.cuh"
@@ -206,6 +207,8 @@ class CudaBackend final : public Backend {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
     check_element();  // before anything is allocated: a throwing constructor frees nothing
+    if (solver_ != Solver::Persistent && is_multigrid(p_.solver.preconditioner))
+      throw std::runtime_error(baseline_multigrid_refusal());
     const CudaTuning tuning = CudaTuning::from_environment();
     tuning_ = tuning;
     CU(cudaSetDevice(d.device));
@@ -293,9 +296,7 @@ class CudaBackend final : public Backend {
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
     if (solver_ != Solver::Persistent && is_multigrid(p.solver.preconditioner))
-      throw std::runtime_error("backend " + name() + ": solver.preconditioner \"" +
-                               std::string(preconditioner_name(p.solver.preconditioner)) +
-                               "\" runs on the cpu and cuda backends (the library baselines precondition with block-Jacobi)");
+      throw std::runtime_error(baseline_multigrid_refusal(p));
     const bool element_changed = p.element != p_.element;
     if (p.solver.preconditioner != p_.solver.preconditioner) multigrid_.invalidate();
     const SimParams old = p_;
@@ -340,6 +341,7 @@ class CudaBackend final : public Backend {
     dv_prev_.zero(stream_);
     last_converged_ = false;
     has_kept_ = false;
+    reuse_pending_ = false;
     multigrid_.invalidate();
     p0_.zero(stream_);
     p1_.zero(stream_);
@@ -382,6 +384,12 @@ class CudaBackend final : public Backend {
     rested_ = kept_rested_;
     last_converged_ = kept_last_converged_;
   }
+  void rollback_for_reference() override {
+    if (!has_kept_) return;
+    reuse_dv_.copy_from(dv_, stream_);  // the undone take's solution, before dv_ is restored
+    rollback();
+    reuse_pending_ = true;
+  }
 
   StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
     if (fingers.size() > std::size_t(kMaxFingers))
@@ -406,6 +414,7 @@ class CudaBackend final : public Backend {
     k.ke = p_.contact.damping;
     for (int c = 0; c < 3; ++c) k.g[c] = p_.gravity[c];
 
+    const bool reuse = std::exchange(reuse_pending_, false);  // rollback_for_reference() just before
     bool detected = false;
     if (rested_) {
       // At rest: the solve is needed only if something touches. Detection on the GPU and
@@ -424,7 +433,12 @@ class CudaBackend final : public Backend {
     prof_.mark(0, stream_);
     launch_element(F, k, !detected);
     prof_.mark(1, stream_);
-    launch_assemble(k);
+    // After rollback_for_reference(): from the undone take's solution, not extrapolated; the
+    // assembly then keeps it as the previous solution, which is the checkpoint's instead
+    // (what the next step extrapolates from, as after any take).
+    if (reuse) dv_.copy_from(reuse_dv_, stream_);
+    launch_assemble(k, !reuse && last_converged_);
+    if (reuse) dv_prev_.copy_from(kept_dv_, stream_);
     if (nodal()) launch_pressure();
     prof_.mark(2, stream_);
     int iterations = 0;
@@ -482,6 +496,13 @@ class CudaBackend final : public Backend {
   void fetch_result() { CU(cudaStreamSynchronize(stream_)); }
 
   bool nodal() const { return p_.element == Element::NodalPressure; }
+
+  /// The library baselines (baseline.cu) precondition with block-Jacobi only.
+  std::string baseline_multigrid_refusal(const SimParams& p) const {
+    return "backend " + name() + ": solver.preconditioner \"" + std::string(preconditioner_name(p.solver.preconditioner)) +
+           "\" runs on the cpu and cuda backends (the library baselines precondition with block-Jacobi)";
+  }
+  std::string baseline_multigrid_refusal() const { return baseline_multigrid_refusal(p_); }
 
   /// The library baselines (baseline.cu) have the linear element only.
   void check_element() const {
@@ -595,7 +616,7 @@ class CudaBackend final : public Backend {
     cuda::launch_element(stream_, a, detect_args(), F, k, detect);
   }
 
-  void launch_assemble(const StepConsts& k) {
+  void launch_assemble(const StepConsts& k, bool extrapolate) {
     AssembleArgs<T> a{};
     a.nf = nf_;
     a.row_ptr = row_ptr_.get();
@@ -615,7 +636,7 @@ class CudaBackend final : public Backend {
     a.b = b_.get();
     a.dv = dv_.get();
     a.dv_prev = dv_prev_.get();
-    a.extrapolate = last_converged_ ? 1 : 0;
+    a.extrapolate = extrapolate ? 1 : 0;
     const T h = T(k.h);
     a.kscale = h * h + h * T(k.beta);
     a.mscale = T(1) + h * T(k.alpha);
@@ -642,9 +663,15 @@ class CudaBackend final : public Backend {
           amg::SpMat pressure;
           if (nodal()) {
             download(npb_, b);
-            pressure = nodal_pressure_to_sparse(np_, nf_, b, npw_host_, double(pressure_dev().scale));
+            // The weights as the device holds them (in T), as the CPU backend builds from its own.
+            std::vector<double> w(npw_host_.size());
+            for (std::size_t i = 0; i < w.size(); ++i) w[i] = double(T(npw_host_[i]));
+            pressure = nodal_pressure_to_sparse(np_, nf_, b, w, double(pressure_dev().scale));
           }
           MultigridKeeper::build(levels, m_, stiffness, pressure, options);
+        },
+        [&](const amg::Hierarchy& levels) {
+          // A CUDA error here is the device's, not the levels': it goes to the caller.
           mg_levels_.upload(levels, stream_);
           if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
           if (mg_r_.size() != 3 * std::size_t(nf_)) {
@@ -726,6 +753,8 @@ class CudaBackend final : public Backend {
   DeviceArray<T> kept_x_, kept_v_, kept_quat_, kept_dv_, kept_dv_prev_;  // checkpoint()
   std::vector<Eigen::Vector3d> kept_filtered_;
   bool kept_rested_ = true, kept_last_converged_ = false, has_kept_ = false;
+  DeviceArray<T> reuse_dv_;     // rollback_for_reference(): the undone take's solution
+  bool reuse_pending_ = false;  // ... which the next take starts from
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
   DevResult* host_res_ = nullptr;  // mapped pinned memory
