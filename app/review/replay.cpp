@@ -49,6 +49,7 @@ void ForceDiff::add(double t, int k, const Eigen::Vector3d& replayed, const Eige
     at_t = t;
     finger = k;
   }
+  if (std::isfinite(d)) sum_sq_diff += d * d;
   ++compared;
 }
 

@@ -15,6 +15,8 @@
 //    recorded force scale against the forces recorded (sent).
 #pragma once
 
+#include <cmath>
+
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -52,7 +54,12 @@ struct ForceDiff {
   int finger = 0;
   double max_recorded_force = 0;  // N, for scale
   std::size_t compared = 0;       // finger samples compared
+  double sum_sq_diff = 0;         // N^2, sum of |f_replay - f_recorded|^2 (finite ones)
   void add(double t, int k, const Eigen::Vector3d& replayed, const Eigen::Vector3d& recorded);
+  /// N, the root mean square of the differences: a path that differs wherever the force
+  /// is large stands apart from one that differs at a few samples (a step's force reaching
+  /// the device a tick late or early under load).
+  double rms_diff() const { return compared ? std::sqrt(sum_sq_diff / double(compared)) : 0.0; }
 };
 
 struct ReplayResult {

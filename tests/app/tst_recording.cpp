@@ -1114,15 +1114,27 @@ class TestRecording : public QObject {
     for (auto& e : unscaled.events)
       if (e.value("event", "") == "force_scale") e["scale"] = 1.0;
     const ReplayResult r3 = replay_recording(unscaled, {});
-    qInfo("unscaled: sent difference %.3g N", r3.sent.max_diff);
+    qInfo("unscaled: sent difference %.3g N; root mean square %.3g N unscaled, %.3g N scaled", r3.sent.max_diff,
+          r3.sent.rms_diff(), r.sent.rms_diff());
     QVERIFY(r3.max_force_diff <= 1e-9);  // the simulated comparison does not involve the scale
     // Sent unscaled, a force is 1/scale times the recorded one until the coupling, the rate
-    // limit and the device limit cut it: the difference measured is 50-140 % of (1 - scale)
-    // of the largest force (scale 0.65 with the linear element, 0.74 with the nodal one),
-    // the scaled replay's 0.2-2 %. A quarter of (1 - scale) and five times the scaled
-    // replay's difference tell the two apart with room on either side.
-    QVERIFY2(r3.sent.max_diff > 0.25 * (1 - r.force_scale) * r.sent.max_recorded_force && r3.sent.max_diff > 5 * r.sent.max_diff,
-             qPrintable(QString("%1 unscaled, %2 scaled, of %3").arg(r3.sent.max_diff).arg(r.sent.max_diff).arg(r.sent.max_recorded_force)));
+    // limit and the device limit cut it: the largest difference measured is 50-140 % of
+    // (1 - scale) of the largest force (scale 0.65 with the linear element, 0.74 with the
+    // nodal one), and it is there wherever the finger presses. The scaled replay differs at
+    // a few ticks only (a step's force reaching the device a tick early or late), by up to
+    // 4-8 % of the largest force at one tick under load (two runs of this test, one of them
+    // in a clean-clone CI run), but by 0.2-2 mN in root mean square against the unscaled
+    // replay's 94-96 mN (three runs on this 2-core VM). So: the largest difference above a
+    // quarter of (1 - scale) of the largest force, and the root mean square five times the
+    // scaled replay's.
+    QVERIFY2(r3.sent.max_diff > 0.25 * (1 - r.force_scale) * r.sent.max_recorded_force &&
+                 r3.sent.rms_diff() > 5 * r.sent.rms_diff(),
+             qPrintable(QString("%1 unscaled, %2 scaled, of %3; root mean square %4 unscaled, %5 scaled")
+                            .arg(r3.sent.max_diff)
+                            .arg(r.sent.max_diff)
+                            .arg(r.sent.max_recorded_force)
+                            .arg(r3.sent.rms_diff())
+                            .arg(r.sent.rms_diff())));
     // A recording made before the scale was recorded: the scale is measured again as the
     // workstation chose it, the same value.
     Recording old = rec;
