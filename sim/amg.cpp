@@ -381,4 +381,6 @@ Stats Hierarchy::stats() const {
   return s;
 }
 
+int eigen_max_align_bytes() { return EIGEN_MAX_ALIGN_BYTES; }
+
 }  // namespace palpation::sim::amg

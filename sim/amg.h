@@ -227,4 +227,9 @@ void multiply(const SpMat& M, const X* x, double* y) {
 /// aggregate (0..count-1). Exposed for tests.
 std::vector<int> aggregate(const SpMat& A, int block, double strength, int& count);
 
+/// EIGEN_MAX_ALIGN_BYTES as this library was compiled: the Eigen objects it hands out are
+/// freed by Eigen's matching aligned free only where the caller was compiled alike (the CUDA
+/// sources, by nvcc, check it against their own).
+int eigen_max_align_bytes();
+
 }  // namespace palpation::sim::amg

@@ -418,10 +418,11 @@ if has multigrid; then
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 print("mesh        setting  preconditioner        median ms  p99 ms   CG it. median/max  force error  vs block-Jacobi")
-base = {(r["mesh"], r["cg_tolerance"]): float(r["step_ms_median"]) for r in rows if r["preconditioner"] == "block-jacobi"}
+def setting(r): return f'fe{float(r["force_error_target"]) * 100:g}%' if float(r.get("force_error_target") or 0) > 0 else r["cg_tolerance"]
+base = {(r["mesh"], setting(r)): float(r["step_ms_median"]) for r in rows if r["preconditioner"] == "block-jacobi"}
 for r in rows:
-    t = float(r["step_ms_median"]); b = base.get((r["mesh"], r["cg_tolerance"]))
-    print(f'{r["mesh"]:11s} {r["cg_tolerance"]:8s} {r["preconditioner"]:20s} {t:9.3f} {float(r["step_ms_p99"]):8.3f}  '
+    t = float(r["step_ms_median"]); b = base.get((r["mesh"], setting(r)))
+    print(f'{r["mesh"]:11s} {setting(r):8s} {r["preconditioner"]:20s} {t:9.3f} {float(r["step_ms_p99"]):8.3f}  '
           f'{float(r["cg_iterations_median"]):6.0f} / {float(r["cg_iterations_max"]):5.0f}  {float(r["force_error"]):11.2e}  '
           + (f'{b / t:6.2f}x' if b else "-"))
 EOF

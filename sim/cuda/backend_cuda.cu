@@ -206,6 +206,10 @@ class CudaBackend final : public Backend {
       : m_(model), p_(resolved_for(model, params)), solver_(solver) {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
+    if (amg::eigen_max_align_bytes() != EIGEN_MAX_ALIGN_BYTES)
+      throw std::runtime_error("cuda backend: built with Eigen aligned to " + std::to_string(EIGEN_MAX_ALIGN_BYTES) +
+                               " bytes in the CUDA sources and " + std::to_string(amg::eigen_max_align_bytes()) +
+                               " in the C++ ones (give both the same -march)");
     check_element();  // before anything is allocated: a throwing constructor frees nothing
     if (solver_ != Solver::Persistent && is_multigrid(p_.solver.preconditioner))
       throw std::runtime_error(baseline_multigrid_refusal());
