@@ -45,25 +45,20 @@ double force_filter_alpha(double hz, double dt) {
 
 bool is_library_baseline(const std::string& name) { return name == "cuda-csr" || name == "cuda-bsr"; }
 
-namespace {
-
-/// Why GPU backend `name` cannot run these parameters, or empty: the library baselines
-/// precondition with block-Jacobi only (the multigrid runs on the cpu and cuda backends).
-std::string gpu_refusal(const std::string& name, const SimParams& params) {
+std::string library_baseline_refusal(const std::string& name, const SimParams& params) {
   return is_library_baseline(name) && is_multigrid(params.solver.preconditioner)
-             ? "solver.preconditioner \"" + std::string(preconditioner_name(params.solver.preconditioner)) +
+             ? "backend " + name + ": solver.preconditioner \"" +
+                   std::string(preconditioner_name(params.solver.preconditioner)) +
                    "\" runs on the cpu and cuda backends (the library baselines precondition with block-Jacobi)"
              : std::string();
 }
-
-}  // namespace
 
 std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params) {
   if (name == "cpu") return make_cpu_backend(model, params);
 #ifdef PALPATION_HAVE_CUDA
   std::string why;
   if (name == "cuda" || is_library_baseline(name)) {
-    if (const std::string no = gpu_refusal(name, params); !no.empty()) throw std::runtime_error("backend " + name + ": " + no);
+    if (const std::string no = library_baseline_refusal(name, params); !no.empty()) throw std::runtime_error(no);
     if (!cuda_available(&why)) throw std::runtime_error("backend " + name + ": " + why);
     return name == "cuda" ? make_cuda_backend(model, params) : make_cuda_baseline_backend(name, model, params);
   }
@@ -86,11 +81,7 @@ bool cuda_floor(const Model& model, Precision precision, FloorEstimate& out) {
 std::unique_ptr<Backend> make_backend(BackendKind kind, const Model& model, const SimParams& params,
                                       std::string* reason) {
   std::string why;
-  // The multigrid's GPU port runs where the cuda backend is named; chosen automatically,
-  // a multigrid scenario stays on the CPU backend, whose multigrid is the checked one.
-  if (kind == BackendKind::Auto && is_multigrid(params.solver.preconditioner))
-    why = "the multigrid preconditioner runs on cuda where solver.backend names it";
-  else if (kind == BackendKind::Cuda || kind == BackendKind::Auto) {
+  if (kind == BackendKind::Cuda || kind == BackendKind::Auto) {
     if (cuda_available(&why)) {
 #ifdef PALPATION_HAVE_CUDA
       auto b = make_cuda_backend(model, params);

@@ -75,6 +75,10 @@ double force_filter_alpha(double hz, double dt);
 /// True for the GPU backends that exist to be measured against ("cuda-csr", "cuda-bsr"):
 /// ports of the same step onto cuSPARSE and cuBLAS, with the linear element only.
 bool is_library_baseline(const std::string& name);
+/// Why backend `name` cannot run these parameters ("backend NAME: ..."), or empty: the
+/// library baselines precondition with block-Jacobi only (the multigrid runs on the cpu and
+/// cuda backends).
+std::string library_baseline_refusal(const std::string& name, const SimParams& params);
 /// Makes a backend by name. Throws std::runtime_error for an unknown/unavailable one.
 std::unique_ptr<Backend> make_named_backend(const std::string& name, const Model& model, const SimParams& params);
 

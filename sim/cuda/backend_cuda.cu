@@ -211,8 +211,7 @@ class CudaBackend final : public Backend {
                                " bytes in the CUDA sources and " + std::to_string(amg::eigen_max_align_bytes()) +
                                " in the C++ ones (give both the same -march)");
     check_element();  // before anything is allocated: a throwing constructor frees nothing
-    if (solver_ != Solver::Persistent && is_multigrid(p_.solver.preconditioner))
-      throw std::runtime_error(baseline_multigrid_refusal());
+    if (const std::string no = library_baseline_refusal(name(), p_); !no.empty()) throw std::runtime_error(no);
     const CudaTuning tuning = CudaTuning::from_environment();
     tuning_ = tuning;
     CU(cudaSetDevice(d.device));
@@ -299,8 +298,7 @@ class CudaBackend final : public Backend {
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;
-    if (solver_ != Solver::Persistent && is_multigrid(p.solver.preconditioner))
-      throw std::runtime_error(baseline_multigrid_refusal(p));
+    if (const std::string no = library_baseline_refusal(name(), p); !no.empty()) throw std::runtime_error(no);
     const bool element_changed = p.element != p_.element;
     if (p.solver.preconditioner != p_.solver.preconditioner) multigrid_.invalidate();
     const SimParams old = p_;
@@ -502,12 +500,6 @@ class CudaBackend final : public Backend {
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
   /// The library baselines (baseline.cu) precondition with block-Jacobi only.
-  std::string baseline_multigrid_refusal(const SimParams& p) const {
-    return "backend " + name() + ": solver.preconditioner \"" + std::string(preconditioner_name(p.solver.preconditioner)) +
-           "\" runs on the cpu and cuda backends (the library baselines precondition with block-Jacobi)";
-  }
-  std::string baseline_multigrid_refusal() const { return baseline_multigrid_refusal(p_); }
-
   /// The library baselines (baseline.cu) have the linear element only.
   void check_element() const {
     if (nodal() && solver_ != Solver::Persistent)
