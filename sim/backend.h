@@ -47,6 +47,14 @@ class Backend {
   /// tighter tolerance (the converged check's reference), goes on from where the first
   /// take stopped. The steps after it extrapolate as after any take. By default: rollback().
   virtual void rollback_for_reference() { rollback(); }
+  /// The multigrid levels this backend built since it was made (solver.preconditioner
+  /// multigrid or multigrid-chebyshev), and the builds that threw: their step and the next
+  /// 1,000 ran block-Jacobi (multigrid_keeper.h). Zeros for a backend without a multigrid.
+  struct MultigridCounts {
+    long builds = 0;
+    long failures = 0;
+  };
+  virtual MultigridCounts multigrid_counts() const { return {}; }
 };
 
 enum class BackendKind { Auto, Cpu, Cuda };

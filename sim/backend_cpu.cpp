@@ -136,6 +136,7 @@ class CpuBackend final : public Backend {
     if (element_changed) set_materials(mat_);
   }
   const CpuWorkCounters& counters() const { return counters_; }
+  MultigridCounts multigrid_counts() const override { return multigrid_counts_; }
 
   // The element caches (F, the rotations q_, K blocks) need no copy while elements are
   // kept (corotation_tolerance > 0): they are formed from the start-of-step positions, and
@@ -378,7 +379,7 @@ class CpuBackend final : public Backend {
           const amg::SpMat stiffness = cg::to_sparse(sys);
           MultigridKeeper::build(levels, m_, stiffness, sys.pressure ? cg::pressure_to_sparse(sys) : amg::SpMat(), options);
         },
-        [](const amg::Hierarchy&) {}, counters_.multigrid_builds, counters_.multigrid_failures);
+        [](const amg::Hierarchy&) {}, multigrid_counts_.builds, multigrid_counts_.failures);
     cg_.multigrid = use ? &multigrid_.levels() : nullptr;
   }
   void note_multigrid_iterations(int iterations, bool solved) { multigrid_.note(iterations, solved, p_.solver.cg_tolerance); }
@@ -821,6 +822,7 @@ class CpuBackend final : public Backend {
   bool assembled_ = false;                   // blocks_ holds K for the current rotations
   long steps_since_assembly_ = 0;
   CpuWorkCounters counters_;
+  MultigridCounts multigrid_counts_;
   struct Kept {
     std::vector<T> x, v, dv, dvprev;
     std::vector<Eigen::Quaternion<T>> q;

@@ -13,13 +13,12 @@ inline constexpr long kCpuReassembleSteps = 65536;
 /// What the CPU backend's work skipping did since it was made (read-only, for tests and
 /// reports): steps taken, steps skipped because the body rested untouched, and full
 /// assemblies of K (the first, after a reset, material or tolerance change, at tolerance
-/// 0 every step, and every kCpuReassembleSteps assembling steps) and multigrid builds.
+/// 0 every step, and every kCpuReassembleSteps assembling steps). Its multigrid builds:
+/// Backend::multigrid_counts.
 struct CpuWorkCounters {
   long steps = 0;
   long skipped_at_rest = 0;
   long full_assemblies = 0;
-  long multigrid_builds = 0;    // multigrid levels built (Preconditioner::Multigrid)
-  long multigrid_failures = 0;  // builds that threw (those steps ran block-Jacobi)
 };
 
 /// The counters of a CPU backend; zeros for any other backend.

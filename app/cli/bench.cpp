@@ -201,6 +201,11 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                         "last %.2e; %d divergence resets\n",
                         tr.control.tolerance, tr.control.checks, tr.control.over_target, tr.control.worst_error,
                         tr.control.last_error, tr.divergences);
+          if (sim::is_multigrid(sp.params.solver.preconditioner))
+            std::printf("        multigrid: %ld level builds%s\n", tr.multigrid.builds,
+                        tr.multigrid.failures
+                            ? (", " + std::to_string(tr.multigrid.failures) + " builds failed (their steps ran block-Jacobi)").c_str()
+                            : "");
           std::fflush(stdout);
           if (!devices.count(backend)) devices[backend] = sim::make_named_backend(backend, model, s.params)->device_name();
           report["points"].push_back({{"mesh", level},
@@ -217,6 +222,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"controller_worst_check_error", tr.control.worst_error},
                                       {"divergence_resets", tr.divergences},
                                       {"backend_fallbacks", tr.fallbacks},
+                                      {"multigrid_builds", tr.multigrid.builds},
+                                      {"multigrid_failures", tr.multigrid.failures},
                                       {"step_ms_median", med},
                                       {"step_ms_p99", p99},
                                       {"cg_iterations_median", percentile(its, 50)},

@@ -51,6 +51,7 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
   tr.control = sim.error_control();
   tr.divergences = sim.divergences();
   tr.fallbacks = sim.fallbacks();
+  tr.multigrid = sim.backend().multigrid_counts();
   return tr;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "backend.h"
 #include "error_control.h"
 #include "model.h"
 #include "scenario.h"
@@ -23,6 +24,7 @@ struct Trace {
   sim::ErrorControlStats control;          // the error controller at the end (solver.force_error > 0)
   int divergences = 0;                     // steps the guard put back at rest
   int fallbacks = 0;                       // the backend failed and the run went on on the CPU
+  sim::Backend::MultigridCounts multigrid; // the multigrid builds of the backend at the end
 };
 
 /// The steps whose positions a trace keeps: N/4, N/2, 3N/4, N.

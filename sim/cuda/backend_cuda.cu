@@ -293,6 +293,7 @@ class CudaBackend final : public Backend {
   std::string device_name() const override { return device_info().name; }
   Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
   const SimParams& params() const override { return p_; }
+  MultigridCounts multigrid_counts() const override { return multigrid_counts_; }
   void set_params(const SimParams& given) override {
     const SimParams p = resolved_for(m_, given);
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
@@ -675,7 +676,7 @@ class CudaBackend final : public Backend {
             mg_d_.alloc(3 * std::size_t(nf_));
           }
         },
-        multigrid_builds_, multigrid_failures_);
+        multigrid_counts_.builds, multigrid_counts_.failures);
   }
 
   PcgArgs<T> pcg_args(bool multigrid = false) {
@@ -775,7 +776,7 @@ class CudaBackend final : public Backend {
   cuda::MultigridDevice mg_levels_;
   PcgLaunch mg_launch_;
   DeviceArray<T> mg_r_, mg_d_;
-  long multigrid_builds_ = 0, multigrid_failures_ = 0;
+  MultigridCounts multigrid_counts_;
 };
 
 }  // namespace

@@ -27,6 +27,7 @@ struct Trace {
   std::vector<double> force;  // (steps x fingers x 3)
   std::vector<double> x;      // final positions
   long iterations = 0;        // CG iterations over all steps
+  Backend::MultigridCounts multigrid;  // the backend's multigrid builds at the end
 };
 
 Trace run(const Scenario& s, const Model& m, const std::string& backend, int steps) {
@@ -45,6 +46,7 @@ Trace run(const Scenario& s, const Model& m, const std::string& backend, int ste
       for (int c = 0; c < 3; ++c) t.force.push_back(out[f].force[c]);
   }
   b->positions(t.x);
+  t.multigrid = b->multigrid_counts();
   return t;
 }
 
@@ -239,7 +241,13 @@ class TestBackendAgreement : public QObject {
       Scenario bj = s;
       bj.params.solver.preconditioner = Preconditioner::BlockJacobi;
       const long bj_iterations = run(bj, m, "cpu", steps).iterations;
-      qInfo("CG iterations with block-Jacobi on the cpu: %ld", bj_iterations);
+      qInfo("CG iterations with block-Jacobi on the cpu: %ld; multigrid builds cuda %ld (%ld failed), cpu %ld (%ld failed)",
+            bj_iterations, gpu.multigrid.builds, gpu.multigrid.failures, cpu.multigrid.builds, cpu.multigrid.failures);
+      // Built when the same rule says so on both (multigrid_keeper.h), and none threw.
+      QVERIFY(gpu.multigrid.builds >= 1);
+      QCOMPARE(gpu.multigrid.builds, cpu.multigrid.builds);
+      QCOMPARE(gpu.multigrid.failures, 0L);
+      QCOMPARE(cpu.multigrid.failures, 0L);
       QVERIFY2(2 * gpu.iterations < bj_iterations, qPrintable(QString("%1 against %2").arg(gpu.iterations).arg(bj_iterations)));
     }
     QVERIFY2(ef <= 1e-6, qPrintable(QString("force error %1").arg(ef)));

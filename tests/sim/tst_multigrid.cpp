@@ -333,7 +333,7 @@ class TestMultigrid : public QObject {
         QVERIFY(st.finite);
       }
     };
-    auto builds = [&] { return cpu_work_counters(*b).multigrid_builds; };
+    auto builds = [&] { return b->multigrid_counts().builds; };
     steps(1, 30);
     QCOMPARE(builds(), 1L);
     SimParams p = b->params();
@@ -352,7 +352,7 @@ class TestMultigrid : public QObject {
     b->set_materials(mat);
     steps(140, 145);
     QCOMPARE(builds(), 3L);
-    QCOMPARE(cpu_work_counters(*b).multigrid_failures, 0L);
+    QCOMPARE(b->multigrid_counts().failures, 0L);
   }
 
   // The whole step with it: a finger presses a box of nodal-pressure tissue
