@@ -227,6 +227,11 @@ void multiply(const SpMat& M, const X* x, double* y) {
 /// aggregate (0..count-1). Exposed for tests.
 std::vector<int> aggregate(const SpMat& A, int block, double strength, int& count);
 
+/// Largest eigenvalue of Dinv A (Dinv the inverse of A's diagonal blocks, A symmetric
+/// positive definite), by `steps` Lanczos steps: from below, what the Chebyshev smoother's
+/// interval is sized by. Exposed for tests.
+double largest_eigenvalue(const SpMat& Dinv, const SpMat& A, int steps = 20);
+
 /// EIGEN_MAX_ALIGN_BYTES as this library was compiled: the Eigen objects it hands out are
 /// freed by Eigen's matching aligned free only where the caller was compiled alike (the CUDA
 /// sources, by nvcc, check it against their own).

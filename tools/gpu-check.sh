@@ -15,8 +15,10 @@
 #          xfine:300, level:steps), nodal-pressure element: check-coarse.json, ... Not a
 #          default stage (xfine's CPU reference takes minutes); exit 1 on disagreement
 #   hertz  palpation hertz on CUDA (hertz.txt): the nodal-pressure element at Poisson's ratio
-#          0.40-0.499, two radii and moduli, 28 cells across, exit 1 beyond 5 % of Hertz; the
-#          linear element beside it on the same mesh (its locking, no limit)
+#          0.40-0.499, two radii and moduli, 28 cells across, with each preconditioner of
+#          HERTZ_PRECONDITIONERS (default block-jacobi multigrid-chebyshev), exit 1 beyond 5 % of
+#          Hertz; the linear element beside it on the same mesh (its locking, no limit;
+#          HERTZ_LINEAR= leaves it out)
 #   micro  design alternatives on the paper and xfine meshes (palpation run + env switches)
 #   ncu    Nsight Compute on one step's kernels (paper mesh, in contact)
 #   bench  palpation bench: cuda on coarse, paper, xfine in double and float; the library
@@ -27,7 +29,7 @@
 #   multigrid block-Jacobi against the multigrid preconditioners on CUDA, one bench run per
 #          preconditioner and mesh of MG_MESHES (default paper,xfine,0.00201: the 800k-tet
 #          breast), double, CG 1e-3 and 1e-6 and the force error held at 1 % (multigrid.csv,
-#          multigrid.txt). Not a default stage
+#          multigrid.txt); MG_PRECONDITIONERS picks some of the three. Not a default stage
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   control the error-controlled tolerance against the fixed ones: bench (all tolerances and
 #          fe1%) and palpation session with --force-error 0 and 0.01, on CONTROL_MESHES
@@ -228,15 +230,18 @@ fi
 if has hertz; then
   say "hertz: nodal-pressure within 5 % on CUDA, linear beside it (hertz.txt)"
   : >"$OUT/hertz.txt"
-  for args in "--radius 0.01 --young 19000" "--radius 0.015 --young 60000"; do
-    # shellcheck disable=SC2086
-    timeout 240 "$P" hertz --backend cuda --elements nodal-pressure --nu 0.40,0.45,0.49,0.499 --cells 28 $args \
-      --limit 0.05 | tee -a "$OUT/hertz.txt"
-    rc=${PIPESTATUS[0]}
-    say "hertz nodal-pressure ($args) exit $rc"
-    [[ $rc -ne 0 ]] && status=1
+  for pc in ${HERTZ_PRECONDITIONERS:-block-jacobi multigrid-chebyshev}; do
+    for args in "--radius 0.01 --young 19000" "--radius 0.015 --young 60000"; do
+      # shellcheck disable=SC2086
+      timeout 240 "$P" hertz --backend cuda --elements nodal-pressure --nu 0.40,0.45,0.49,0.499 --cells 28 $args \
+        --preconditioner "$pc" --limit 0.05 | tee -a "$OUT/hertz.txt"
+      rc=${PIPESTATUS[0]}
+      say "hertz nodal-pressure, $pc ($args) exit $rc"
+      [[ $rc -ne 0 ]] && status=1
+    done
   done
-  timeout 240 "$P" hertz --backend cuda --elements linear --nu 0.40,0.45,0.49,0.499 --cells 28 | tee -a "$OUT/hertz.txt"
+  [[ -n ${HERTZ_LINEAR-1} ]] &&
+    timeout 240 "$P" hertz --backend cuda --elements linear --nu 0.40,0.45,0.49,0.499 --cells 28 | tee -a "$OUT/hertz.txt"
 fi
 
 if has micro; then
@@ -404,7 +409,7 @@ if has multigrid; then
   # CG 1e-10) computed by the first run of a mesh and cached for the others.
   rm -f "$OUT/multigrid.csv"
   for m in ${MG_MESHES//,/ }; do
-    for pc in block-jacobi multigrid multigrid-chebyshev; do
+    for pc in ${MG_PRECONDITIONERS:-block-jacobi multigrid multigrid-chebyshev}; do
       say "multigrid: $m, $pc, double, CG 1e-3, 1e-6 and the force error held at 1 %"
       rm -rf "/tmp/palpation-mg-$m-$pc"
       timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda --precisions double --preconditioner "$pc" \
