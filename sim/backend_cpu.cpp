@@ -41,6 +41,7 @@
 
 #include "contact_sphere.h"
 #include "fem_corotational.h"
+#include "fem_membrane.h"
 #include "multigrid_keeper.h"
 #include "lanes4.h"
 #include "nodal_pressure.h"
@@ -110,6 +111,7 @@ class CpuBackend final : public Backend {
     kv_.resize(3 * nf);
     vfree_.resize(3 * nf);
     build_element_tables();
+    build_skin_tables();
     cg_.resize(3 * nf);
     set_materials(m_.materials);
     reset();
@@ -219,6 +221,74 @@ class CpuBackend final : public Backend {
       for (int k = 0; k < 16; ++k) {
         const int blk = m_.tet_block[e][k];
         eblk_[16 * std::size_t(e) + k] = blk < 0 ? -1 : 9 * blk;
+      }
+    }
+  }
+
+  // The skin membrane's rest data in T and room for what each triangle last added.
+  void build_skin_tables() {
+    const auto& sk = m_.skin;
+    skin_rest_.resize(std::size_t(sk.size()));
+    for (int t = 0; t < sk.size(); ++t) {
+      const auto& r = sk.rest[std::size_t(t)];
+      auto& d = skin_rest_[std::size_t(t)];
+      for (int k = 0; k < 9; ++k) d.g[k] = T(r.g[k]);
+      for (int k = 0; k < 3; ++k) {
+        d.n0[k] = T(r.n0[k]);
+        d.e1[k] = T(r.e1[k]);
+      }
+      d.at = T(r.at);
+    }
+    skin_k_.assign(81 * std::size_t(sk.size()), T(0));
+    skin_b0_.assign(9 * std::size_t(sk.size()), T(0));
+  }
+
+  // The skin membrane (fem_membrane.h), every triangle every step and serially: a surface
+  // has a few thousand triangles against tens of thousands of elements, and each is cheap.
+  // With the kept K (tolerance > 0) a triangle adds its blocks and its part of b0 as new
+  // minus what it last added; its part of b0 is K (R - I) X = f + K u, from f = -K (x - R X).
+  // At tolerance 0 (or a full assembly) its blocks go in afresh, and at tolerance 0 its
+  // force straight into b_, as the elements' do.
+  void skin(bool full, bool kept) {
+    const auto& sk = m_.skin;
+    if (sk.empty()) return;
+    const T lp = T(sk.lambda_plane()), mu = T(sk.mu());
+    for (int t = 0; t < sk.size(); ++t) {
+      const std::size_t ts = std::size_t(t);
+      const auto& tri = sk.triangles[ts];
+      T x[9], u[9];
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) {
+          x[3 * a + c] = x_[3 * std::size_t(tri[a]) + c];
+          u[3 * a + c] = x[3 * a + c] - T(m_.rest[std::size_t(tri[a])][c]);
+        }
+      T f[9], K[81];
+      membrane::element(skin_rest_[ts], x, lp, mu, f, K);
+      T* last_k = &skin_k_[81 * ts];
+      T* last_b = &skin_b0_[9 * ts];
+      const bool increment = kept && !full;
+      for (int ab = 0; ab < 9; ++ab) {
+        const int blk = sk.block[ts][std::size_t(ab)];
+        if (blk < 0) continue;
+        T* dst = &blocks_[9 * std::size_t(blk)];  // column-major
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) dst[3 * j + i] += K[9 * ab + 3 * i + j] - (increment ? last_k[9 * ab + 3 * i + j] : T(0));
+      }
+      std::copy(K, K + 81, last_k);
+      for (int a = 0; a < 3; ++a) {
+        const int row = m_.dof[std::size_t(tri[a])];
+        T part[3];
+        for (int i = 0; i < 3; ++i) {
+          part[i] = f[3 * a + i];
+          if (kept)
+            for (int b = 0; b < 3; ++b)
+              for (int j = 0; j < 3; ++j) part[i] += K[9 * (3 * a + b) + 3 * i + j] * u[3 * b + j];
+        }
+        if (row >= 0) {
+          T* dst = kept ? &b0_[3 * std::size_t(row)] : &b_[3 * std::size_t(row)];
+          for (int i = 0; i < 3; ++i) dst[i] += part[i] - (increment ? last_b[3 * a + i] : T(0));
+        }
+        for (int i = 0; i < 3; ++i) last_b[3 * a + i] = part[i];
       }
     }
   }
@@ -446,6 +516,7 @@ class CpuBackend final : public Backend {
       for (int e0 = 0; e0 < m_.num_tets(); e0 += kChunk)
         elements(std::min(kChunk, m_.num_tets() - e0), [e0](int c) { return e0 + c; }, full, kept, tol);
     }
+    skin(full, kept);
     assembled_ = true;
     const int nf = m_.num_free();
     const T damp = T(p_.damping.stiffness) + h;
@@ -802,6 +873,8 @@ class CpuBackend final : public Backend {
   std::vector<T> npi_, npc_;                 // (nnode) pressures (CG scratch), rest-position part c_n
   std::vector<T> npx_, npdiag_;              // (nfree x 3) u + damp v, (nfree x 9) diagonal blocks of B^T W B
   cg::PressureTerm<T> npt_;
+  std::vector<membrane::Rest<T>> skin_rest_;  // (ntri) the skin membrane's rest data in T
+  std::vector<T> skin_k_, skin_b0_;          // (ntri x 81, x 9) each triangle's last blocks and b0 part
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<T> eX_;                        // (ntet x 12) rest positions about the element's centroid
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash

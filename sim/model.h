@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "fem_membrane.h"
 #include "mesh.h"
 #include "params.h"
 
@@ -56,6 +57,25 @@ struct Materials {
   void set(int e, double E, double nu);
 };
 
+/// The skin membrane of a model (fem_membrane.h, tissue_layers.h apply_skin): one
+/// triangle per skin face (the boundary off the chest wall). Empty: no skin.
+struct SkinMembrane {
+  SkinSpec spec;
+  double poisson_ratio = 0.45;
+  std::vector<std::array<int, 3>> triangles;        // (ntri) nodes
+  std::vector<membrane::Rest<double>> rest;         // (ntri) rest gradients, normal, A t
+  std::vector<std::array<Eigen::Vector3d, 3>> rest_centred;  // (ntri) X_a minus the centroid, m
+  std::vector<std::array<int, 9>> block;            // (ntri x 3 x 3) block of (a, b), -1 if fixed
+  bool empty() const { return triangles.empty(); }
+  int size() const { return static_cast<int>(triangles.size()); }
+  /// Plane-stress Lame parameters: lambda' = E nu / (1 - nu^2), mu = E / (2 (1 + nu)).
+  double lambda_plane() const {
+    const double nu = poisson_ratio;
+    return spec.young_modulus * nu / (1.0 - nu * nu);
+  }
+  double mu() const { return spec.young_modulus / (2.0 * (1.0 + poisson_ratio)); }
+};
+
 struct Model {
   // Geometry ------------------------------------------------------------------
   std::vector<Eigen::Vector3d> rest;        // (nnode) rest positions, m
@@ -83,6 +103,7 @@ struct Model {
   std::vector<std::array<int, 16>> tet_block;  // (ntet x 4 x 4) block of (a,b), -1 if fixed
   // Element colouring: elements of one colour share no free node (race-free scatter).
   std::vector<std::vector<int>> colours;
+  SkinMembrane skin;                        // the skin on the surface; empty: none
   Material tissue;                          // bulk material (for reporting)
   double density = 1000.0;
 

@@ -122,6 +122,15 @@ struct TissueLayer {
   double young_modulus = 19000.0;  // Pa
 };
 
+/// The skin as a membrane on the surface triangles (fem_membrane.h): its thickness and
+/// modulus give the in-plane stiffness E t; its Poisson's ratio is the tissue's.
+/// Thickness 0: no skin.
+struct SkinSpec {
+  double thickness = 0.0;          // m
+  double young_modulus = 56000.0;  // Pa
+  bool present() const { return thickness > 0.0; }
+};
+
 struct SimParams {
   Element element = Element::Auto;
   SolverParams solver;

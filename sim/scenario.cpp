@@ -147,7 +147,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   if (j.contains("tissue")) {
     const json& t = j["tissue"];
     rd.only_keys(t, "tissue",
-                 {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness", "element", "layers"});
+                 {"young_modulus", "poisson_ratio", "density", "damping_mass", "damping_stiffness", "element", "layers", "skin"});
     if (t.contains("element"))
       s.params.element = parse_element(rd.choice(t["element"], "tissue.element", element_names()));
     if (t.contains("young_modulus")) s.young_modulus = rd.positive(t["young_modulus"], "tissue.young_modulus");
@@ -185,6 +185,16 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       }
     }
   }
+  if (j.contains("tissue") && j["tissue"].contains("skin")) {
+    // The skin as a membrane: in-plane stiffness E t over the surface triangles.
+    const json& k = j["tissue"]["skin"];
+    rd.only_keys(k, "tissue.skin", {"thickness", "young_modulus"});
+    if (!k.contains("thickness")) rd.fail("tissue.skin.thickness", "is required (m)");
+    s.skin.thickness = rd.positive(k["thickness"], "tissue.skin.thickness");
+    if (!(s.skin.thickness <= kMaxSkinThickness))
+      rd.fail("tissue.skin.thickness", "must be at most " + Reader::fmt(kMaxSkinThickness) + " m (a membrane, not a layer)");
+    if (k.contains("young_modulus")) s.skin.young_modulus = rd.positive(k["young_modulus"], "tissue.skin.young_modulus");
+  }
   // Stiffness contrast bound (docs/stability.md, `palpation stress`): beyond it the CG solve
   // of a step no longer converges within the iteration budget. Between the tissue, its
   // layers and the tumours.
@@ -201,6 +211,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   };
   for (std::size_t i = 0; i < s.layers.size(); ++i)
     check_contrast(s.layers[i].young_modulus, "tissue.layers[" + std::to_string(i) + "].young_modulus");
+  if (s.skin.present()) check_contrast(s.skin.young_modulus, "tissue.skin.young_modulus");
 
   if (j.contains("inclusions")) {
     const json& arr = j["inclusions"];
@@ -383,6 +394,8 @@ std::string scenario_to_json(const Scenario& s) {
     }
     j["tissue"]["layers"] = layers;
   }
+  if (s.skin.present())
+    j["tissue"]["skin"] = {{"thickness", s.skin.thickness}, {"young_modulus", s.skin.young_modulus}};
   j["inclusions"] = json::array();
   for (const auto& inc : s.inclusions) {
     json ji = {{"shape", inc.shape},

@@ -72,6 +72,8 @@ struct Scenario {
   /// empty: the tissue is uniform. With layers each element takes its layers' modulus and
   /// young_modulus is the reference modulus of reports.
   std::vector<TissueLayer> layers;
+  /// tissue.skin: the skin as a membrane on the surface (fem_membrane.h); none by default.
+  SkinSpec skin;
   std::vector<Inclusion> inclusions;
   std::string backend = "auto";       // "auto" | "cpu" | "cuda"
   SimParams params;
@@ -85,6 +87,9 @@ struct Scenario {
 inline constexpr double kMaxStiffnessContrast = 10000.0;
 /// Most layers a tissue may have.
 inline constexpr std::size_t kMaxLayers = 8;
+/// The thickest skin a membrane stands for (m): breast skin is 0.8-3 mm (facts.md); past
+/// 5 mm a sheet's bending, which a membrane leaves out, is no longer small.
+inline constexpr double kMaxSkinThickness = 0.005;
 
 /// Parses and validates. Throws ScenarioError("FILE: FIELD: reason").
 Scenario parse_scenario(const std::string& json_text, const std::string& source_name);

@@ -67,6 +67,7 @@ Model build_scenario_model(const Scenario& s, TetMesh mesh) {
   for (const auto& p : mesh.nodes) zmin = std::min(zmin, p.z());
   Model m = build_model(std::move(mesh), tissue, fix_base(zmin + 1e-6));
   apply_layers(m, s.layers);
+  apply_skin(m, s.skin);
   apply_inclusions(m, s.inclusions);
   return m;
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
+
 namespace palpation::sim {
 
 namespace {
@@ -79,6 +81,14 @@ double layer_modulus(const std::vector<TissueLayer>& layers, double d) {
   return layers.empty() ? 0.0 : layers[std::size_t(layer_index(layers, d))].young_modulus;
 }
 
+namespace {
+// A boundary face that is not all on the chest wall (fixed).
+bool is_skin_face(const Model& m, int f) {
+  const auto& t = m.surface[std::size_t(f)];
+  return !(m.fixed[std::size_t(t[0])] && m.fixed[std::size_t(t[1])] && m.fixed[std::size_t(t[2])]);
+}
+}  // namespace
+
 std::vector<double> skin_depths(const Model& m, double max_depth) {
   const int nn = m.num_nodes();
   std::vector<double> depth(std::size_t(nn), max_depth);
@@ -91,8 +101,8 @@ std::vector<double> skin_depths(const Model& m, double max_depth) {
   std::unordered_map<long long, std::vector<int>> grid;
   std::vector<int> skin;
   for (int f = 0; f < int(m.surface.size()); ++f) {
+    if (!is_skin_face(m, f)) continue;
     const auto& t = m.surface[std::size_t(f)];
-    if (m.fixed[std::size_t(t[0])] && m.fixed[std::size_t(t[1])] && m.fixed[std::size_t(t[2])]) continue;  // chest wall
     skin.push_back(f);
     V3 lo = m.rest[std::size_t(t[0])], hi = lo;
     for (int a = 1; a < 3; ++a) {
@@ -161,6 +171,50 @@ std::vector<int> apply_layers(Model& m, const std::vector<TissueLayer>& layers) 
     m.set_element_material(e, E, nu);
   }
   return count;
+}
+
+void apply_skin(Model& m, const SkinSpec& spec) {
+  SkinMembrane& k = m.skin;
+  k = SkinMembrane{};
+  if (!spec.present()) return;
+  k.spec = spec;
+  k.poisson_ratio = m.tissue.poisson_ratio;
+  auto block_of = [&m](int ia, int ib) {
+    if (ia < 0 || ib < 0) return -1;
+    const auto begin = m.col.begin() + m.row_ptr[std::size_t(ia)];
+    const auto end = m.col.begin() + m.row_ptr[std::size_t(ia) + 1];
+    return static_cast<int>(std::lower_bound(begin, end, ib) - m.col.begin());
+  };
+  for (int f = 0; f < int(m.surface.size()); ++f) {
+    if (!is_skin_face(m, f)) continue;
+    const auto& t = m.surface[std::size_t(f)];
+    const V3 X[3] = {m.rest[std::size_t(t[0])], m.rest[std::size_t(t[1])], m.rest[std::size_t(t[2])]};
+    const V3 N = (X[1] - X[0]).cross(X[2] - X[0]);
+    const double twice_area = N.norm();
+    if (!(twice_area > 0)) continue;  // a degenerate face carries no membrane
+    const V3 n0 = N / twice_area;
+    membrane::Rest<double> r{};
+    // g_a = n0 x (edge opposite a, walked counter-clockwise) / 2A: grad of the barycentric
+    // coordinate of node a in the plane.
+    for (int a = 0; a < 3; ++a) {
+      const V3 g = n0.cross(X[(a + 2) % 3] - X[(a + 1) % 3]) / twice_area;
+      for (int c = 0; c < 3; ++c) r.g[3 * a + c] = g[c];
+    }
+    const V3 e1 = (X[1] - X[0]).normalized();
+    for (int c = 0; c < 3; ++c) {
+      r.n0[c] = n0[c];
+      r.e1[c] = e1[c];
+    }
+    r.at = 0.5 * twice_area * spec.thickness;
+    const V3 centroid = (X[0] + X[1] + X[2]) / 3.0;
+    std::array<int, 9> blocks{};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) blocks[std::size_t(3 * a + b)] = block_of(m.dof[std::size_t(t[a])], m.dof[std::size_t(t[b])]);
+    k.triangles.push_back(t);
+    k.rest.push_back(r);
+    k.rest_centred.push_back({X[0] - centroid, X[1] - centroid, X[2] - centroid});
+    k.block.push_back(blocks);
+  }
 }
 
 }  // namespace palpation::sim

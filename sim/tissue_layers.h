@@ -33,4 +33,10 @@ std::vector<double> skin_depths(const Model& m, double max_depth);
 /// Returns the number of elements whose centroid lies in each layer.
 std::vector<int> apply_layers(Model& m, const std::vector<TissueLayer>& layers);
 
+/// Puts the skin on m as a membrane over its skin triangles (the boundary faces not all
+/// on the chest wall) with the tissue's Poisson's ratio; a spec without thickness takes
+/// it off. The skin adds its in-plane stiffness E t to the surface and no mass (1.5 mm of
+/// skin weighs a few percent of the elements under it).
+void apply_skin(Model& m, const SkinSpec& spec);
+
 }  // namespace palpation::sim

@@ -122,7 +122,80 @@ __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
   }
 }
 
+template <class T>
+__global__ void __launch_bounds__(kBlock) k_skin(SkinArgs<T> a) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= a.ntri) return;
+  T x[9], v[9];
+#pragma unroll
+  for (int n = 0; n < 3; ++n) {
+    const int node = __ldg(a.tri + 3 * t + n);
+#pragma unroll
+    for (int c = 0; c < 3; ++c) {
+      x[3 * n + c] = a.x[3 * node + c];
+      v[3 * n + c] = a.v[3 * node + c];
+    }
+  }
+  const membrane::Rest<T> r = a.rest[t];
+  T f[9], K[81];
+  membrane::element(r, x, a.lambda_p, a.mu, f, K);
+#pragma unroll
+  for (int n = 0; n < 3; ++n) {
+    const int row = __ldg(a.row + 3 * t + n);
+    if (row < 0) continue;
+#pragma unroll
+    for (int i = 0; i < 3; ++i) {
+      T kv = 0;
+#pragma unroll
+      for (int m = 0; m < 3; ++m)
+#pragma unroll
+        for (int j = 0; j < 3; ++j) kv += K[9 * (3 * n + m) + 3 * i + j] * v[3 * m + j];
+      atomicAdd(a.b + row + i, a.h * (f[3 * n + i] - a.damp * kv));
+    }
+  }
+#pragma unroll
+  for (int ab = 0; ab < 9; ++ab) {
+    const int base = __ldg(a.base + 9 * t + ab);
+    if (base < 0) continue;
+    const int stride = __ldg(a.stride + 9 * t + ab);
+#pragma unroll
+    for (int i = 0; i < 3; ++i)
+#pragma unroll
+      for (int j = 0; j < 3; ++j) atomicAdd(a.vals + base + i * stride + j, a.kscale * K[9 * ab + 3 * i + j]);
+  }
+}
+
+template <class T>
+__global__ void __launch_bounds__(kBlock) k_skin_invert(SkinArgs<T> a) {
+  const int k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= a.nskin_free) return;
+  const int j = a.skin_free[k];
+  const int k0 = a.row_ptr[j], len3 = 3 * (a.row_ptr[j + 1] - k0);
+  const T* d = a.vals + 9 * std::size_t(k0) + 3 * (a.diag_block[j] - k0);
+  T A[9], inv[9];
+#pragma unroll
+  for (int r = 0; r < 3; ++r)
+#pragma unroll
+    for (int c = 0; c < 3; ++c) A[3 * r + c] = d[r * len3 + c];
+  invert3(A, inv);
+#pragma unroll
+  for (int q = 0; q < 9; ++q) a.precond[9 * j + q] = inv[q];
+}
+
 }  // namespace
+
+template <class T>
+void launch_skin(cudaStream_t s, const SkinArgs<T>& a, bool invert) {
+  if (a.ntri == 0) return;
+  k_skin<T><<<(a.ntri + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);
+  CU_LAUNCHED(k_skin);
+  if (!invert || a.nskin_free == 0) return;
+  k_skin_invert<T><<<(a.nskin_free + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);
+  CU_LAUNCHED(k_skin_invert);
+}
+
+template void launch_skin<float>(cudaStream_t, const SkinArgs<float>&, bool);
+template void launch_skin<double>(cudaStream_t, const SkinArgs<double>&, bool);
 
 template <class T>
 void launch_assemble(cudaStream_t s, const AssembleArgs<T>& a) {

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "cuda/common.cuh"
+#include "fem_membrane.h"
 
 namespace palpation::sim::cuda {
 
@@ -43,5 +44,36 @@ struct AssembleArgs {
 /// Launches k_assemble in stream s: one warp per block row, kBlock threads per block.
 template <class T>
 void launch_assemble(cudaStream_t s, const AssembleArgs<T>& a);
+
+/// The skin membrane (fem_membrane.h) added onto the assembled system: per triangle, its
+/// scaled blocks into vals and h (f_a - (beta + h) (K v)_a) into b. Triangles share nodes,
+/// so these adds are atomic; a surface holds a few thousand triangles against the
+/// elements' tens of thousands, which keeps the contention small.
+template <class T>
+struct SkinArgs {
+  int ntri;
+  const int* tri;                  // (ntri x 3) nodes
+  const membrane::Rest<T>* rest;   // (ntri)
+  const int* row;                  // (ntri x 3) 3 x free index of each node, -1 if fixed
+  const int* base;                 // (ntri x 9) vals offset of block (a, b): 9 k0 + 3 (k - k0); -1 if fixed
+  const int* stride;               // (ntri x 9) its row stride, 3 len
+  const T* x;
+  const T* v;
+  T lambda_p, mu, h, damp, kscale;  // damp = beta + h, kscale = h^2 + h beta
+  T* vals;
+  T* b;
+  // Block-Jacobi after the adds: the free nodes under the skin get the inverse of their
+  // diagonal block again (the nodal-pressure stage inverts every node itself).
+  int nskin_free;
+  const int* skin_free;            // (nskin_free) free index
+  const int* row_ptr;
+  const int* diag_block;
+  T* precond;
+};
+
+/// Launches the skin stage in stream s; `invert`: also re-invert the diagonal blocks under
+/// the skin.
+template <class T>
+void launch_skin(cudaStream_t s, const SkinArgs<T>& a, bool invert);
 
 }  // namespace palpation::sim::cuda

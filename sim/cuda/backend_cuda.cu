@@ -263,6 +263,7 @@ class CudaBackend final : public Backend {
     for (int j = 0; j < nn_; ++j)
       for (int c = 0; c < 3; ++c) rest_[3 * j + c] = T(m_.rest[j][c]);
     rest_dev_.upload(rest_, stream_);
+    upload_skin();
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
       launch_ = cuda::pcg_launch<T>(nf_, tuning);
@@ -442,6 +443,7 @@ class CudaBackend final : public Backend {
     if (reuse) dv_.copy_from(reuse_dv_, stream_);
     launch_assemble(k, !reuse && last_converged_);
     if (reuse) dv_prev_.copy_from(kept_dv_, stream_);
+    launch_skin(k);
     if (nodal()) launch_pressure();
     prof_.mark(2, stream_);
     int iterations = 0;
@@ -551,6 +553,89 @@ class CudaBackend final : public Backend {
     npb_.alloc(3 * std::size_t(np_.num_pairs()));
     npi_.alloc(nn_);
     np_rest_part_.alloc(ne_);
+  }
+
+  // The skin membrane's triangles, rest data and where their blocks and rows lie in the
+  // device system (assembly.cuh's layout).
+  void upload_skin() {
+    const SkinMembrane& sk = m_.skin;
+    nskin_ = sk.size();
+    if (nskin_ == 0) return;
+    std::vector<int> tri(3 * std::size_t(nskin_)), row(3 * std::size_t(nskin_)), base(9 * std::size_t(nskin_)),
+        stride(9 * std::size_t(nskin_));
+    std::vector<membrane::Rest<T>> rest(static_cast<std::size_t>(nskin_));
+    std::vector<unsigned char> under(std::size_t(nf_), 0);
+    for (int t = 0; t < nskin_; ++t) {
+      const std::size_t ts = std::size_t(t);
+      const auto& r = sk.rest[ts];
+      auto& d = rest[ts];
+      for (int k = 0; k < 9; ++k) d.g[k] = T(r.g[k]);
+      for (int k = 0; k < 3; ++k) {
+        d.n0[k] = T(r.n0[k]);
+        d.e1[k] = T(r.e1[k]);
+      }
+      d.at = T(r.at);
+      for (int a = 0; a < 3; ++a) {
+        const int node = sk.triangles[ts][std::size_t(a)], i = m_.dof[std::size_t(node)];
+        tri[3 * ts + a] = node;
+        row[3 * ts + a] = i < 0 ? -1 : 3 * i;
+        if (i >= 0) under[std::size_t(i)] = 1;
+      }
+      for (int a = 0; a < 3; ++a) {
+        const int i = m_.dof[std::size_t(sk.triangles[ts][std::size_t(a)])];
+        for (int b = 0; b < 3; ++b) {
+          const int blk = sk.block[ts][std::size_t(3 * a + b)];
+          const std::size_t ab = 9 * ts + std::size_t(3 * a + b);
+          if (blk < 0) {
+            base[ab] = -1;
+            stride[ab] = 0;
+            continue;
+          }
+          const int k0 = m_.row_ptr[std::size_t(i)];
+          base[ab] = 9 * k0 + 3 * (blk - k0);
+          stride[ab] = 3 * (m_.row_ptr[std::size_t(i) + 1] - k0);
+        }
+      }
+    }
+    std::vector<int> skin_free;
+    for (int i = 0; i < nf_; ++i)
+      if (under[std::size_t(i)]) skin_free.push_back(i);
+    if (static_cast<long long>(9) * nb_ >= (1ll << 31)) throw std::runtime_error("cuda backend: too many blocks for the skin");
+    skin_tri_.upload(tri, stream_);
+    skin_row_.upload(row, stream_);
+    skin_base_.upload(base, stream_);
+    skin_stride_.upload(stride, stream_);
+    skin_rest_.upload(rest, stream_);
+    skin_free_.upload(skin_free, stream_);
+    skin_diag_block_.upload(m_.diag_block, stream_);
+  }
+
+  void launch_skin(const StepConsts& k) {
+    if (nskin_ == 0) return;
+    const SkinMembrane& sk = m_.skin;
+    SkinArgs<T> a{};
+    a.ntri = nskin_;
+    a.tri = skin_tri_.get();
+    a.rest = skin_rest_.get();
+    a.row = skin_row_.get();
+    a.base = skin_base_.get();
+    a.stride = skin_stride_.get();
+    a.x = x_.get();
+    a.v = v_.get();
+    a.lambda_p = T(sk.lambda_plane());
+    a.mu = T(sk.mu());
+    const T h = T(k.h);
+    a.h = h;
+    a.damp = T(k.beta) + h;
+    a.kscale = h * h + h * T(k.beta);
+    a.vals = vals_.get();
+    a.b = b_.get();
+    a.nskin_free = static_cast<int>(skin_free_.size());
+    a.skin_free = skin_free_.get();
+    a.row_ptr = row_ptr_.get();
+    a.diag_block = skin_diag_block_.get();
+    a.precond = precond_.get();
+    cuda::launch_skin(stream_, a, !nodal());
   }
 
   PressureDev<T> pressure_dev() {
@@ -769,6 +854,10 @@ class CudaBackend final : public Backend {
   DeviceArray<int> np_row_ptr_, np_col_, np_t_row_ptr_, np_t_node_, np_t_pair_, np_pinc_ptr_, np_pinc_, np_inc_ptr_, np_inc_,
       diag_block_;
   DeviceArray<T> npb_, npw_, npi_, np_rest_part_;
+  // The skin membrane (fem_membrane.h, assembly.cuh's skin stage); nskin_ 0: none.
+  int nskin_ = 0;
+  DeviceArray<int> skin_tri_, skin_row_, skin_base_, skin_stride_, skin_free_, skin_diag_block_;
+  DeviceArray<membrane::Rest<T>> skin_rest_;
   // The multigrid preconditioner (Preconditioner::Multigrid*): when its levels are built,
   // their copy on the device, the kernel that runs them and its scratch.
   CudaTuning tuning_;

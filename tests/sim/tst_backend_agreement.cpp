@@ -200,19 +200,27 @@ class TestBackendAgreement : public QObject {
     QTest::addColumn<QString>("preconditioner");
     QTest::addColumn<QString>("resolution");
     QTest::addColumn<int>("steps");
-    QTest::newRow("cuda") << "cuda" << false << "block-jacobi" << "coarse" << 700;
-    QTest::newRow("cuda-csr") << "cuda-csr" << false << "block-jacobi" << "coarse" << 700;
-    QTest::newRow("cuda-bsr") << "cuda-bsr" << false << "block-jacobi" << "coarse" << 700;
-    QTest::newRow("cuda nodal-pressure") << "cuda" << true << "block-jacobi" << "coarse" << 700;
+    QTest::addColumn<bool>("skin");
+    QTest::newRow("cuda") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false;
+    QTest::newRow("cuda-csr") << "cuda-csr" << false << "block-jacobi" << "coarse" << 700 << false;
+    QTest::newRow("cuda-bsr") << "cuda-bsr" << false << "block-jacobi" << "coarse" << 700 << false;
+    QTest::newRow("cuda nodal-pressure") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false;
     // The multigrid's levels built on the host from the system the GPU assembled, its
     // V-cycle run inside the persistent kernel: the CPU's preconditioner, so the same
     // iterations and forces.
     // The paper box (8x the coarse box's nodes) takes the V-cycle through intermediate
     // coarse levels (smoothed, restricted, prolonged), which the coarse box may not have.
-    QTest::newRow("cuda multigrid") << "cuda" << false << "multigrid" << "coarse" << 700;
-    QTest::newRow("cuda multigrid nodal-pressure") << "cuda" << true << "multigrid" << "coarse" << 700;
-    QTest::newRow("cuda multigrid-chebyshev nodal-pressure") << "cuda" << true << "multigrid-chebyshev" << "coarse" << 700;
-    QTest::newRow("cuda multigrid nodal-pressure, paper box") << "cuda" << true << "multigrid" << "paper" << 700;
+    QTest::newRow("cuda multigrid") << "cuda" << false << "multigrid" << "coarse" << 700 << false;
+    QTest::newRow("cuda multigrid nodal-pressure") << "cuda" << true << "multigrid" << "coarse" << 700 << false;
+    QTest::newRow("cuda multigrid-chebyshev nodal-pressure") << "cuda" << true << "multigrid-chebyshev" << "coarse" << 700 << false;
+    QTest::newRow("cuda multigrid nodal-pressure, paper box") << "cuda" << true << "multigrid" << "paper" << 700 << false;
+    // The skin membrane (fem_membrane.h): the CPU's serial pass against the GPU's atomic
+    // adds and its re-inverted diagonal, on both elements, a library baseline and the
+    // multigrid (whose levels then include the membrane's blocks).
+    QTest::newRow("cuda skin") << "cuda" << false << "block-jacobi" << "coarse" << 700 << true;
+    QTest::newRow("cuda skin nodal-pressure") << "cuda" << true << "block-jacobi" << "coarse" << 700 << true;
+    QTest::newRow("cuda-bsr skin") << "cuda-bsr" << false << "block-jacobi" << "coarse" << 700 << true;
+    QTest::newRow("cuda multigrid skin nodal-pressure") << "cuda" << true << "multigrid" << "coarse" << 700 << true;
   }
   void doubleAgreesWithCpu() {
     QFETCH(QString, backend);
@@ -220,9 +228,11 @@ class TestBackendAgreement : public QObject {
     QFETCH(QString, preconditioner);
     QFETCH(QString, resolution);
     QFETCH(int, steps);
+    QFETCH(bool, skin);
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): GPU/CPU agreement not checked").c_str());
     Scenario s = hertz_coarse();
+    if (skin) s.skin = SkinSpec{0.0015, 56000};
     s.patient.resolution = resolution.toStdString();
     s.patient.edge = *resolution_edge("box", s.patient.resolution);
     // Named either way: the scene's Poisson's ratio (0.45) would resolve an unnamed element
@@ -233,9 +243,11 @@ class TestBackendAgreement : public QObject {
     const Trace cpu = run(s, m, "cpu", steps);
     const Trace gpu = run(s, m, backend.toStdString(), steps);
     const double ef = relative_error(gpu.force, cpu.force), ex = relative_error(gpu.x, cpu.x);
-    qInfo("%s double against cpu double (Hertz, %s box, %d nodes, %d steps, %s element, %s): force error %.2e, position error %.2e",
+    qInfo("%s double against cpu double (Hertz, %s box, %d nodes, %d steps, %s element, %s, %d skin triangles): force error %.2e, "
+          "position error %.2e",
           qPrintable(backend), qPrintable(resolution), m.num_nodes(), steps, nodal ? "nodal-pressure" : "linear",
-          qPrintable(preconditioner), ef, ex);
+          qPrintable(preconditioner), m.skin.size(), ef, ex);
+    QCOMPARE(m.skin.empty(), !skin);
     if (is_multigrid(s.params.solver.preconditioner)) {
       // The levels did their work on the GPU: far fewer iterations than block-Jacobi's.
       Scenario bj = s;
