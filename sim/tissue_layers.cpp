@@ -70,10 +70,10 @@ int layer_index(const std::vector<TissueLayer>& layers, double d) {
 std::vector<TissueLayer> breast_layers() {
   // Subcutaneous fat 1 cm at 19 kPa (the paper's tissue, Krouskop's fat at 5 %
   // precompression), glandular tissue below at 31.5 kPa (Krouskop's fibroglandular,
-  // 28-35 kPa); resources/tissue_presets.json cites each figure. No skin: at 1.5 mm it is
-  // thinner than any element of the built-in meshes, and laid onto them it stiffened a deep
-  // press by a third to a half and took the tumours' contrast away (docs/simulation.md,
-  // "Tissue layers"); a scenario can still name one.
+  // 28-35 kPa); resources/tissue_presets.json cites each figure. No skin band: at 1.5 mm it
+  // is thinner than any element of the built-in meshes, and laid onto them it stiffened a
+  // deep press by a third to a half and took the tumours' contrast away (docs/simulation.md,
+  // "Tissue layers"); the skin is a membrane instead (apply_skin, tissue.skin).
   return {{"fat", 0.010, 19000.0}, {"glandular", 0.0, 31500.0}};
 }
 

@@ -107,6 +107,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     if (!opt.element.empty())
       s.params.element = sim::parse_element(opt.element);
     report["element"] = sim::element_name(sim::resolve_element(s.params.element, s.poisson_ratio));
+    if (opt.skin >= 0) s.skin.thickness = opt.skin;
+    report["skin_thickness"] = s.skin.thickness;
     if (!opt.preconditioner.empty()) s.params.solver.preconditioner = sim::parse_preconditioner(opt.preconditioner);
     report["preconditioner"] = sim::preconditioner_name(s.params.solver.preconditioner);
     const auto t0 = clock_type::now();

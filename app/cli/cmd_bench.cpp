@@ -20,6 +20,9 @@ CommandAction add_bench_command(CLI::App& app) {
                   "Tetrahedral element (linear, nodal-pressure; default: the scenario's, nodal-pressure at Poisson's ratio 0.45 "
                   "and above). The cuda-csr and cuda-bsr baselines have the linear one only")
       ->check(CLI::IsMember(sim::element_names()));
+  sub->add_option("--skin", o->skin,
+                  "Skin membrane thickness, m (tissue.skin.thickness, 56 kPa unless the scenario says; 0: none; default: the scenario's)")
+      ->check(CLI::Range(0.0, sim::kMaxSkinThickness));
   sub->add_option("--preconditioner", o->preconditioner,
                   "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev; default: the scenario's). Multigrid runs on the cpu and cuda backends: "
                   "the library baselines are skipped")

@@ -134,7 +134,7 @@ CommandAction add_convergence_command(CLI::App& app) {
                                  "without the tumour, and the extrapolated limit");
   struct Opts {
     std::string scenario, out, levels = "coarse,paper,fine,xfine";
-    double radius = 0.008, depth_fraction = 0.3, skin_edge = 0;
+    double radius = 0.008, depth_fraction = 0.3, skin_edge = 0, skin = -1;
     bool quiet = false;
   };
   auto o = std::make_shared<Opts>();
@@ -146,6 +146,9 @@ CommandAction add_convergence_command(CLI::App& app) {
       ->check(CLI::Range(0.02, 0.6));
   sub->add_option("--skin-edge", o->skin_edge, "Breast: edge length at the skin, m (patient.skin_edge) on every level")
       ->check(CLI::Range(sim::kMinEdge, sim::kMaxEdge));
+  sub->add_option("--skin", o->skin,
+                  "Skin membrane thickness, m (tissue.skin.thickness; 0: no skin); its modulus is the scenario's or 56 kPa")
+      ->check(CLI::Range(0.0, sim::kMaxSkinThickness));
   sub->add_option("--out", o->out, "Folder for convergence.json, convergence.csv and convergence.png");
   sub->add_flag("--quiet", o->quiet, "No progress on stderr");
   return [o]() {
@@ -154,6 +157,7 @@ CommandAction add_convergence_command(CLI::App& app) {
       if (s.patient.phantom != "breast") throw sim::ScenarioError("--skin-edge: only the breast phantom takes a skin edge");
       s.patient.skin_edge = o->skin_edge;
     }
+    if (o->skin >= 0) s.skin.thickness = o->skin;
     sim::ConvergenceOptions opt;
     opt.levels.clear();
     std::stringstream ss(o->levels);

@@ -150,6 +150,9 @@ class TestTissueLayers : public QObject {
       QVERIFY(!l["source"].get<std::string>().empty());
     }
     QCOMPARE(b.back().name, std::string("glandular"));
+    // The skin preset is what tissue.skin defaults its modulus to.
+    QCOMPARE(j["skin"]["young_modulus"].get<double>(), SkinSpec{}.young_modulus);
+    QVERIFY(j["skin"]["thickness"].get<double>() > 0 && j["skin"]["thickness"].get<double>() <= kMaxSkinThickness);
   }
 };
 
