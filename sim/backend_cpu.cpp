@@ -229,16 +229,7 @@ class CpuBackend final : public Backend {
   void build_skin_tables() {
     const auto& sk = m_.skin;
     skin_rest_.resize(std::size_t(sk.size()));
-    for (int t = 0; t < sk.size(); ++t) {
-      const auto& r = sk.rest[std::size_t(t)];
-      auto& d = skin_rest_[std::size_t(t)];
-      for (int k = 0; k < 9; ++k) d.g[k] = T(r.g[k]);
-      for (int k = 0; k < 3; ++k) {
-        d.n0[k] = T(r.n0[k]);
-        d.e1[k] = T(r.e1[k]);
-      }
-      d.at = T(r.at);
-    }
+    for (int t = 0; t < sk.size(); ++t) skin_rest_[std::size_t(t)] = membrane::rest_cast<T>(sk.rest[std::size_t(t)]);
     skin_k_.assign(81 * std::size_t(sk.size()), T(0));
     skin_b0_.assign(9 * std::size_t(sk.size()), T(0));
   }

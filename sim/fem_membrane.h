@@ -41,6 +41,19 @@ struct Rest {
   T at;
 };
 
+/// The rest data in another precision (the model keeps double; a float backend runs float).
+template <class T, class U>
+Rest<T> rest_cast(const Rest<U>& r) {
+  Rest<T> d{};
+  for (int k = 0; k < 9; ++k) d.g[k] = T(r.g[k]);
+  for (int k = 0; k < 3; ++k) {
+    d.n0[k] = T(r.n0[k]);
+    d.e1[k] = T(r.e1[k]);
+  }
+  d.at = T(r.at);
+  return d;
+}
+
 template <class T>
 PALPATION_HD inline void cross(const T a[3], const T b[3], T c[3]) {
   c[0] = a[1] * b[2] - a[2] * b[1];

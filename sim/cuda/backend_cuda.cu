@@ -567,14 +567,7 @@ class CudaBackend final : public Backend {
     std::vector<unsigned char> under(std::size_t(nf_), 0);
     for (int t = 0; t < nskin_; ++t) {
       const std::size_t ts = std::size_t(t);
-      const auto& r = sk.rest[ts];
-      auto& d = rest[ts];
-      for (int k = 0; k < 9; ++k) d.g[k] = T(r.g[k]);
-      for (int k = 0; k < 3; ++k) {
-        d.n0[k] = T(r.n0[k]);
-        d.e1[k] = T(r.e1[k]);
-      }
-      d.at = T(r.at);
+      rest[ts] = membrane::rest_cast<T>(sk.rest[ts]);
       for (int a = 0; a < 3; ++a) {
         const int node = sk.triangles[ts][std::size_t(a)], i = m_.dof[std::size_t(node)];
         tri[3 * ts + a] = node;

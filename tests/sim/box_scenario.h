@@ -20,3 +20,15 @@ inline palpation::sim::Scenario box_scenario(const std::string& source, const Ei
   s.params.solver.threads = 1;
   return s;
 }
+
+/// The built-in Hertz scene (a 1 cm sphere pressed 1 mm into the 19 kPa box) on the coarse
+/// box, in double, its CG solved to `tolerance` (at most 5,000 iterations).
+inline palpation::sim::Scenario hertz_coarse_box(double tolerance) {
+  palpation::sim::Scenario s = palpation::sim::builtin_scenario("hertz");
+  s.patient.resolution = "coarse";
+  s.patient.edge = *palpation::sim::resolution_edge("box", "coarse");
+  s.params.solver.precision = palpation::sim::Precision::Double;
+  s.params.solver.cg_tolerance = tolerance;
+  s.params.solver.cg_max_iterations = 5000;
+  return s;
+}

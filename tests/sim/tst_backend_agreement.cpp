@@ -5,6 +5,7 @@
 // machine by tools/gpu-check.sh; this suite is its small, Qt-side twin.
 #include <QtTest>
 
+#include "box_scenario.h"
 #include "relative_error.h"
 
 #include <execinfo.h>
@@ -54,13 +55,8 @@ Trace run(const Scenario& s, const Model& m, const std::string& backend, int ste
 // Hertz indentation on the coarse box: no contact for 500 steps (the rest path), then
 // pressing: 700 steps cover both.
 Scenario hertz_coarse() {
-  Scenario s = builtin_scenario("hertz");
-  s.patient.resolution = "coarse";
-  s.patient.edge = *resolution_edge("box", "coarse");
-  s.params.solver.precision = Precision::Double;
-  s.params.solver.cg_tolerance = 1e-10;
+  Scenario s = hertz_coarse_box(1e-10);
   s.params.solver.corotation_tolerance = 0;  // every element every step on the CPU, as on the GPU
-  s.params.solver.cg_max_iterations = 5000;
   return s;
 }
 

@@ -205,12 +205,7 @@ class TestSkinMembrane : public QObject {
   // part updated as new minus old) gives the force of assembling everything every step
   // (corotation tolerance 0) to the CG tolerance.
   void skinStiffensAPress() {
-    Scenario s = builtin_scenario("hertz");
-    s.patient.resolution = "coarse";
-    s.patient.edge = *resolution_edge("box", "coarse");
-    s.params.solver.precision = Precision::Double;
-    s.params.solver.cg_tolerance = 1e-9;
-    s.params.solver.cg_max_iterations = 5000;
+    Scenario s = hertz_coarse_box(1e-9);
     s.params.solver.threads = 1;
     // 1 mm in 0.7 s, held 0.3 s (the scene's own schedule takes 3 s).
     const double R = s.fingers[0].radius, top = 0.05;
