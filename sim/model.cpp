@@ -17,6 +17,13 @@ void Materials::set(int e, double E, double nu) {
   lame(E, nu, lambda[e], mu[e]);
 }
 
+int Model::block_of(int ia, int ib) const {
+  if (ia < 0 || ib < 0) return -1;
+  const auto begin = col.begin() + row_ptr[std::size_t(ia)];
+  const auto end = col.begin() + row_ptr[std::size_t(ia) + 1];
+  return static_cast<int>(std::lower_bound(begin, end, ib) - col.begin());
+}
+
 Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed) {
   if (std::string why = mesh.validate(); !why.empty()) throw std::invalid_argument(why);
   mesh.orient();
@@ -99,18 +106,10 @@ Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is
     m.diag_block[i] =
         m.row_ptr[i] + static_cast<int>(std::lower_bound(adj[i].begin(), adj[i].end(), i) - adj[i].begin());
   }
-  auto block_of = [&m](int ia, int ib) {
-    const auto begin = m.col.begin() + m.row_ptr[ia];
-    const auto end = m.col.begin() + m.row_ptr[ia + 1];
-    return static_cast<int>(std::lower_bound(begin, end, ib) - m.col.begin());
-  };
   m.tet_block.resize(ne);
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        const int ia = m.dof[m.tets[e][a]], ib = m.dof[m.tets[e][b]];
-        m.tet_block[e][a * 4 + b] = (ia >= 0 && ib >= 0) ? block_of(ia, ib) : -1;
-      }
+      for (int b = 0; b < 4; ++b) m.tet_block[e][a * 4 + b] = m.block_of(m.dof[m.tets[e][a]], m.dof[m.tets[e][b]]);
 
   // Greedy element colouring over shared nodes.
   std::vector<std::vector<int>> node_colours(nn);

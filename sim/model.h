@@ -64,7 +64,6 @@ struct SkinMembrane {
   double poisson_ratio = 0.45;
   std::vector<std::array<int, 3>> triangles;        // (ntri) nodes
   std::vector<membrane::Rest<double>> rest;         // (ntri) rest gradients, normal, A t
-  std::vector<std::array<Eigen::Vector3d, 3>> rest_centred;  // (ntri) X_a minus the centroid, m
   std::vector<std::array<int, 9>> block;            // (ntri x 3 x 3) block of (a, b), -1 if fixed
   bool empty() const { return triangles.empty(); }
   int size() const { return static_cast<int>(triangles.size()); }
@@ -111,6 +110,9 @@ struct Model {
   int num_tets() const { return static_cast<int>(tets.size()); }
   int num_free() const { return static_cast<int>(free_nodes.size()); }
   int num_blocks() const { return static_cast<int>(col.size()); }
+  /// Index of the block (ia, ib) of free indices in col/the block arrays; -1 when either is
+  /// -1 (a fixed node). The pair must share an element.
+  int block_of(int ia, int ib) const;
 
   /// Sets one element's material while the model is built (inclusions). A running body's
   /// materials change through Simulation::set_element_young (the model stays as built).

@@ -179,12 +179,6 @@ void apply_skin(Model& m, const SkinSpec& spec) {
   if (!spec.present()) return;
   k.spec = spec;
   k.poisson_ratio = m.tissue.poisson_ratio;
-  auto block_of = [&m](int ia, int ib) {
-    if (ia < 0 || ib < 0) return -1;
-    const auto begin = m.col.begin() + m.row_ptr[std::size_t(ia)];
-    const auto end = m.col.begin() + m.row_ptr[std::size_t(ia) + 1];
-    return static_cast<int>(std::lower_bound(begin, end, ib) - m.col.begin());
-  };
   for (int f = 0; f < int(m.surface.size()); ++f) {
     if (!is_skin_face(m, f)) continue;
     const auto& t = m.surface[std::size_t(f)];
@@ -206,13 +200,11 @@ void apply_skin(Model& m, const SkinSpec& spec) {
       r.e1[c] = e1[c];
     }
     r.at = 0.5 * twice_area * spec.thickness;
-    const V3 centroid = (X[0] + X[1] + X[2]) / 3.0;
     std::array<int, 9> blocks{};
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) blocks[std::size_t(3 * a + b)] = block_of(m.dof[std::size_t(t[a])], m.dof[std::size_t(t[b])]);
+      for (int b = 0; b < 3; ++b) blocks[std::size_t(3 * a + b)] = m.block_of(m.dof[std::size_t(t[a])], m.dof[std::size_t(t[b])]);
     k.triangles.push_back(t);
     k.rest.push_back(r);
-    k.rest_centred.push_back({X[0] - centroid, X[1] - centroid, X[2] - centroid});
     k.block.push_back(blocks);
   }
 }
