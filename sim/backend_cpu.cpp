@@ -237,7 +237,8 @@ class CpuBackend final : public Backend {
   // The skin membrane (fem_membrane.h), every triangle every step and serially: a surface
   // has a few thousand triangles against tens of thousands of elements, and each is cheap.
   // With the kept K (tolerance > 0) a triangle adds its blocks and its part of b0 as new
-  // minus what it last added; its part of b0 is K (R - I) X = f + K u, from f = -K (x - R X).
+  // minus what it last added; its part of b0 is f + K u, so that -K u + b0 is its force now
+  // and -K (u + du) + b0 = f - K du its linearisation about the present positions.
   // At tolerance 0 (or a full assembly) its blocks go in afresh, and at tolerance 0 its
   // force straight into b_, as the elements' do.
   void skin(bool full, bool kept) {

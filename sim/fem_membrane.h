@@ -13,9 +13,10 @@
 //   K_ab = A t (lambda' r_a r_b^T + mu r_b r_a^T + mu (g_a . g_b) P), r = R g, P = I - n n^T,
 // the tetrahedron's blocks (fem_corotational.h) with the in-plane identity P in place of I:
 // a membrane resists stretch in its plane and not a transverse move of a node (the shear
-// that a tetrahedron would resist there is a rotation of the sheet). f = -K (x - R X) for
-// the rest positions X, as for the tetrahedra, which is what the CPU backend's kept
-// stiffness relies on.
+// that a tetrahedron would resist there is a rotation of the sheet); plus, under tension,
+//   A t (g_a . S+ g_b) I, S+ the tensile part of sigma (the geometric stiffness),
+// with which a taut sheet resists a node pushed across it. The backends linearise about
+// the present positions, f(x + dx) = f - K dx (b0 = f + K u on the CPU), for any K.
 //
 // Plain arrays and PALPATION_HD so that the CPU backend and the CUDA kernel run this one
 // code (row-major 3x3 matrices, vectors of 3).
@@ -179,6 +180,42 @@ PALPATION_HD inline void element(const Rest<T>& r, const T x[9], T lambda_p, T m
           const T pij = (i == j ? T(1) : T(0)) - n[i] * n[j];
           Kab[3 * i + j] = r.at * (lambda_p * rg[3 * a + i] * rg[3 * b + j] + mu * rg[3 * b + i] * rg[3 * a + j] + mu * gab * pij);
         }
+    }
+  // The tension's stiffness (the geometric term): K_ab += A t (g_a . S+ g_b) I, S+ the
+  // tensile part of S. A taut sheet resists a node pushed across it to first order (the
+  // term above does not: it is the stiffness of the stretch alone), which a long step into
+  // a sheet wrapped around a fingertip needs. Compression's part is left out: it would make
+  // K indefinite (the sheet wrinkles instead) and the conjugate gradients need K >= 0.
+  // S+ from the 2 x 2 in-plane stress in (e1, e2): eigenvalues l1 >= l2, and where they
+  // differ in sign l1 times the spectral projector (S - l2 I) / (l1 - l2).
+  T e2[3];
+  cross(r.n0, r.e1, e2);
+  T s11 = 0, s12 = 0, s22 = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      s11 += r.e1[i] * S[3 * i + j] * r.e1[j];
+      s12 += r.e1[i] * S[3 * i + j] * e2[j];
+      s22 += e2[i] * S[3 * i + j] * e2[j];
+    }
+  const T mean = T(0.5) * (s11 + s22), half = T(0.5) * (s11 - s22);
+  const T dev = std::sqrt(half * half + s12 * s12), l1 = mean + dev, l2 = mean - dev;
+  if (l1 <= T(0)) return;
+  if (l2 < T(0)) {
+    const T c = l1 / (l1 - l2);
+    s11 = c * (s11 - l2);
+    s12 = c * s12;
+    s22 = c * (s22 - l2);
+  }
+  T gp[6];  // g_a in (e1, e2)
+  for (int a = 0; a < 3; ++a) {
+    gp[2 * a] = dot(r.g + 3 * a, r.e1);
+    gp[2 * a + 1] = dot(r.g + 3 * a, e2);
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const T q = r.at * (gp[2 * a] * (s11 * gp[2 * b] + s12 * gp[2 * b + 1]) + gp[2 * a + 1] * (s12 * gp[2 * b] + s22 * gp[2 * b + 1]));
+      T* Kab = K + 9 * (3 * a + b);
+      for (int i = 0; i < 3; ++i) Kab[4 * i] += q;
     }
 }
 
