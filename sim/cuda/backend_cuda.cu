@@ -549,7 +549,7 @@ class CudaBackend final : public Backend {
         ptr, list);
     np_inc_ptr_.upload(ptr, stream_);
     np_inc_.upload(list, stream_);
-    diag_block_.upload(m_.diag_block, stream_);
+    upload_diag_block();
     npb_.alloc(3 * std::size_t(np_.num_pairs()));
     npi_.alloc(nn_);
     np_rest_part_.alloc(ne_);
@@ -600,7 +600,13 @@ class CudaBackend final : public Backend {
     skin_stride_.upload(stride, stream_);
     skin_rest_.upload(rest, stream_);
     skin_free_.upload(skin_free, stream_);
-    skin_diag_block_.upload(m_.diag_block, stream_);
+    upload_diag_block();
+  }
+
+  // Each free row's diagonal block index, for the stages that re-invert diagonal blocks
+  // themselves (the nodal pressure and the skin): once for both.
+  void upload_diag_block() {
+    if (diag_block_.size() != m_.diag_block.size()) diag_block_.upload(m_.diag_block, stream_);
   }
 
   void launch_skin(const StepConsts& k) {
@@ -626,7 +632,7 @@ class CudaBackend final : public Backend {
     a.nskin_free = static_cast<int>(skin_free_.size());
     a.skin_free = skin_free_.get();
     a.row_ptr = row_ptr_.get();
-    a.diag_block = skin_diag_block_.get();
+    a.diag_block = diag_block_.get();
     a.precond = precond_.get();
     cuda::launch_skin(stream_, a, !nodal());
   }
@@ -849,7 +855,7 @@ class CudaBackend final : public Backend {
   DeviceArray<T> npb_, npw_, npi_, np_rest_part_;
   // The skin membrane (fem_membrane.h, assembly.cuh's skin stage); nskin_ 0: none.
   int nskin_ = 0;
-  DeviceArray<int> skin_tri_, skin_row_, skin_base_, skin_stride_, skin_free_, skin_diag_block_;
+  DeviceArray<int> skin_tri_, skin_row_, skin_base_, skin_stride_, skin_free_;
   DeviceArray<membrane::Rest<T>> skin_rest_;
   // The multigrid preconditioner (Preconditioner::Multigrid*): when its levels are built,
   // their copy on the device, the kernel that runs them and its scratch.
