@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -48,6 +49,18 @@ double largest(const double* v, int n) {
   double r = 0;
   for (int k = 0; k < n; ++k) r = std::max(r, std::abs(v[k]));
   return r;
+}
+
+// The largest block of a triangle's K (Frobenius) and the largest |K_ab n|: its stiffness
+// against a move along n.
+std::pair<double, double> across(const double K[81], const V3& n) {
+  double kmax = 0, kn = 0;
+  for (int ab = 0; ab < 9; ++ab) {
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Kab(K + 9 * ab);
+    kmax = std::max(kmax, Kab.norm());
+    kn = std::max(kn, (Kab * n).norm());
+  }
+  return {kmax, kn};
 }
 
 // A press of the builtin Hertz sphere into the coarse box, on the CPU: the last step's
@@ -186,12 +199,7 @@ class TestSkinMembrane : public QObject {
       const V3 n0(r.n0[0], r.n0[1], r.n0[2]);
       double f[9], K[81];
       triangle(m, t, m.rest, f, K);
-      double kmax = 0, kn = 0;
-      for (int ab = 0; ab < 9; ++ab) {
-        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Kab(K + 9 * ab);
-        kmax = std::max(kmax, Kab.norm());
-        kn = std::max(kn, (Kab * n0).norm());
-      }
+      const auto [kmax, kn] = across(K, n0);
       QVERIFY2(kn <= 1e-12 * kmax, qPrintable(QString("triangle %1: |K n| %2 of %3").arg(t).arg(kn).arg(kmax)));
       QVERIFY(largest(f, 9) <= 1e-12 * kmax * 0.01);  // at rest: no force
       const std::size_t n1 = std::size_t(m.skin.triangles[std::size_t(t)][1]);
@@ -248,16 +256,11 @@ class TestSkinMembrane : public QObject {
       QVERIFY2(err < 1e-3 * scale, qPrintable(QString("triangle %1: transverse force off by %2 of %3").arg(t).arg(err).arg(scale)));
       // Compression: K n = 0 as at rest.
       triangle(m, t, stretched(-0.01, -0.01), f0, K);
-      double kmax = 0, kn = 0;
-      for (int ab = 0; ab < 9; ++ab) {
-        const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> Kab(K + 9 * ab);
-        kmax = std::max(kmax, Kab.norm());
-        kn = std::max(kn, (Kab * n0).norm());
-      }
+      const auto [kmax, kn] = across(K, n0);
       QVERIFY2(kn <= 1e-12 * kmax, qPrintable(QString("triangle %1 compressed: |K n| %2 of %3").arg(t).arg(kn).arg(kmax)));
       // Mixed, and sheared: the 9 x 9 matrix has no negative eigenvalue.
-      for (const auto& e : {V3(0.02, -0.01, 0), V3(-0.03, 0.01, 0), V3(0.01, 0.01, 0)}) {
-        std::vector<V3> y = stretched(e.x(), e.y());
+      for (const auto& mix : {V3(0.02, -0.01, 0), V3(-0.03, 0.01, 0), V3(0.01, 0.01, 0)}) {
+        std::vector<V3> y = stretched(mix.x(), mix.y());
         for (std::size_t i = 0; i < y.size(); ++i) y[i].x() += 0.015 * m.rest[i].y();
         triangle(m, t, y, f0, K);
         Eigen::Matrix<double, 9, 9> big;
