@@ -37,8 +37,9 @@
 #   sweep  the paper's Fig. 6 sweep on CUDA at SWEEP_MESHES (default paper), with and without
 #          the tumour, with each of SWEEP_ELEMENTS (default linear nodal-pressure), on each of
 #          SWEEP_SCENARIOS (default paper-sweep, the paper's uniform tissue, and
-#          paper-sweep-layered, skin, fat and glandular tissue): step time, largest push per
-#          pass and the tumour/no-tumour ratio (sweep.txt)
+#          paper-sweep-layered, skin, fat and glandular tissue), with each skin membrane
+#          thickness of SWEEP_SKIN (default 0: none; e.g. "0 0.0015"): step time, largest push
+#          per pass and the tumour/no-tumour ratio (sweep.txt)
 #   tests  the sim/ and device/ QtTest suites, packed here beforehand (below; tests.log,
 #          tests-summary.txt). Not a default stage; needs no build stage.
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
@@ -469,19 +470,22 @@ fi
 if has sweep; then
   for base in ${SWEEP_SCENARIOS:-paper-sweep paper-sweep-layered}; do
   for el in ${SWEEP_ELEMENTS:-linear nodal-pressure}; do
+  for skin in ${SWEEP_SKIN:-0}; do
+    tag=$el; [[ $skin != 0 ]] && tag=$el-skin$skin
     for res in ${SWEEP_MESHES:-paper}; do
       for sc in $base $base-no-tumour; do
-        say "sweep: $sc on $res, $el element"
+        say "sweep: $sc on $res, $el element, skin $skin m"
         "$P" scenario $sc | python3 -c '
 import json, sys
 s = json.load(sys.stdin)
 s.setdefault("tissue", {})["element"] = sys.argv[1]
-json.dump(s, open(sys.argv[2], "w"))' "$el" "/tmp/palpation-sweep-$el-$sc.json"
-        timeout 200 "$P" run "/tmp/palpation-sweep-$el-$sc.json" --backend cuda --resolution "$res" \
-          --out "/tmp/palpation-sweep-$el-$res-$sc" | tail -1
+if float(sys.argv[3]) > 0: s["tissue"]["skin"] = {"thickness": float(sys.argv[3])}
+json.dump(s, open(sys.argv[2], "w"))' "$el" "/tmp/palpation-sweep-$tag-$sc.json" "$skin"
+        timeout 200 "$P" run "/tmp/palpation-sweep-$tag-$sc.json" --backend cuda --resolution "$res" \
+          --out "/tmp/palpation-sweep-$tag-$res-$sc" | tail -1
       done
-      python3 - "/tmp/palpation-sweep-$el-$res-$base/summary.json" \
-        "/tmp/palpation-sweep-$el-$res-$base-no-tumour/summary.json" "$res" "$el" "$base" <<'EOF' | tee -a "$OUT/sweep.txt"
+      python3 - "/tmp/palpation-sweep-$tag-$res-$base/summary.json" \
+        "/tmp/palpation-sweep-$tag-$res-$base-no-tumour/summary.json" "$res" "$tag" "$base" <<'EOF' | tee -a "$OUT/sweep.txt"
 import json, sys
 t, n = (json.load(open(f)) for f in sys.argv[1:3])
 def near(s, p):
@@ -496,6 +500,7 @@ print(f"{sys.argv[5]}, {sys.argv[3]}, {sys.argv[4]}: {t['nodes']} nodes, step {t
       ", ".join(f"{near(t, p) / near(n, p):.3f}" for p in range(len(passes))))
 EOF
     done
+  done
   done
   done
 fi
