@@ -4,13 +4,20 @@
 //
 // The levels are built from a step's system the first time they are needed, and again:
 // after invalidate() (a reset, a change of materials, element or preconditioner); when
-// the stiffness's weight (from dt) is more than twice or less than half the one they were
-// built with, at most once every 100 steps (the real-time loop sets dt from the last
-// step's time, and a rebuild's own slow step must not set off the next); and when a solve
-// ended beyond its tolerance and the rescue tolerance (or not finite) or needed twice the
-// iterations of the first solve after the build, and ten more (the system drifted:
+// the stiffness's weight (from dt) has been more than twice or less than half the one they
+// were built with for kMovedSteps steps in a row, at most once every 100 steps; and when a
+// solve ended beyond its tolerance and the rescue tolerance (or not finite) or needed twice
+// the iterations of the first solve after the build, and ten more (the system drifted:
 // rotations, contact). A build that throws (a system that is not finite, a stalled
 // coarsening) leaves this step and the next 1,000 to block-Jacobi.
+//
+// The real-time loop sets dt from the wall clock: a step that overran (a build's is one:
+// 0.8-1 s on the paper mesh, 11-12 s on xfine, on the GPU machine's host) is followed by one
+// step at the loop's largest dt, ten times the usual. That one step neither rebuilds nor
+// counts against the levels: a solve at a weight outside [1/2, 2] of theirs is left out of
+// the drift rules. Before, its poorer solve marked the levels stale, their rebuild overran
+// again, and the loop fell into a cycle of builds (paper mesh, H100, multigrid, 8 s
+// sessions: 115 steps/s at CG 1e-3, 452 held at 1 %, against 1,000 at a fixed dt).
 #pragma once
 
 #include <exception>
@@ -46,7 +53,9 @@ class MultigridKeeper {
     ++steps_;
     if (failed_at_ >= 0 && steps_ - failed_at_ < 1000) return false;
     const double ratio = scale / scale_;
-    const bool dt_moved = !(ratio <= 2.0 && ratio >= 0.5) && steps_ - built_at_ >= 100;
+    off_scale_ = !(ratio <= 2.0 && ratio >= 0.5);
+    off_steps_ = off_scale_ ? off_steps_ + 1 : 0;
+    const bool dt_moved = off_steps_ >= kMovedSteps && steps_ - built_at_ >= 100;
     if (!levels_.built() || stale_ || dt_moved) {
       try {
         build(levels_, options(p));
@@ -58,6 +67,8 @@ class MultigridKeeper {
       after_build(levels_);
       failed_at_ = -1;
       scale_ = scale;
+      off_scale_ = false;
+      off_steps_ = 0;
       stale_ = false;
       reference_iterations_ = -1;
       built_at_ = steps_;
@@ -66,9 +77,14 @@ class MultigridKeeper {
     return true;
   }
 
+  /// Steps in a row at a weight outside [1/2, 2] of the levels' that make a rebuild due.
+  static constexpr int kMovedSteps = 20;
+
   /// After a solve that used the levels: `solved` when it ended within its tolerance or
-  /// the rescue tolerance, `tolerance` the one it was asked for.
+  /// the rescue tolerance, `tolerance` the one it was asked for. A solve at a weight
+  /// outside [1/2, 2] of the levels' (the last prepare()'s) is not counted.
   void note(int iterations, bool solved, double tolerance) {
+    if (off_scale_) return;  // a weight the levels were not built for: no sign of drift
     if (!solved) {
       stale_ = true;
     } else if (reference_iterations_ < 0) {
@@ -105,6 +121,8 @@ class MultigridKeeper {
   amg::Hierarchy levels_;
   double scale_ = 0;               // the weight of K (from dt) they were built with
   bool stale_ = false;
+  bool off_scale_ = false;         // the last prepare()'s weight is outside [1/2, 2] of scale_
+  int off_steps_ = 0;              // ... for this many prepare()s in a row
   int reference_iterations_ = -1;  // iterations of the first solve after a build
   double reference_tolerance_ = 0;  // ... and its tolerance
   long steps_ = 0;                 // steps that asked for the multigrid

@@ -18,6 +18,7 @@
 #include "amg.h"
 #include "backend_cpu.h"
 #include "model.h"
+#include "multigrid_keeper.h"
 #include "scenario.h"
 #include "simulation.h"
 #include "solve_cg.h"
@@ -390,6 +391,63 @@ class TestMultigrid : public QObject {
     steps(140, 145);
     QCOMPARE(builds(), 3L);
     QCOMPARE(b->multigrid_counts().failures, 0L);
+  }
+
+  // The real-time loop sets dt from the wall clock: a step that overran (a build's own) is
+  // followed by one step at the loop's largest dt, ten times the usual and a hundred times
+  // the stiffness's weight. That one solve, however poor, does not mark the levels stale
+  // (neither beyond the rescue tolerance nor by its iteration count); a weight that stays
+  // moved for MultigridKeeper::kMovedSteps steps rebuilds them once; and the drift rules
+  // still hold at the levels' own weight. (Before, the long step's solve set off a
+  // rebuild, whose overrun set off the next: 115 steps/s in a paper-mesh session.)
+  void anOverrunsLongStepDoesNotRebuild() {
+    const System s = make_system(6);
+    MultigridKeeper keeper;
+    long builds = 0, failures = 0;
+    const auto prepare = [&](double weight) {
+      return keeper.prepare(
+          Preconditioner::Multigrid, weight,
+          [&](amg::Hierarchy& levels, const amg::Options& o) { MultigridKeeper::build(levels, s.m, s.A, amg::SpMat(), o); },
+          [](const amg::Hierarchy&) {}, builds, failures);
+    };
+    const double tol = 1e-3;
+    const auto usual = [&](int n, double weight) {
+      for (int k = 0; k < n; ++k) {
+        QVERIFY(prepare(weight));
+        keeper.note(6, true, tol);
+      }
+    };
+    usual(150, 1.0);
+    QCOMPARE(builds, 1L);
+    // The overrun's long step: beyond the rescue tolerance at the cap.
+    QVERIFY(prepare(100.0));
+    keeper.note(200, false, tol);
+    usual(1, 1.0);
+    QCOMPARE(builds, 1L);
+    // Nor one that converged in many iterations, straight after a build (its solve the
+    // reference); while twice the reference and ten more at the levels' weight is drift.
+    keeper.invalidate();
+    usual(1, 1.0);
+    QCOMPARE(builds, 2L);
+    QVERIFY(prepare(100.0));
+    keeper.note(200, true, tol);
+    usual(1, 1.0);
+    QCOMPARE(builds, 2L);
+    QVERIFY(prepare(1.0));
+    keeper.note(2 * 6 + 11, true, tol);
+    usual(1, 1.0);
+    QCOMPARE(builds, 3L);
+    // A weight that stays moved: rebuilt once, at the kMovedSteps-th step in a row (and 100
+    // after the last build), then held.
+    usual(100, 1.0);
+    QCOMPARE(builds, 3L);
+    usual(MultigridKeeper::kMovedSteps - 1, 100.0);
+    QCOMPARE(builds, 3L);
+    usual(1, 100.0);
+    QCOMPARE(builds, 4L);
+    usual(200, 100.0);
+    QCOMPARE(builds, 4L);
+    QCOMPARE(failures, 0L);
   }
 
   // The whole step with it: a finger presses a box of nodal-pressure tissue
