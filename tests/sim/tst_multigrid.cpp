@@ -411,17 +411,18 @@ class TestMultigrid : public QObject {
           [](const amg::Hierarchy&) {}, builds, failures);
     };
     const double tol = 1e-3;
+    // One step's solve at `weight`, of `iterations`, within the tolerance or not.
+    const auto solve = [&](double weight, int iterations, bool solved) {
+      QVERIFY(prepare(weight));
+      keeper.note(iterations, solved, tol);
+    };
     const auto usual = [&](int n, double weight) {
-      for (int k = 0; k < n; ++k) {
-        QVERIFY(prepare(weight));
-        keeper.note(6, true, tol);
-      }
+      for (int k = 0; k < n; ++k) solve(weight, 6, true);
     };
     usual(150, 1.0);
     QCOMPARE(builds, 1L);
-    // The overrun's long step: beyond the rescue tolerance at the cap.
-    QVERIFY(prepare(100.0));
-    keeper.note(200, false, tol);
+    // The overrun's long step, beyond the rescue tolerance at the cap; then the usual one.
+    solve(100.0, 200, false);
     usual(1, 1.0);
     QCOMPARE(builds, 1L);
     // Nor one that converged in many iterations, straight after a build (its solve the
@@ -429,12 +430,10 @@ class TestMultigrid : public QObject {
     keeper.invalidate();
     usual(1, 1.0);
     QCOMPARE(builds, 2L);
-    QVERIFY(prepare(100.0));
-    keeper.note(200, true, tol);
-    usual(1, 1.0);
+    solve(100.0, 200, true);
+    solve(1.0, 6, true);
     QCOMPARE(builds, 2L);
-    QVERIFY(prepare(1.0));
-    keeper.note(2 * 6 + 11, true, tol);
+    solve(1.0, 2 * 6 + 11, true);
     usual(1, 1.0);
     QCOMPARE(builds, 3L);
     // A weight that stays moved: rebuilt once, at the kMovedSteps-th step in a row (and 100
