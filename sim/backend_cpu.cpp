@@ -139,6 +139,12 @@ class CpuBackend final : public Backend {
   }
   const CpuWorkCounters& counters() const { return counters_; }
   MultigridCounts multigrid_counts() const override { return multigrid_counts_; }
+  void prepare_solver() override {
+    if (!is_multigrid(p_.solver.preconditioner) || !rested_) return;
+    const T h = T(p_.solver.dt);
+    assemble(h);  // the rest state's blocks: the first step after it finds them assembled
+    use_multigrid(system(h));
+  }
 
   // The element caches (F, the rotations q_, K blocks) need no copy while elements are
   // kept (corotation_tolerance > 0): they are formed from the start-of-step positions, and
@@ -349,14 +355,7 @@ class CpuBackend final : public Backend {
     add_gravity_and_damping_rhs(h);
     add_contacts(fingers, h);
 
-    cg::BlockSystem<T> sys{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data()};
-    sys.scale = h * h + h * T(p_.damping.stiffness);  // (h^2 + h beta) K + D
-    sys.diag = diag_.data();
-    sys.diag_index = m_.diag_block.data();
-    if (nodal()) {
-      sys.pressure = &npt_;
-      sys.pressure_diag = npdiag_.data();
-    }
+    const cg::BlockSystem<T> sys = system(h);
     // Warm start: the last two solutions extrapolated linearly (the velocity change of a
     // pushed body varies smoothly from step to step; on the coarse sweep 10-13 % fewer CG
     // iterations than the last solution alone). A guess worse than zero is caught by
@@ -430,6 +429,19 @@ class CpuBackend final : public Backend {
 
  private:
   bool nodal() const { return p_.element == Element::NodalPressure; }
+
+  // The step's system as assembled: (h^2 + h beta) K + D, and the nodal-pressure term.
+  cg::BlockSystem<T> system(T h) {
+    cg::BlockSystem<T> sys{m_.num_free(), m_.row_ptr.data(), m_.col.data(), blocks_.data()};
+    sys.scale = h * h + h * T(p_.damping.stiffness);
+    sys.diag = diag_.data();
+    sys.diag_index = m_.diag_block.data();
+    if (nodal()) {
+      sys.pressure = &npt_;
+      sys.pressure_diag = npdiag_.data();
+    }
+    return sys;
+  }
 
   // The levels below this step's system, when the preconditioner is a multigrid and they
   // are due (multigrid_keeper.h).

@@ -15,9 +15,8 @@
 // 0.8-1 s on the paper mesh, 11-12 s on xfine, on the GPU machine's host) is followed by one
 // step at the loop's largest dt, ten times the usual. That one step neither rebuilds nor
 // counts against the levels: a solve at a weight outside [1/2, 2] of theirs is left out of
-// the drift rules. Before, its poorer solve marked the levels stale, their rebuild overran
-// again, and the loop fell into a cycle of builds (paper mesh, H100, multigrid, 8 s
-// sessions: 115 steps/s at CG 1e-3, 452 held at 1 %, against 1,000 at a fixed dt).
+// the drift rules, since its poorer solve says nothing of the levels, and a rebuild for it
+// would overrun again and set the next step's dt as large.
 #pragma once
 
 #include <exception>
@@ -53,8 +52,7 @@ class MultigridKeeper {
     ++steps_;
     if (failed_at_ >= 0 && steps_ - failed_at_ < 1000) return false;
     const double ratio = scale / scale_;
-    off_scale_ = !(ratio <= 2.0 && ratio >= 0.5);
-    off_steps_ = off_scale_ ? off_steps_ + 1 : 0;
+    off_steps_ = (ratio <= 2.0 && ratio >= 0.5) ? 0 : off_steps_ + 1;
     const bool dt_moved = off_steps_ >= kMovedSteps && steps_ - built_at_ >= 100;
     if (!levels_.built() || stale_ || dt_moved) {
       try {
@@ -67,7 +65,6 @@ class MultigridKeeper {
       after_build(levels_);
       failed_at_ = -1;
       scale_ = scale;
-      off_scale_ = false;
       off_steps_ = 0;
       stale_ = false;
       reference_iterations_ = -1;
@@ -84,7 +81,7 @@ class MultigridKeeper {
   /// the rescue tolerance, `tolerance` the one it was asked for. A solve at a weight
   /// outside [1/2, 2] of the levels' (the last prepare()'s) is not counted.
   void note(int iterations, bool solved, double tolerance) {
-    if (off_scale_) return;  // a weight the levels were not built for: no sign of drift
+    if (off_steps_ > 0) return;  // a weight the levels were not built for: no sign of drift
     if (!solved) {
       stale_ = true;
     } else if (reference_iterations_ < 0) {
@@ -121,8 +118,7 @@ class MultigridKeeper {
   amg::Hierarchy levels_;
   double scale_ = 0;               // the weight of K (from dt) they were built with
   bool stale_ = false;
-  bool off_scale_ = false;         // the last prepare()'s weight is outside [1/2, 2] of scale_
-  int off_steps_ = 0;              // ... for this many prepare()s in a row
+  int off_steps_ = 0;              // prepare()s in a row at a weight outside [1/2, 2] of scale_
   int reference_iterations_ = -1;  // iterations of the first solve after a build
   double reference_tolerance_ = 0;  // ... and its tolerance
   long steps_ = 0;                 // steps that asked for the multigrid

@@ -312,6 +312,7 @@ int Simulation::set_element_young(std::span<const std::pair<int, double>> change
 
 void Simulation::reset() {
   backend_->reset();
+  backend_->prepare_solver();  // a multigrid's levels at load, not at the first touch
   summary_known_ = false;
   last_contact_ = false;  // the controller keeps its tolerance: the same body, the same solver
   t_ = 0;

@@ -295,6 +295,18 @@ class CudaBackend final : public Backend {
   Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
   const SimParams& params() const override { return p_; }
   MultigridCounts multigrid_counts() const override { return multigrid_counts_; }
+  void prepare_solver() override {
+    if (!is_multigrid(p_.solver.preconditioner) || !rested_ || solver_ != Solver::Persistent) return;
+    // The rest state's element pass and assembly, with no finger: what the first step's
+    // would make of it (the rotations stay the identity, dv and its predecessor zero).
+    const StepConsts k = step_consts();
+    launch_element(FingersArg{}, k, true);
+    launch_assemble(k, false);
+    launch_skin(k);
+    if (nodal()) launch_pressure();
+    use_multigrid();
+    CU(cudaStreamSynchronize(stream_));
+  }
   void set_params(const SimParams& given) override {
     const SimParams p = resolved_for(m_, given);
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
@@ -410,13 +422,7 @@ class CudaBackend final : public Backend {
       F.f[f].r = fingers[f].radius;
       F.f[f].active = fingers[f].active ? 1 : 0;
     }
-    StepConsts k{};
-    k.h = p_.solver.dt;
-    k.alpha = p_.damping.mass;
-    k.beta = p_.damping.stiffness;
-    k.ks = p_.contact.stiffness;
-    k.ke = p_.contact.damping;
-    for (int c = 0; c < 3; ++c) k.g[c] = p_.gravity[c];
+    const StepConsts k = step_consts();
 
     const bool reuse = std::exchange(reuse_pending_, false);  // rollback_for_reference() just before
     bool detected = false;
@@ -695,6 +701,17 @@ class CudaBackend final : public Backend {
                      rec_.get(), T(k.h), T(k.beta), 0};  // elem_blocks: set by launch_element
     if (nodal()) a.rest_part = np_rest_part_.get();
     cuda::launch_element(stream_, a, detect_args(), F, k, detect);
+  }
+
+  StepConsts step_consts() const {
+    StepConsts k{};
+    k.h = p_.solver.dt;
+    k.alpha = p_.damping.mass;
+    k.beta = p_.damping.stiffness;
+    k.ks = p_.contact.stiffness;
+    k.ke = p_.contact.damping;
+    for (int c = 0; c < 3; ++c) k.g[c] = p_.gravity[c];
+    return k;
   }
 
   void launch_assemble(const StepConsts& k, bool extrapolate) {
