@@ -2,14 +2,16 @@
 // and the CUDA backends, so that both precondition the same step with levels built from
 // the same system.
 //
-// The levels are built from a step's system the first time they are needed, and again:
-// after invalidate() (a reset, a change of materials, element or preconditioner); when
-// the stiffness's weight (from dt) has been more than twice or less than half the one they
-// were built with for kMovedSteps steps in a row, at most once every 100 steps; and when a
-// solve ended beyond its tolerance and the rescue tolerance (or not finite) or needed twice
-// the iterations of the first solve after the build, and ten more (the system drifted:
-// rotations, contact). A build that throws (a system that is not finite, a stalled
-// coarsening) leaves this step and the next 1,000 to block-Jacobi.
+// The levels are built from the system at rest when the patient loads (the backends'
+// prepare_solver(), after a reset), else from a step's system the first time they are
+// needed, and again: after invalidate() (a reset, a change of materials, element or
+// preconditioner); when the stiffness's weight (from dt) has been more than twice or less
+// than half the one they were built with for kMovedSteps steps in a row, at most once
+// every 100 steps; and when a solve ended beyond its tolerance and the rescue tolerance
+// (or not finite) or needed twice the iterations of the first solve after the build, and
+// ten more (the system drifted: rotations, contact). A build that throws (a system that
+// is not finite, a stalled coarsening) leaves this step and the next 1,000 to
+// block-Jacobi.
 //
 // The real-time loop sets dt from the wall clock: a step that overran (a build's is one:
 // 0.8-1 s on the paper mesh, 11-12 s on xfine, on the GPU machine's host) is followed by one
