@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "levels_job.h"
 #include "model.h"
 #include "params.h"
 
@@ -61,6 +62,20 @@ class Backend {
   /// unchanged. Nothing otherwise; a build that throws leaves the first steps to
   /// block-Jacobi, as in a step.
   virtual void prepare_solver() {}
+  /// Deferred multigrid builds (off by default): with levels already built, a rebuild that
+  /// falls due in a step (the system drifted, dt moved, materials changed) is not done in
+  /// it; the step and those after it keep the present levels, and take_levels_job() hands
+  /// the build out, for another thread to run (LevelsJob::run) and install_levels() to put
+  /// in use between steps. A build at a reset (prepare_solver) is never deferred. Off
+  /// drops a job not yet installed. Nothing for a backend without a multigrid.
+  virtual void set_deferred_levels(bool /*on*/) {}
+  /// The deferred build that fell due and was not yet handed out, or null.
+  virtual std::shared_ptr<LevelsJob> take_levels_job() { return nullptr; }
+  /// Between steps, after `job`'s run() returned: its levels in use from the next step on.
+  /// False, and nothing changes, for a job of another backend or of a system changed since
+  /// it was taken (reset, materials, element or preconditioner), or not done; false, counted
+  /// as a failed build (multigrid_counts), for one whose run() threw.
+  virtual bool install_levels(const std::shared_ptr<LevelsJob>& /*job*/) { return false; }
 };
 
 enum class BackendKind { Auto, Cpu, Cuda };

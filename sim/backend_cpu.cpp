@@ -143,7 +143,12 @@ class CpuBackend final : public Backend {
     if (!is_multigrid(p_.solver.preconditioner) || !rested_) return;
     const T h = T(p_.solver.dt);
     assemble(h);  // the rest state's blocks: the first step after it finds them assembled
-    use_multigrid(system(h));
+    use_multigrid(system(h), false);
+  }
+  void set_deferred_levels(bool on) override { multigrid_.set_deferred(on); }
+  std::shared_ptr<LevelsJob> take_levels_job() override { return multigrid_.take_job(); }
+  bool install_levels(const std::shared_ptr<LevelsJob>& job) override {
+    return multigrid_.install(job, [](const amg::Hierarchy&) {}, multigrid_counts_.builds, multigrid_counts_.failures);
   }
 
   // The element caches (F, the rotations q_, K blocks) need no copy while elements are
@@ -445,15 +450,19 @@ class CpuBackend final : public Backend {
 
   // The levels below this step's system, when the preconditioner is a multigrid and they
   // are due (multigrid_keeper.h).
-  void use_multigrid(const cg::BlockSystem<T>& sys) {
+  void use_multigrid(const cg::BlockSystem<T>& sys, bool may_defer = true) {
     const bool use = multigrid_.prepare(
-        p_.solver.preconditioner, double(sys.scale),
-        [&](amg::Hierarchy& levels, const amg::Options& options) {
-          // The stiffness alone once, the whole system from it.
-          const amg::SpMat stiffness = cg::to_sparse(sys);
-          MultigridKeeper::build(levels, m_, stiffness, sys.pressure ? cg::pressure_to_sparse(sys) : amg::SpMat(), options);
+        p_.solver.preconditioner, double(sys.scale), m_,
+        [&]() -> LevelsSystem {
+          // Converted here, in the step (a few ms on the paper mesh): the blocks change with it.
+          auto stiffness = std::make_shared<const amg::SpMat>(cg::to_sparse(sys));
+          auto pressure = std::make_shared<const amg::SpMat>(sys.pressure ? cg::pressure_to_sparse(sys) : amg::SpMat());
+          return [stiffness, pressure](amg::SpMat& k, amg::SpMat& np) {
+            k = *stiffness;
+            np = *pressure;
+          };
         },
-        [](const amg::Hierarchy&) {}, multigrid_counts_.builds, multigrid_counts_.failures);
+        [](const amg::Hierarchy&) {}, multigrid_counts_.builds, multigrid_counts_.failures, may_defer);
     cg_.multigrid = use ? &multigrid_.levels() : nullptr;
   }
   void note_multigrid_iterations(int iterations, bool solved) { multigrid_.note(iterations, solved, p_.solver.cg_tolerance); }

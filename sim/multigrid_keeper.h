@@ -22,9 +22,11 @@
 #pragma once
 
 #include <exception>
+#include <memory>
 #include <vector>
 
 #include "amg.h"
+#include "levels_job.h"
 #include "model.h"
 #include "nodal_pressure.h"
 #include "params.h"
@@ -44,35 +46,75 @@ class MultigridKeeper {
   }
 
   /// Before a solve preconditioned by `p` of a system whose stiffness weight is `scale`:
-  /// builds the levels when they are due, by build(levels, options) (a throw: this step
-  /// and the next 1,000 run block-Jacobi), then after_build(levels) (a copy of them
-  /// elsewhere: what it throws goes to the caller), and says whether this solve uses them.
+  /// when the levels are due, takes the system they are built from (snapshot(), a
+  /// LevelsSystem) and builds them below `model`'s free nodes, then calls
+  /// after_build(levels) (a copy of them elsewhere: what it throws goes to the caller); says
+  /// whether this solve uses them. A build that throws (the snapshot's included): this step
+  /// and the next 1,000 run block-Jacobi. With deferred builds (set_deferred) and levels
+  /// already built, a rebuild that falls due is handed out as a job (take_job) instead,
+  /// unless `may_defer` is false, and the solves keep the present levels until install():
+  /// the step only takes the snapshot; the job makes the system and builds.
   /// `builds` and `failures` count the builds done and those that threw.
-  template <class Build, class AfterBuild>
-  bool prepare(Preconditioner p, double scale, Build&& build, AfterBuild&& after_build, long& builds, long& failures) {
+  template <class Snapshot, class AfterBuild>
+  bool prepare(Preconditioner p, double scale, const Model& model, Snapshot&& snapshot, AfterBuild&& after_build,
+               long& builds, long& failures, bool may_defer = true) {
     if (!is_multigrid(p)) return false;
     ++steps_;
     if (failed_at_ >= 0 && steps_ - failed_at_ < 1000) return false;
     const double ratio = scale / scale_;
     off_steps_ = (ratio <= 2.0 && ratio >= 0.5) ? 0 : off_steps_ + 1;
     const bool dt_moved = off_steps_ >= kMovedSteps && steps_ - built_at_ >= 100;
-    if (!levels_.built() || stale_ || dt_moved) {
-      try {
-        build(levels_, options(p));
-      } catch (const std::exception&) {
-        failed_at_ = steps_;
-        ++failures;
-        return false;
+    if (levels_.built() && !stale_ && !dt_moved) return true;
+    const bool defer = deferred_ && may_defer && levels_.built();
+    if (defer && job_) return true;  // one job at a time; these levels until it is installed
+    try {
+      LevelsSystem system = snapshot();
+      if (defer) {
+        job_ = std::make_shared<LevelsJob>(std::move(system), rest_nodes(model), options(p), scale);
+        job_taken_ = false;
+        return true;
       }
-      after_build(levels_);
-      failed_at_ = -1;
-      scale_ = scale;
-      off_steps_ = 0;
-      stale_ = false;
-      reference_iterations_ = -1;
-      built_at_ = steps_;
-      ++builds;
+      amg::SpMat stiffness, pressure;
+      system(stiffness, pressure);
+      LevelsJob::build(levels_, stiffness, pressure, rest_nodes(model), options(p));
+    } catch (const std::exception&) {
+      failed_at_ = steps_;
+      ++failures;
+      return false;
     }
+    after_build(levels_);
+    adopt(scale, builds);
+    return true;
+  }
+
+  /// Deferred builds on or off (off: every build in the step that finds it due). Off drops
+  /// a job not yet installed; its rebuild is then done in the next step that uses the levels.
+  void set_deferred(bool on) {
+    deferred_ = on;
+    if (!on) job_.reset();
+  }
+  /// The job of a deferred rebuild not yet handed out, or null.
+  std::shared_ptr<LevelsJob> take_job() {
+    if (!job_ || job_taken_) return nullptr;
+    job_taken_ = true;
+    return job_;
+  }
+  /// Between steps: the levels of `job` (run() done) replace the present ones, after
+  /// after_build(levels) as in prepare(). False, and nothing changes, for a job that is not
+  /// this keeper's present one (another backend's, or one of a system changed since:
+  /// invalidate()) or not done; false, counted as a failed build, for one whose run() threw.
+  template <class AfterBuild>
+  bool install(const std::shared_ptr<LevelsJob>& job, AfterBuild&& after_build, long& builds, long& failures) {
+    if (!job || job != job_ || !job->done()) return false;
+    job_.reset();
+    if (job->error_) {
+      failed_at_ = steps_;
+      ++failures;
+      return false;
+    }
+    levels_ = std::move(job->levels_);
+    after_build(levels_);
+    adopt(job->scale_, builds);
     return true;
   }
 
@@ -103,20 +145,35 @@ class MultigridKeeper {
   /// without one). The finest level aggregates over the stiffness alone (amg.h).
   static void build(amg::Hierarchy& levels, const Model& model, const amg::SpMat& stiffness, const amg::SpMat& pressure,
                     const amg::Options& options) {
-    std::vector<Eigen::Vector3d> nodes(model.num_free());
-    for (int i = 0; i < model.num_free(); ++i) nodes[i] = model.rest[model.free_nodes[i]];
-    if (pressure.nonZeros() > 0)
-      levels.build(amg::SpMat(stiffness + pressure), nodes, options, &stiffness);
-    else
-      levels.build(stiffness, nodes, options);
+    LevelsJob::build(levels, stiffness, pressure, rest_nodes(model), options);
   }
 
-  /// The levels are built again before the next solve that uses them.
-  void invalidate() { stale_ = true; }
+  /// The levels are built again before the next solve that uses them (the system changed:
+  /// a job of the old one is not installed).
+  void invalidate() {
+    stale_ = true;
+    job_.reset();
+  }
 
   const amg::Hierarchy& levels() const { return levels_; }
 
  private:
+  static std::vector<Eigen::Vector3d> rest_nodes(const Model& model) {
+    std::vector<Eigen::Vector3d> nodes(model.num_free());
+    for (int i = 0; i < model.num_free(); ++i) nodes[i] = model.rest[model.free_nodes[i]];
+    return nodes;
+  }
+  // New levels in use, built at stiffness weight `scale`: the rules start over from them.
+  void adopt(double scale, long& builds) {
+    failed_at_ = -1;
+    scale_ = scale;
+    off_steps_ = 0;
+    stale_ = false;
+    reference_iterations_ = -1;
+    built_at_ = steps_;
+    ++builds;
+  }
+
   amg::Hierarchy levels_;
   double scale_ = 0;               // the weight of K (from dt) they were built with
   bool stale_ = false;
@@ -126,6 +183,9 @@ class MultigridKeeper {
   long steps_ = 0;                 // steps that asked for the multigrid
   long built_at_ = 0;              // ... at the last build
   long failed_at_ = -1;            // ... at the last failed build, or -1
+  bool deferred_ = false;          // set_deferred()
+  std::shared_ptr<LevelsJob> job_; // the deferred rebuild under way, or null
+  bool job_taken_ = false;         // ... handed out by take_job()
 };
 
 /// A system stored by block rows of three scalar rows each (the CUDA assembly's layout,

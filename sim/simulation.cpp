@@ -292,6 +292,7 @@ bool Simulation::fall_back_to_cpu(const std::string& why) {
   auto cpu = make_backend(BackendKind::Cpu, model_, backend_->params());
   cpu->set_materials(materials_);
   cpu->reset();
+  cpu->set_deferred_levels(deferred_levels_);
   backend_ = std::move(cpu);
   ++fallbacks_;
   reason_ = "fell back from " + was + " to cpu: " + why;

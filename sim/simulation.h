@@ -105,7 +105,16 @@ class Simulation {
   /// (and changes nothing) when the backend already is the CPU one.
   bool fall_back_to_cpu(const std::string& why);
   /// Fault injection and tests: replaces the backend (reset first by the caller).
-  void replace_backend(std::unique_ptr<Backend> b) { backend_ = std::move(b); }
+  void replace_backend(std::unique_ptr<Backend> b) {
+    backend_ = std::move(b);
+    backend_->set_deferred_levels(deferred_levels_);
+  }
+  /// Deferred multigrid builds (Backend::set_deferred_levels) on this backend and on any
+  /// that replaces it; the caller takes the jobs from backend() and runs them.
+  void set_deferred_levels(bool on) {
+    deferred_levels_ = on;
+    backend_->set_deferred_levels(on);
+  }
   /// Checks the backend's state after a step (used by step() and the session thread).
   DivergenceCheck check_divergence(const StepStats& st, std::span<const FingerOutput> out);
   void set_divergence_limits(const DivergenceLimits& l) { limits_ = l; }
@@ -144,6 +153,7 @@ class Simulation {
   DivergenceLimits limits_;
   DivergenceCheck check_;
   int divergences_ = 0, fallbacks_ = 0;
+  bool deferred_levels_ = false;
   double diagonal_ = 0;                  // m, rest bounding-box diagonal
   std::vector<double> xyz_, vel_;        // scratch
   bool summary_known_ = false;           // check_ holds the state's summary (unchanged by a skipped step)

@@ -52,6 +52,8 @@ SimulationLoop::SimulationLoop(dv::TripleBuffer<dv::PoseFrame>& poses, dv::Tripl
 
 void SimulationLoop::restart(sim::Simulation& simulation, const std::vector<double>& radius) {
   sim_ = &simulation;
+  levels_.forget();
+  sim_->set_deferred_levels(opt_.deferred_levels);
   for (std::size_t k = 0; k < in_.size() && k < radius.size(); ++k) in_[k].radius = radius[k];
   last_ = {};
   std::fill(prev_force_.begin(), prev_force_.end(), Eigen::Vector3d::Zero());
@@ -72,6 +74,7 @@ void SimulationLoop::publish_empty() {
 
 void SimulationLoop::run(sim::Simulation& simulation, const std::atomic<bool>& stop, const Hooks& hooks) {
   sim_ = &simulation;
+  sim_->set_deferred_levels(opt_.deferred_levels);
   const int nf = int(in_.size());
   const double dt = opt_.dt;
   while (!stop.load(std::memory_order_acquire)) {
@@ -148,6 +151,9 @@ void SimulationLoop::run(sim::Simulation& simulation, const std::atomic<bool>& s
       ls.poses = &pf;
       hooks.after_step(ls);
     }
+    // Between steps: new multigrid levels built meanwhile go in use; a rebuild that fell due
+    // in this step starts on the builder's thread.
+    if (opt_.deferred_levels) levels_.poll(sim_->backend());
   }
 }
 

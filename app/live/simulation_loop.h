@@ -20,6 +20,7 @@
 
 #include "contact_model.h"
 #include "haptic_loop.h"
+#include "live/levels_builder.h"
 #include "params.h"
 #include "simulation.h"
 #include "triple_buffer.h"
@@ -58,6 +59,10 @@ struct SimulationLoopOptions {
   /// simulated time (at most recover_hold_max_s), then blend over recover_blend_s. All
   /// zero: the new (or empty) models at once.
   double recover_hold_s = 0, recover_hold_max_s = 0, recover_blend_s = 0;
+  /// A multigrid rebuild that falls due while stepping (drift, dt, new materials) runs on a
+  /// thread of its own (live/levels_builder.h) while the steps keep the levels they have;
+  /// false: in the step that finds it due, as `palpation run` and bench do.
+  bool deferred_levels = true;
 };
 
 /// One step as the hooks see it (simulation thread).
@@ -112,6 +117,7 @@ class SimulationLoop {
   device::TripleBuffer<device::PoseFrame>& poses_;
   device::TripleBuffer<device::ContactFrame>& contacts_;
   SimulationLoopOptions opt_;
+  LevelsBuilder levels_;
   sim::Simulation* sim_ = nullptr;
   std::vector<sim::FingerInput> in_;
   std::vector<sim::FingerOutput> out_;

@@ -304,8 +304,16 @@ class CudaBackend final : public Backend {
     launch_assemble(k, false);
     launch_skin(k);
     if (nodal()) launch_pressure();
-    use_multigrid();
+    use_multigrid(false);
     CU(cudaStreamSynchronize(stream_));
+  }
+  void set_deferred_levels(bool on) override { multigrid_.set_deferred(on); }
+  std::shared_ptr<LevelsJob> take_levels_job() override { return multigrid_.take_job(); }
+  bool install_levels(const std::shared_ptr<LevelsJob>& job) override {
+    // Between steps (the last one's result fetched): the old levels' buffers are free to go.
+    CU(cudaStreamSynchronize(stream_));
+    return multigrid_.install(job, [&](const amg::Hierarchy& levels) { upload_levels(levels); },
+                              multigrid_counts_.builds, multigrid_counts_.failures);
   }
   void set_params(const SimParams& given) override {
     const SimParams p = resolved_for(m_, given);
@@ -749,35 +757,43 @@ class CudaBackend final : public Backend {
   /// The multigrid levels for this step's solve, built (on the host, from the system
   /// assembled on the device) and copied to the device when due (multigrid_keeper.h); false:
   /// block-Jacobi.
-  bool use_multigrid() {
+  bool use_multigrid(bool may_defer = true) {
     const T h = T(p_.solver.dt);
     const T scale = h * h + h * T(p_.damping.stiffness);  // as the CPU backend's system
     return multigrid_.prepare(
-        p_.solver.preconditioner, double(scale),
-        [&](amg::Hierarchy& levels, const amg::Options& options) {
+        p_.solver.preconditioner, double(scale), m_,
+        [&]() -> LevelsSystem {
+          // The step downloads what the device assembled; the system is made from the copies
+          // where the levels are built (seconds of sorting on a large mesh).
           std::vector<double> vals, b;
           download(vals_, vals);  // waits for the assembly
-          const amg::SpMat stiffness = block_rows_to_sparse(nf_, m_.row_ptr, m_.col, vals);
-          amg::SpMat pressure;
+          std::vector<double> w;
           if (nodal()) {
             download(npb_, b);
             // The weights as the device holds them (in T), as the CPU backend builds from its own.
-            std::vector<double> w(npw_host_.size());
+            w.resize(npw_host_.size());
             for (std::size_t i = 0; i < w.size(); ++i) w[i] = double(T(npw_host_[i]));
-            pressure = nodal_pressure_to_sparse(np_, nf_, b, w, double(pressure_dev().scale));
           }
-          MultigridKeeper::build(levels, m_, stiffness, pressure, options);
+          const double pressure_scale = nodal() ? double(pressure_dev().scale) : 0.0;
+          return [nf = nf_, row_ptr = m_.row_ptr, col = m_.col, np = nodal() ? np_ : NodalPressurePattern(),
+                  vals = std::move(vals), b = std::move(b), w = std::move(w),
+                  pressure_scale](amg::SpMat& stiffness, amg::SpMat& pressure) {
+            stiffness = block_rows_to_sparse(nf, row_ptr, col, vals);
+            if (!w.empty()) pressure = nodal_pressure_to_sparse(np, nf, b, w, pressure_scale);
+          };
         },
-        [&](const amg::Hierarchy& levels) {
-          // A CUDA error here is the device's, not the levels': it goes to the caller.
-          mg_levels_.upload(levels, stream_);
-          if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
-          if (mg_r_.size() != 3 * std::size_t(nf_)) {
-            mg_r_.alloc(3 * std::size_t(nf_));
-            mg_d_.alloc(3 * std::size_t(nf_));
-          }
-        },
-        multigrid_counts_.builds, multigrid_counts_.failures);
+        [&](const amg::Hierarchy& levels) { upload_levels(levels); }, multigrid_counts_.builds,
+        multigrid_counts_.failures, may_defer);
+  }
+  // The levels' copy on the device. A CUDA error here is the device's, not the levels': it
+  // goes to the caller.
+  void upload_levels(const amg::Hierarchy& levels) {
+    mg_levels_.upload(levels, stream_);
+    if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
+    if (mg_r_.size() != 3 * std::size_t(nf_)) {
+      mg_r_.alloc(3 * std::size_t(nf_));
+      mg_d_.alloc(3 * std::size_t(nf_));
+    }
   }
 
   PcgArgs<T> pcg_args(bool multigrid = false) {

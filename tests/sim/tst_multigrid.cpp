@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -467,8 +468,8 @@ class TestMultigrid : public QObject {
     long builds = 0, failures = 0;
     const auto prepare = [&](double weight) {
       return keeper.prepare(
-          Preconditioner::Multigrid, weight,
-          [&](amg::Hierarchy& levels, const amg::Options& o) { MultigridKeeper::build(levels, s.m, s.A, amg::SpMat(), o); },
+          Preconditioner::Multigrid, weight, s.m,
+          [&]() -> LevelsSystem { return [&](amg::SpMat& stiffness, amg::SpMat&) { stiffness = s.A; }; },
           [](const amg::Hierarchy&) {}, builds, failures);
     };
     const double tol = 1e-3;
@@ -514,6 +515,82 @@ class TestMultigrid : public QObject {
   // (Poisson's ratio 0.45: the pressure term is in the system) at the haptic step. The
   // forces match block-Jacobi's within what a relative residual of 1e-6 allows (1e-4),
   // with fewer iterations.
+  // Deferred builds: with levels built, a rebuild that falls due is handed out once as a
+  // job and the solves keep the present levels until it is installed; a job of a system
+  // changed since (invalidate()) is refused and a new one handed out; a job whose build
+  // threw counts as a failed build (block-Jacobi for the next 1,000 steps); a build with
+  // no levels yet, or one that may not be deferred (the reset's), is done at once.
+  void deferredRebuildKeepsTheLevelsUntilInstalled() {
+    const System s = make_system(6);
+    MultigridKeeper keeper;
+    keeper.set_deferred(true);
+    long builds = 0, failures = 0, uploads = 0;
+    amg::SpMat system = s.A;
+    const auto upload = [&](const amg::Hierarchy&) { ++uploads; };
+    const auto prepare = [&](bool may_defer = true) {
+      return keeper.prepare(
+          Preconditioner::Multigrid, 1.0, s.m,
+          [&]() -> LevelsSystem { return [A = system](amg::SpMat& stiffness, amg::SpMat&) { stiffness = A; }; }, upload,
+          builds, failures, may_defer);
+    };
+    QVERIFY(prepare());  // no levels yet: built at once
+    QCOMPARE(builds, 1L);
+    QVERIFY(!keeper.take_job());
+    keeper.note(6, false, 1e-3);  // a solve beyond its tolerance: a rebuild is due
+    QVERIFY(prepare());
+    QCOMPARE(builds, 1L);
+    const auto job = keeper.take_job();
+    QVERIFY(job);
+    QVERIFY(!keeper.take_job());  // handed out once
+    QVERIFY(!keeper.install(job, upload, builds, failures));  // not run yet
+    for (int k = 0; k < 5; ++k) QVERIFY(prepare());  // the present levels meanwhile, no second job
+    QVERIFY(!keeper.take_job());
+    job->run();
+    QVERIFY(job->done());
+    QVERIFY(keeper.install(job, upload, builds, failures));
+    QCOMPARE(builds, 2L);
+    QCOMPARE(uploads, 2L);
+    QVERIFY(!keeper.install(job, upload, builds, failures));  // once
+    // The levels of the job solve as the ones built in a step do (the same system).
+    amg::Hierarchy direct;
+    MultigridKeeper::build(direct, s.m, s.A, amg::SpMat(), MultigridKeeper::options(Preconditioner::Multigrid));
+    QVERIFY(keeper.levels().stats().unknowns == direct.stats().unknowns);
+
+    // A system changed while the job ran: refused, and a new job of the new system.
+    keeper.note(6, false, 1e-3);
+    QVERIFY(prepare());
+    const auto old_job = keeper.take_job();
+    QVERIFY(old_job);
+    keeper.invalidate();
+    QVERIFY(prepare());
+    const auto new_job = keeper.take_job();
+    QVERIFY(new_job && new_job != old_job);
+    old_job->run();
+    QVERIFY(!keeper.install(old_job, upload, builds, failures));
+    QCOMPARE(builds, 2L);
+    new_job->run();
+    QVERIFY(keeper.install(new_job, upload, builds, failures));
+    QCOMPARE(builds, 3L);
+
+    // Not deferred: built in the call.
+    keeper.invalidate();
+    QVERIFY(prepare(false));
+    QCOMPARE(builds, 4L);
+    QVERIFY(!keeper.take_job());
+
+    // A build that throws (a system that is not finite) on the job's thread.
+    system.coeffRef(0, 0) = std::numeric_limits<double>::quiet_NaN();
+    keeper.invalidate();
+    QVERIFY(prepare());
+    const auto bad = keeper.take_job();
+    QVERIFY(bad);
+    bad->run();
+    QVERIFY(!keeper.install(bad, upload, builds, failures));
+    QCOMPARE(failures, 1L);
+    QCOMPARE(builds, 4L);
+    QVERIFY(!prepare());  // block-Jacobi after a failed build
+  }
+
   void simulationMatchesBlockJacobi() {
     const Scenario s = press_box();
     const Model m = build_scenario_model(s, patient_mesh(s));
