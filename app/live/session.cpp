@@ -369,6 +369,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"dt_ms_max", percentile(timed_dt, 100)},
                        {"simulated_time_s", sim_thread.sim_time},
                        {"cg_iterations_max", cg_max},
+                       {"multigrid_builds", simulation.backend().multigrid_counts().builds},
+                       {"multigrid_build_failures", simulation.backend().multigrid_counts().failures},
                        {"divergence_resets", sim_thread.resets},
                        {"backend_fallbacks", sim_thread.fallbacks},
                        {"finite", sim_thread.finite},

@@ -13,7 +13,9 @@
 #include "backend_cpu.h"
 #include "live/levels_builder.h"
 #include "model.h"
+#include "phantom.h"
 #include "scenario.h"
+#include "simulation.h"
 
 using namespace palpation;
 using namespace palpation::sim;
