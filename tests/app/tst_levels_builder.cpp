@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -49,17 +50,25 @@ struct Press {
 
 class TestLevelsBuilder : public QObject {
   Q_OBJECT
+  Scenario s_ = press_box();
+  Model m_;
+  // A CPU backend of the box, deferred builds on or off.
+  std::unique_ptr<Backend> backend(bool deferred) {
+    auto b = make_cpu_backend(m_, s_.params);
+    b->set_deferred_levels(deferred);
+    return b;
+  }
+
  private slots:
+  void initTestCase() { m_ = build_scenario_model(s_, patient_mesh(s_)); }
+
   // New materials (a painted tumour) make the levels due again: with deferred builds the
   // step that finds them due does not build, the builder's thread does, the steps in
   // between keep the old levels (a few CG iterations, as multigrid-preconditioned steps
   // take; block-Jacobi takes several times more here, tst_multigrid), and the new levels
   // go in use at a poll after the thread finished: one build more, no failure.
   void rebuildRunsBesideTheSteps() {
-    const Scenario s = press_box();
-    const Model m = build_scenario_model(s, patient_mesh(s));
-    auto b = make_cpu_backend(m, s.params);
-    b->set_deferred_levels(true);
+    auto b = backend(true);
     app::live::LevelsBuilder builder;
     Press p;
     for (int i = 0; i < 10; ++i) p.step(*b);
@@ -67,7 +76,7 @@ class TestLevelsBuilder : public QObject {
     QVERIFY(!builder.poll(*b));
     QCOMPARE(builder.started(), 0L);
 
-    Materials mat = m.materials;
+    Materials mat = m_.materials;
     for (auto& e : mat.mu) e *= 1.5;
     b->set_materials(mat);
     const int iterations = p.step(*b);
@@ -93,20 +102,16 @@ class TestLevelsBuilder : public QObject {
   // Another simulation (a new patient, a fallback): the job under way is dropped, not put
   // into the backend that now runs; the backend builds the levels it needs itself.
   void forgottenJobIsNeverInstalled() {
-    const Scenario s = press_box();
-    const Model m = build_scenario_model(s, patient_mesh(s));
-    auto b = make_cpu_backend(m, s.params);
-    b->set_deferred_levels(true);
+    auto b = backend(true);
     app::live::LevelsBuilder builder;
     Press p;
     for (int i = 0; i < 5; ++i) p.step(*b);
-    b->set_materials(m.materials);
+    b->set_materials(m_.materials);
     p.step(*b);
     builder.poll(*b);
     QCOMPARE(builder.started(), 1L);
     builder.forget();
-    auto other = make_cpu_backend(m, s.params);
-    other->set_deferred_levels(true);
+    auto other = backend(true);
     Press q;
     for (int i = 0; i < 20; ++i) {
       q.step(*other);
@@ -119,12 +124,10 @@ class TestLevelsBuilder : public QObject {
 
   // Off (the default of a backend): every build in the step that finds it due, no job.
   void offBuildsInTheStep() {
-    const Scenario s = press_box();
-    const Model m = build_scenario_model(s, patient_mesh(s));
-    auto b = make_cpu_backend(m, s.params);
+    auto b = backend(false);
     Press p;
     p.step(*b);
-    b->set_materials(m.materials);
+    b->set_materials(m_.materials);
     p.step(*b);
     QCOMPARE(b->multigrid_counts().builds, 2L);
     QVERIFY(!b->take_levels_job());
