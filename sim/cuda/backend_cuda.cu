@@ -300,7 +300,7 @@ class CudaBackend final : public Backend {
     // The rest state's element pass and assembly, with no finger: what the first step's
     // would make of it (the rotations stay the identity, dv and its predecessor zero).
     const StepConsts k = step_consts();
-    launch_element(FingersArg{}, k, true);
+    launch_element(FingersArg{}, k, false);
     launch_assemble(k, false);
     launch_skin(k);
     if (nodal()) launch_pressure();
@@ -528,6 +528,7 @@ class CudaBackend final : public Backend {
   void upload_pressure_pattern() {
     if (!np_.row_ptr.empty()) return;
     np_ = build_nodal_pressure_pattern(m_);
+    levels_pattern_.reset();  // made again with it
     np_row_ptr_.upload(np_.row_ptr, stream_);
     np_col_.upload(np_.col, stream_);
     np_t_row_ptr_.upload(np_.t_row_ptr, stream_);
@@ -763,23 +764,29 @@ class CudaBackend final : public Backend {
     return multigrid_.prepare(
         p_.solver.preconditioner, double(scale), m_,
         [&]() -> LevelsSystem {
-          // The step downloads what the device assembled; the system is made from the copies
-          // where the levels are built (seconds of sorting on a large mesh).
-          std::vector<double> vals, b;
-          download(vals_, vals);  // waits for the assembly
+          // The step only queues device-to-device copies of what it assembled (a fraction
+          // of a millisecond); the read-back (a tenth of a second on xfine) and the sorting
+          // into a sparse matrix are done where the system is made.
+          if (!levels_pattern_)
+            levels_pattern_ = std::make_shared<const LevelsPattern>(
+                LevelsPattern{nf_, m_.row_ptr, m_.col, nodal() ? np_ : NodalPressurePattern()});
+          if (!system_copy_ || system_copy_.use_count() > 1)  // a build still reads the last one
+            system_copy_ = std::make_shared<SystemCopy>(device_info().device);
+          const std::shared_ptr<SystemCopy> copy = system_copy_;
+          copy->vals.copy_from(vals_, stream_);
           std::vector<double> w;
           if (nodal()) {
-            download(npb_, b);
+            copy->b.copy_from(npb_, stream_);
             // The weights as the device holds them (in T), as the CPU backend builds from its own.
             w.resize(npw_host_.size());
             for (std::size_t i = 0; i < w.size(); ++i) w[i] = double(T(npw_host_[i]));
           }
+          CU(cudaEventRecord(copy->ready, stream_));
           const double pressure_scale = nodal() ? double(pressure_dev().scale) : 0.0;
-          return [nf = nf_, row_ptr = m_.row_ptr, col = m_.col, np = nodal() ? np_ : NodalPressurePattern(),
-                  vals = std::move(vals), b = std::move(b), w = std::move(w),
-                  pressure_scale](amg::SpMat& stiffness, amg::SpMat& pressure) {
-            stiffness = block_rows_to_sparse(nf, row_ptr, col, vals);
-            if (!w.empty()) pressure = nodal_pressure_to_sparse(np, nf, b, w, pressure_scale);
+          return [pattern = levels_pattern_, copy, w = std::move(w), pressure_scale](amg::SpMat& stiffness,
+                                                                                     amg::SpMat& pressure) {
+            stiffness = block_rows_to_sparse(pattern->nf, pattern->row_ptr, pattern->col, copy->read(copy->vals));
+            if (!w.empty()) pressure = nodal_pressure_to_sparse(pattern->np, pattern->nf, copy->read(copy->b), w, pressure_scale);
           };
         },
         [&](const amg::Hierarchy& levels) { upload_levels(levels); }, multigrid_counts_.builds,
@@ -895,6 +902,39 @@ class CudaBackend final : public Backend {
   CudaTuning tuning_;
   MultigridKeeper multigrid_;
   cuda::MultigridDevice mg_levels_;
+  // What the levels are built from that does not change with the step (the system's block
+  // pattern, the nodal-pressure pattern): shared with each build, not copied for it.
+  struct LevelsPattern {
+    int nf;
+    std::vector<int> row_ptr, col;
+    NodalPressurePattern np;
+  };
+  std::shared_ptr<const LevelsPattern> levels_pattern_;
+  // A device copy of the assembled system for a build to read back on its own thread (the
+  // steps go on overwriting vals_ and npb_); kept for the next build once none holds it.
+  struct SystemCopy {
+    explicit SystemCopy(int device) : device(device) {
+      CU(cudaEventCreateWithFlags(&ready, cudaEventDisableTiming));
+    }
+    SystemCopy(const SystemCopy&) = delete;
+    SystemCopy& operator=(const SystemCopy&) = delete;
+    ~SystemCopy() { cudaEventDestroy(ready); }
+    /// `a` (vals or b) on the host once the copies are done, from any thread.
+    std::vector<double> read(const DeviceArray<T>& a) const {
+      CU(cudaSetDevice(device));
+      CU(cudaEventSynchronize(ready));
+      std::vector<T> t(a.size());
+      // The legacy default stream: no other work of this backend's goes on it (its stream
+      // is non-blocking), and the event above ordered the copies before this read.
+      CU(cudaMemcpy(t.data(), a.get(), sizeof(T) * t.size(), cudaMemcpyDeviceToHost));
+      if constexpr (std::is_same_v<T, double>) return t;
+      else return std::vector<double>(t.begin(), t.end());
+    }
+    int device;
+    DeviceArray<T> vals, b;
+    cudaEvent_t ready = nullptr;
+  };
+  std::shared_ptr<SystemCopy> system_copy_;
   PcgLaunch mg_launch_;
   DeviceArray<T> mg_r_, mg_d_;
   MultigridCounts multigrid_counts_;

@@ -13,6 +13,8 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <Eigen/SparseCholesky>
 
@@ -155,6 +157,27 @@ Scenario press_box() {
   s.params.solver.cg_tolerance = 1e-6;
   s.params.solver.threads = 1;
   return s;
+}
+
+// A finger of 8 mm radius pressed into press_box() from its top at x = 5 mm, 0.1 mm a step
+// of 1 ms, for `steps` steps: the raw forces (three a step) and the CG iterations in all.
+struct Press {
+  std::vector<double> f;
+  int iterations = 0;
+};
+Press press(Simulation& sim, int steps) {
+  std::vector<FingerInput> in(1);
+  std::vector<FingerOutput> out(1);
+  in[0].radius = 0.008;
+  Press r;
+  for (int k = 1; k <= steps; ++k) {
+    in[0].position = Eigen::Vector3d(0.005, 0, 0.03 + 0.008 - 1e-4 * k);
+    const auto o = sim.advance(in, out, 0.001);
+    if (!o.ok) throw std::runtime_error("step " + std::to_string(k) + " diverged");
+    r.iterations += o.stats.cg_iterations;
+    r.f.insert(r.f.end(), out[0].force_raw.data(), out[0].force_raw.data() + 3);
+  }
+  return r;
 }
 
 }  // namespace
@@ -412,39 +435,28 @@ class TestMultigrid : public QObject {
     Scenario s = press_box();
     s.backend = backend.toStdString();
     const Model m = build_scenario_model(s, patient_mesh(s));
-    // 30 steps of a 3 mm press: the forces, the CG iterations, the builds before the first.
-    struct Press {
-      std::vector<double> f;
-      int iterations = 0;
+    // 30 steps of a 3 mm press, and the builds before the first and after the last.
+    struct Pressed : Press {
       long built_before = 0, built_after = 0;
     };
-    auto press = [&](Preconditioner pc, bool at_load) {
+    auto pressed = [&](Preconditioner pc, bool at_load) {
       Scenario t = s;
       t.params.solver.preconditioner = pc;
       Simulation sim(t, m);
       if (at_load) sim.reset();
-      Press r;
+      Pressed r;
       r.built_before = sim.backend().multigrid_counts().builds;
-      std::vector<FingerInput> in(1);
-      std::vector<FingerOutput> out(1);
-      in[0].radius = 0.008;
-      for (int k = 1; k <= 30; ++k) {
-        in[0].position = Eigen::Vector3d(0.005, 0, 0.03 + 0.008 - 1e-4 * k);
-        const auto o = sim.advance(in, out, 0.001);
-        if (!o.ok) throw std::runtime_error("step " + std::to_string(k) + " diverged");
-        r.iterations += o.stats.cg_iterations;
-        r.f.insert(r.f.end(), out[0].force_raw.data(), out[0].force_raw.data() + 3);
-      }
+      static_cast<Press&>(r) = press(sim, 30);
       r.built_after = sim.backend().multigrid_counts().builds;
       return r;
     };
-    const Press loaded = press(Preconditioner::Multigrid, true);
+    const Pressed loaded = pressed(Preconditioner::Multigrid, true);
     QCOMPARE(loaded.built_before, 1L);
     QCOMPARE(loaded.built_after, 1L);
-    const Press touched = press(Preconditioner::Multigrid, false);  // no reset(): built at the first touch
+    const Pressed touched = pressed(Preconditioner::Multigrid, false);  // no reset(): built at the first touch
     QCOMPARE(touched.built_before, 0L);
     QCOMPARE(touched.built_after, 1L);
-    const Press jacobi = press(Preconditioner::BlockJacobi, true);
+    const Pressed jacobi = pressed(Preconditioner::BlockJacobi, true);
     QCOMPARE(jacobi.built_after, 0L);  // nothing for a preconditioner without levels
     const double err = relative_error(loaded.f, jacobi.f);
     qInfo("%s: levels at load %d CG iterations, at the first touch %d; force difference from block-Jacobi %.2e",
@@ -511,10 +523,6 @@ class TestMultigrid : public QObject {
     QCOMPARE(failures, 0L);
   }
 
-  // The whole step with it: a finger presses a box of nodal-pressure tissue
-  // (Poisson's ratio 0.45: the pressure term is in the system) at the haptic step. The
-  // forces match block-Jacobi's within what a relative residual of 1e-6 allows (1e-4),
-  // with fewer iterations.
   // Deferred builds: with levels built, a rebuild that falls due is handed out once as a
   // job and the solves keep the present levels until it is installed; a job of a system
   // changed since (invalidate()) is refused and a new one handed out; a job whose build
@@ -591,30 +599,24 @@ class TestMultigrid : public QObject {
     QVERIFY(!prepare());  // block-Jacobi after a failed build
   }
 
+  // The whole step with it: a finger presses a box of nodal-pressure tissue
+  // (Poisson's ratio 0.45: the pressure term is in the system) at the haptic step. The
+  // forces match block-Jacobi's within what a relative residual of 1e-6 allows (1e-4),
+  // with fewer iterations.
   void simulationMatchesBlockJacobi() {
     const Scenario s = press_box();
     const Model m = build_scenario_model(s, patient_mesh(s));
-    auto press = [&](Preconditioner pc, int& iterations) {
+    auto press_with = [&](Preconditioner pc, int& iterations) {  // 6 mm in 60 ms
       Scenario t = s;
       t.params.solver.preconditioner = pc;
       Simulation sim(t, m);
-      std::vector<FingerInput> in(1);
-      std::vector<FingerOutput> out(1);
-      in[0].radius = 0.008;
-      std::vector<double> f;
-      iterations = 0;
-      for (int k = 1; k <= 60; ++k) {
-        in[0].position = Eigen::Vector3d(0.005, 0, 0.03 + 0.008 - 1e-4 * k);  // 6 mm in 60 ms
-        const auto o = sim.advance(in, out, 0.001);
-        if (!o.ok) throw std::runtime_error("step " + std::to_string(k) + " diverged");
-        iterations += o.stats.cg_iterations;
-        f.insert(f.end(), out[0].force_raw.data(), out[0].force_raw.data() + 3);
-      }
-      return f;
+      Press r = press(sim, 60);
+      iterations = r.iterations;
+      return r.f;
     };
     int it_j = 0, it_mg = 0;
-    const auto fj = press(Preconditioner::BlockJacobi, it_j);
-    const auto fmg = press(Preconditioner::Multigrid, it_mg);
+    const auto fj = press_with(Preconditioner::BlockJacobi, it_j);
+    const auto fmg = press_with(Preconditioner::Multigrid, it_mg);
     const double err = relative_error(fmg, fj);
     qInfo("60 steps: block-Jacobi %d CG iterations, multigrid %d; force difference %.2e (final %.3f N)", it_j, it_mg, err,
           fj[fj.size() - 1]);
@@ -625,7 +627,7 @@ class TestMultigrid : public QObject {
     // same simulation: the same forces, and no more iterations than the Jacobi-smoothed
     // ones (a degree-2 polynomial smooths at least as much as one sweep).
     int it_cheb = 0;
-    const auto fcheb = press(Preconditioner::MultigridChebyshev, it_cheb);
+    const auto fcheb = press_with(Preconditioner::MultigridChebyshev, it_cheb);
     const double err_cheb = relative_error(fcheb, fj);
     qInfo("multigrid-chebyshev %d CG iterations; force difference %.2e", it_cheb, err_cheb);
     QVERIFY2(err_cheb < 1e-4, qPrintable(QString::number(err_cheb)));
