@@ -62,7 +62,7 @@ std::optional<PressSite> skin_site_above(const Model& m, const Eigen::Vector3d& 
 PressResult press_probe(const Scenario& s, const Model& m, const Materials& materials, const PressSite& site,
                         double radius, double depth, const PressSchedule& schedule) {
   Scenario ps = s;
-  ps.backend = "cpu";
+  if (ps.backend == "auto") ps.backend = "cpu";
   ps.params.solver.dt = schedule.dt;
   Simulation sim(ps, m);
   // The patient's current materials (painted tumours) where they differ from the model's.

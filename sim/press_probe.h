@@ -4,9 +4,11 @@
 // the largest force a palpation asks of the model; the live pipeline maps it into the
 // haptic device's range (app/live/force_mapping.h).
 //
-// The press is the real step (a CPU backend built on a copy of the model, the patient's
-// materials and solver settings), at dt = 10 ms: implicit Euler at that dt is close to
-// quasi-static for this tissue, and the live workstation steps at up to the same dt.
+// The press is the real step (on a copy of the model, with the patient's materials and
+// solver settings, on the backend the scenario names: the CPU's for "auto"; the live
+// pipeline names the one its patient runs on), at dt = 10 ms: implicit Euler at that dt is
+// close to quasi-static for this tissue, and the live workstation steps at up to the same
+// dt.
 #pragma once
 
 #include <optional>
@@ -55,8 +57,8 @@ struct PressSchedule {
 };
 
 /// Presses a fingertip of `radius` into the body at rest with the given element
-/// materials (s's solver and contact settings, a CPU backend). Throws what building the
-/// backend throws.
+/// materials (s's solver and contact settings, the backend s names, the CPU's for
+/// "auto"). Throws what building the backend throws.
 PressResult press_probe(const Scenario& s, const Model& m, const Materials& materials, const PressSite& site,
                         double radius, double depth, const PressSchedule& schedule = {});
 

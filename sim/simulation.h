@@ -80,6 +80,7 @@ class Simulation {
   /// ignored. Returns how many changed.
   int set_element_young(std::span<const std::pair<int, double>> changes);
   Backend& backend() { return *backend_; }
+  const Backend& backend() const { return *backend_; }
   std::string backend_reason() const { return reason_; }
 
   /// Advances one step of the scenario: samples its finger paths at t + dt and takes the

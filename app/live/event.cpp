@@ -260,25 +260,25 @@ std::optional<Event> event_from_json(const std::string& kind_name, const json& a
           !a.contains("tumour") || !a["tumour"].is_object())
         return std::nullopt;
       e.edit.kind = *kind_of_edit;
-      const json& t = a["tumour"];
-      const auto origin = t.contains("origin") ? value_of(kOriginNames, t["origin"]) : std::nullopt;
+      const json& tumour = a["tumour"];
+      const auto origin = tumour.contains("origin") ? value_of(kOriginNames, tumour["origin"]) : std::nullopt;
       if (!origin) return std::nullopt;
       TumourLabel& l = e.edit.tumour;
       l.origin = *origin;
       if (l.origin == TumourLabel::Origin::Shape) {
-        const auto shape = t.contains("shape") ? value_of(kShapeNames, t["shape"]) : std::nullopt;
-        const auto centre = t.contains("centre") ? vec_from(t["centre"]) : std::nullopt;
+        const auto shape = tumour.contains("shape") ? value_of(kShapeNames, tumour["shape"]) : std::nullopt;
+        const auto centre = tumour.contains("centre") ? vec_from(tumour["centre"]) : std::nullopt;
         if (!shape || !centre) return std::nullopt;
         l.shape = *shape;
         l.centre = *centre;
       }
       if (l.origin != TumourLabel::Origin::Patient) {
-        if (!t.contains("young") || !t["young"].is_number()) return std::nullopt;
-        l.young = t["young"].get<double>();
+        if (!tumour.contains("young") || !tumour["young"].is_number()) return std::nullopt;
+        l.young = tumour["young"].get<double>();
       }
       if (l.origin == TumourLabel::Origin::Painted) {
-        if (!t.contains("number") || !t["number"].is_number_integer()) return std::nullopt;
-        l.number = t["number"].get<int>();
+        if (!tumour.contains("number") || !tumour["number"].is_number_integer()) return std::nullopt;
+        l.number = tumour["number"].get<int>();
       }
       break;
     }

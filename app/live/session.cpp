@@ -206,8 +206,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
   auto loop = std::make_unique<dv::HapticLoop>(*dev, poses, contacts, &telemetry, cfg.loop);
   // The force scale of this patient on this device (live/force_mapping.h): the scenario's
   // first fingertip pressed deep over the stiffest part, before anything runs.
-  const ForceMapping mapping = measure_force_mapping(s, simulation.model(), simulation.materials(), s.fingers[0].radius,
-                                                     loop->params().safety.max_force, cfg.force_mapping);
+  const ForceMapping mapping = measure_force_mapping(simulation, s.fingers[0].radius, loop->params().safety.max_force,
+                                                     cfg.force_mapping);
   if (opt.log)
     opt.log("session: force scale " + std::to_string(mapping.scale) + " (" + force_scale_rule_name(mapping.rule) + ", deep press " +
             std::to_string(mapping.deep_press_n) + " N simulated)");

@@ -148,7 +148,7 @@ class TestForceMapping : public QObject {
   void deepPressMapsIntoTheDevicesRange() {
     const lv::DeviceConfig cfg = lv::default_device_config();
     const double limit = std::min(cfg.loop.safety.max_force, cfg.hand.capabilities.max_force);
-    mapping_ = lv::measure_force_mapping(sc_, sim_->model(), sim_->materials(), 0.008, limit, cfg.force_mapping);
+    mapping_ = lv::measure_force_mapping(*sim_, 0.008, limit, cfg.force_mapping);
     qInfo("deep press: %.2f N simulated at (%.3f, %.3f, %.3f), depth %.1f mm of %.1f mm, %d sites, %.0f ms; scale %.3f -> %.2f N",
           mapping_.deep_press_n, mapping_.press_skin.x(), mapping_.press_skin.y(), mapping_.press_skin.z(),
           mapping_.press_depth_m * 1e3, mapping_.thickness_m * 1e3, mapping_.presses, mapping_.probe_ms, mapping_.scale,
