@@ -288,8 +288,9 @@ void Workstation::build(const sim::Scenario& s) {
   configure_realtime_threads(*simulation);
   const sim::Model& m = simulation->model();
   // The force scale of this patient on this device: its deep press into the device's
-  // range (live/force_mapping.h), before the first step (0.16-0.27 s on the coarse breast,
-  // 1.9 s on the paper mesh, while the forces are faded out). A probe that fails leaves
+  // range (live/force_mapping.h), before the first step, on the patient's backend (on the
+  // CPU 0.16-0.27 s on the coarse breast, about 1 s on the paper mesh; on the GPU 0.16 s on
+  // the paper mesh, 2 s on xfine), while the forces are faded out. A probe that fails leaves
   // the configured scale, else 1: the safety filter's clamp still bounds the forces.
   ForceMapping fm = force_mapping_for(0.0, loop_->params().safety.max_force, opt_.config.force_mapping);
   try {
