@@ -528,7 +528,7 @@ class CudaBackend final : public Backend {
   void upload_pressure_pattern() {
     if (!np_.row_ptr.empty()) return;
     np_ = build_nodal_pressure_pattern(m_);
-    levels_pattern_.reset();  // made again with it
+    levels_pattern_.reset();  // made again with np_
     np_row_ptr_.upload(np_.row_ptr, stream_);
     np_col_.upload(np_.col, stream_);
     np_t_row_ptr_.upload(np_.t_row_ptr, stream_);
@@ -767,9 +767,8 @@ class CudaBackend final : public Backend {
           // The step only queues device-to-device copies of what it assembled (a fraction
           // of a millisecond); the read-back (a tenth of a second on xfine) and the sorting
           // into a sparse matrix are done where the system is made.
-          if (!levels_pattern_)
-            levels_pattern_ = std::make_shared<const LevelsPattern>(
-                LevelsPattern{nf_, m_.row_ptr, m_.col, nodal() ? np_ : NodalPressurePattern()});
+          if (!levels_pattern_)  // np_ as it is (empty until an element needs it: made again then)
+            levels_pattern_ = std::make_shared<const LevelsPattern>(LevelsPattern{nf_, m_.row_ptr, m_.col, np_});
           if (!system_copy_ || system_copy_.use_count() > 1)  // a build still reads the last one
             system_copy_ = std::make_shared<SystemCopy>(device_info().device);
           const std::shared_ptr<SystemCopy> copy = system_copy_;
