@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 
 #include <Eigen/Core>
 
@@ -98,9 +99,10 @@ inline ForceMapping force_mapping_for(double deep_press_n, double device_limit_n
 
 /// Measures the deep press of `simulation`'s patient (sim::deep_press on a copy of its
 /// model with its current materials, fingertip `radius` m, on a backend of the kind it
-/// runs on: the GPU's when it runs there, where the probe takes a tenth of the CPU's time
-/// on the paper mesh) and chooses the scale. With a configured scale nothing is pressed.
-/// `threads`: the probe's CPU threads (the scenario's when < 0).
+/// runs on: the GPU's when it runs there, a sixth of the CPU's time on the paper mesh and a
+/// tenth on xfine; the CPU's when that kind cannot be made again) and chooses the scale.
+/// With a configured scale nothing is pressed. `threads`: the probe's CPU threads (the
+/// scenario's when < 0).
 inline ForceMapping measure_force_mapping(const sim::Simulation& simulation, double radius, double device_limit_n,
                                           const ForceMappingConfig& cfg, int threads = -1) {
   if (cfg.scale > 0) return force_mapping_for(0.0, device_limit_n, cfg);
@@ -108,7 +110,16 @@ inline ForceMapping measure_force_mapping(const sim::Simulation& simulation, dou
   sim::Scenario ps = simulation.scenario();
   ps.backend = simulation.backend().name();
   if (threads >= 0) ps.params.solver.threads = threads;
-  const sim::DeepPress dp = sim::deep_press(ps, simulation.model(), simulation.materials(), radius, cfg.deep_press_depth);
+  sim::DeepPress dp;
+  try {
+    dp = sim::deep_press(ps, simulation.model(), simulation.materials(), radius, cfg.deep_press_depth);
+  } catch (const std::exception&) {
+    // A second backend of that kind could not be made (the GPU's memory, a device lost
+    // since the patient's was): the CPU's press, as on a machine without one.
+    if (ps.backend == "cpu") throw;
+    ps.backend = "cpu";
+    dp = sim::deep_press(ps, simulation.model(), simulation.materials(), radius, cfg.deep_press_depth);
+  }
   ForceMapping fm = force_mapping_for(dp.press.finite ? dp.press.force : 0.0, device_limit_n, cfg);
   fm.press_skin = dp.press.site.skin;
   fm.press_depth_m = dp.press.depth;
