@@ -101,15 +101,15 @@ inline ForceMapping force_mapping_for(double deep_press_n, double device_limit_n
 /// model with its current materials, fingertip `radius` m, on a backend of the kind it
 /// runs on: the GPU's when it runs there, a sixth of the CPU's time on the paper mesh and a
 /// tenth on xfine; the CPU's when that kind cannot be made again) and chooses the scale.
-/// With a configured scale nothing is pressed. `threads`: the probe's CPU threads (the
-/// scenario's when < 0).
+/// With a configured scale nothing is pressed. The probe's CPU threads are the patient's
+/// backend's (configure_realtime_threads may have set them below the scenario's).
 inline ForceMapping measure_force_mapping(const sim::Simulation& simulation, double radius, double device_limit_n,
-                                          const ForceMappingConfig& cfg, int threads = -1) {
+                                          const ForceMappingConfig& cfg) {
   if (cfg.scale > 0) return force_mapping_for(0.0, device_limit_n, cfg);
   const auto t0 = std::chrono::steady_clock::now();
   sim::Scenario ps = simulation.scenario();
   ps.backend = simulation.backend().name();
-  if (threads >= 0) ps.params.solver.threads = threads;
+  ps.params.solver.threads = simulation.backend().params().solver.threads;
   sim::DeepPress dp;
   try {
     dp = sim::deep_press(ps, simulation.model(), simulation.materials(), radius, cfg.deep_press_depth);

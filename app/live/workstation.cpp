@@ -294,8 +294,7 @@ void Workstation::build(const sim::Scenario& s) {
   // the configured scale, else 1: the safety filter's clamp still bounds the forces.
   ForceMapping fm = force_mapping_for(0.0, loop_->params().safety.max_force, opt_.config.force_mapping);
   try {
-    fm = measure_force_mapping(*simulation, finger_radius(s), loop_->params().safety.max_force, opt_.config.force_mapping,
-                               simulation->backend().params().solver.threads);
+    fm = measure_force_mapping(*simulation, finger_radius(s), loop_->params().safety.max_force, opt_.config.force_mapping);
   } catch (const std::exception&) {
   }
   sim_loop_->set_force_scale(fm.scale);

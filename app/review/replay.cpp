@@ -173,9 +173,7 @@ ReplayResult replay_steps(const Recording& rec, const ReplayOptions& opt) {
     if (scale_events.empty() && !header_scale) {
       const double radius = sc.fingers.empty() ? 0.008 : sc.fingers[0].radius;
       try {
-        measured_scale = live::measure_force_mapping(*sim, radius, limit, cfg.force_mapping,
-                                                     sim->backend().params().solver.threads)
-                             .scale;
+        measured_scale = live::measure_force_mapping(*sim, radius, limit, cfg.force_mapping).scale;
       } catch (const std::exception&) {
         measured_scale = live::force_mapping_for(0.0, limit, cfg.force_mapping).scale;  // as the workstation falls back
       }

@@ -349,7 +349,7 @@ class CudaBackend final : public Backend {
     mu_.upload(mu, stream_);
     if (nodal) {
       upload_pressure_pattern();
-      const std::vector<double> w = nodal_pressure_weights(m_, np_, mat.lambda);
+      const std::vector<double> w = nodal_pressure_weights(m_, *np_, mat.lambda);
       npw_.upload(std::vector<T>(w.begin(), w.end()), stream_);
       npw_host_ = w;
     }
@@ -381,8 +381,8 @@ class CudaBackend final : public Backend {
     rested_ = p_.gravity.squaredNorm() == 0;
   }
 
-  void positions(std::vector<double>& xyz) const override { download(x_, xyz); }
-  void velocities(std::vector<double>& xyz) const override { download(v_, xyz); }
+  void positions(std::vector<double>& xyz) const override { xyz = x_.to_host_double(stream_); }
+  void velocities(std::vector<double>& xyz) const override { xyz = v_.to_host_double(stream_); }
 
   // Device-to-device copies in stream order: the next step's kernels follow them.
   bool checkpoint() override {
@@ -505,18 +505,10 @@ class CudaBackend final : public Backend {
   }
 
  private:
-  void download(const DeviceArray<T>& a, std::vector<double>& xyz) const {
-    std::vector<T> tmp(a.size());
-    CU(cudaMemcpyAsync(tmp.data(), a.get(), sizeof(T) * tmp.size(), cudaMemcpyDeviceToHost, stream_));
-    CU(cudaStreamSynchronize(stream_));
-    xyz.assign(tmp.begin(), tmp.end());
-  }
-
   void fetch_result() { CU(cudaStreamSynchronize(stream_)); }
 
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
-  /// The library baselines (baseline.cu) precondition with block-Jacobi only.
   /// The library baselines (baseline.cu) have the linear element only.
   void check_element() const {
     if (nodal() && solver_ != Solver::Persistent)
@@ -526,14 +518,14 @@ class CudaBackend final : public Backend {
   /// The nodal-pressure term's pattern (once), its element incidences over every node and
   /// its scratch, on the device.
   void upload_pressure_pattern() {
-    if (!np_.row_ptr.empty()) return;
-    np_ = build_nodal_pressure_pattern(m_);
+    if (np_) return;
+    np_ = std::make_shared<const NodalPressurePattern>(build_nodal_pressure_pattern(m_));
     levels_pattern_.reset();  // made again with np_
-    np_row_ptr_.upload(np_.row_ptr, stream_);
-    np_col_.upload(np_.col, stream_);
-    np_t_row_ptr_.upload(np_.t_row_ptr, stream_);
-    np_t_node_.upload(np_.t_node, stream_);
-    np_t_pair_.upload(np_.t_pair, stream_);
+    np_row_ptr_.upload(np_->row_ptr, stream_);
+    np_col_.upload(np_->col, stream_);
+    np_t_row_ptr_.upload(np_->t_row_ptr, stream_);
+    np_t_node_.upload(np_->t_node, stream_);
+    np_t_pair_.upload(np_->t_pair, stream_);
     // Incidence lists in CSR form: count, prefix-sum, fill.
     auto incidences = [](int rows, auto each, std::vector<int>& ptr, std::vector<int>& list) {
       ptr.assign(rows + 1, 0);
@@ -546,11 +538,11 @@ class CudaBackend final : public Backend {
     std::vector<int> ptr, list;
     // The elements holding each pair (n, j): e << 2 | b, j element e's node b.
     incidences(
-        np_.num_pairs(),
+        np_->num_pairs(),
         [&](auto add) {
           for (int e = 0; e < ne_; ++e)
             for (int k = 0; k < 16; ++k)
-              if (np_.tet_pair[e][k] >= 0) add(np_.tet_pair[e][k], (e << 2) | (k & 3));
+              if (np_->tet_pair[e][k] >= 0) add(np_->tet_pair[e][k], (e << 2) | (k & 3));
         },
         ptr, list);
     np_pinc_ptr_.upload(ptr, stream_);
@@ -565,7 +557,7 @@ class CudaBackend final : public Backend {
     np_inc_ptr_.upload(ptr, stream_);
     np_inc_.upload(list, stream_);
     upload_diag_block();
-    npb_.alloc(3 * std::size_t(np_.num_pairs()));
+    npb_.alloc(3 * std::size_t(np_->num_pairs()));
     npi_.alloc(nn_);
     np_rest_part_.alloc(ne_);
   }
@@ -673,7 +665,7 @@ class CudaBackend final : public Backend {
     a.P = pressure_dev();
     a.nnode = nn_;
     a.nf = nf_;
-    a.npair = np_.num_pairs();
+    a.npair = np_->num_pairs();
     a.pinc_ptr = np_pinc_ptr_.get();
     a.pinc = np_pinc_.get();
     a.ninc_ptr = np_inc_ptr_.get();
@@ -767,7 +759,7 @@ class CudaBackend final : public Backend {
           // The step only queues device-to-device copies of what it assembled (a fraction
           // of a millisecond); the read-back (a tenth of a second on xfine) and the sorting
           // into a sparse matrix are done where the system is made.
-          if (!levels_pattern_)  // np_ as it is (empty until an element needs it: made again then)
+          if (!levels_pattern_)  // np_ as it is (none until an element needs it: made again then)
             levels_pattern_ = std::make_shared<const LevelsPattern>(LevelsPattern{nf_, m_.row_ptr, m_.col, np_});
           if (!system_copy_ || system_copy_.use_count() > 1)  // a build still reads the last one
             system_copy_ = std::make_shared<SystemCopy>(device_info().device);
@@ -785,7 +777,7 @@ class CudaBackend final : public Backend {
           return [pattern = levels_pattern_, copy, w = std::move(w), pressure_scale](amg::SpMat& stiffness,
                                                                                      amg::SpMat& pressure) {
             stiffness = block_rows_to_sparse(pattern->nf, pattern->row_ptr, pattern->col, copy->read(copy->vals));
-            if (!w.empty()) pressure = nodal_pressure_to_sparse(pattern->np, pattern->nf, copy->read(copy->b), w, pressure_scale);
+            if (!w.empty()) pressure = nodal_pressure_to_sparse(*pattern->np, pattern->nf, copy->read(copy->b), w, pressure_scale);
           };
         },
         [&](const amg::Hierarchy& levels) { upload_levels(levels); }, multigrid_counts_.builds,
@@ -887,7 +879,7 @@ class CudaBackend final : public Backend {
   std::unique_ptr<BaselineSolver<T>> baseline_;  // the library baselines' solver
   Materials mat_;                        // the materials set last (an element change rebuilds from them)
   // The nodal-pressure element only (pressure.cuh): its pattern, on the host and the device.
-  NodalPressurePattern np_;
+  std::shared_ptr<const NodalPressurePattern> np_;  // none until an element needs it
   std::vector<double> npw_host_;  // its weights W (what the multigrid levels are built from)
   DeviceArray<int> np_row_ptr_, np_col_, np_t_row_ptr_, np_t_node_, np_t_pair_, np_pinc_ptr_, np_pinc_, np_inc_ptr_, np_inc_,
       diag_block_;
@@ -902,11 +894,12 @@ class CudaBackend final : public Backend {
   MultigridKeeper multigrid_;
   cuda::MultigridDevice mg_levels_;
   // What the levels are built from that does not change with the step (the system's block
-  // pattern, the nodal-pressure pattern): shared with each build, not copied for it.
+  // pattern, copied once since a build may outlive the model; the nodal-pressure pattern,
+  // shared with the backend): shared with each build, not copied for it.
   struct LevelsPattern {
     int nf;
     std::vector<int> row_ptr, col;
-    NodalPressurePattern np;
+    std::shared_ptr<const NodalPressurePattern> np;
   };
   std::shared_ptr<const LevelsPattern> levels_pattern_;
   // A device copy of the assembled system for a build to read back on its own thread (the
@@ -922,12 +915,9 @@ class CudaBackend final : public Backend {
     std::vector<double> read(const DeviceArray<T>& a) const {
       CU(cudaSetDevice(device));
       CU(cudaEventSynchronize(ready));
-      std::vector<T> t(a.size());
       // The legacy default stream: no other work of this backend's goes on it (its stream
       // is non-blocking), and the event above ordered the copies before this read.
-      CU(cudaMemcpy(t.data(), a.get(), sizeof(T) * t.size(), cudaMemcpyDeviceToHost));
-      if constexpr (std::is_same_v<T, double>) return t;
-      else return std::vector<double>(t.begin(), t.end());
+      return a.to_host_double(nullptr);
     }
     int device;
     DeviceArray<T> vals, b;

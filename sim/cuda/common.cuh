@@ -57,6 +57,13 @@ class DeviceArray {
     if (o.n_ != n_) alloc(o.n_);
     if (n_) CU(cudaMemcpyAsync(p_, o.p_, n_ * sizeof(T), cudaMemcpyDeviceToDevice, s));
   }
+  /// The contents on the host, in double, copied in stream order (waits for it).
+  std::vector<double> to_host_double(cudaStream_t s) const {
+    std::vector<T> t(n_);
+    if (n_) CU(cudaMemcpyAsync(t.data(), p_, n_ * sizeof(T), cudaMemcpyDeviceToHost, s));
+    CU(cudaStreamSynchronize(s));
+    return std::vector<double>(t.begin(), t.end());
+  }
   void zero(cudaStream_t s) {
     if (n_) CU(cudaMemsetAsync(p_, 0, n_ * sizeof(T), s));
   }
