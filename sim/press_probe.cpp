@@ -90,6 +90,7 @@ PressResult press_probe(const Scenario& s, const Model& m, const Materials& mate
     in[0].velocity = k <= n_ramp ? Eigen::Vector3d(-site.normal * (travel / (n_ramp * schedule.dt))) : Eigen::Vector3d::Zero();
     const Simulation::Outcome o = sim.advance(in, out, schedule.dt);
     ++r.steps;
+    r.multigrid_builds = sim.backend().multigrid_counts().builds;
     if (!o.ok) {
       r.finite = false;
       r.force = r.force_normal = 0;
@@ -105,6 +106,8 @@ DeepPress deep_press(const Scenario& s, const Model& m, const Materials& materia
                      const PressSchedule& schedule) {
   DeepPress dp;
   dp.depth_fraction = depth_fraction;
+  Scenario ps = s;
+  ps.params.solver.preconditioner = Preconditioner::BlockJacobi;
   std::vector<Eigen::Vector3d> points;
   for (const auto& inc : s.inclusions)
     if (inc.young_modulus > s.young_modulus) points.push_back(inc.center);
@@ -138,7 +141,7 @@ DeepPress deep_press(const Scenario& s, const Model& m, const Materials& materia
     bool near = false;
     for (const auto& t : dp.tried) near = near || (t.site.skin - site->skin).norm() < radius;
     if (near) continue;
-    dp.tried.push_back(press_probe(s, m, materials, *site, radius, depth_fraction * site->thickness, schedule));
+    dp.tried.push_back(press_probe(ps, m, materials, *site, radius, depth_fraction * site->thickness, schedule));
     if (dp.tried.size() == 1 || dp.tried.back().force > dp.press.force) dp.press = dp.tried.back();
   }
   return dp;
