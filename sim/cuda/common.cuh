@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace palpation::sim::cuda {
@@ -62,7 +63,10 @@ class DeviceArray {
     std::vector<T> t(n_);
     if (n_) CU(cudaMemcpyAsync(t.data(), p_, n_ * sizeof(T), cudaMemcpyDeviceToHost, s));
     CU(cudaStreamSynchronize(s));
-    return std::vector<double>(t.begin(), t.end());
+    if constexpr (std::is_same_v<T, double>)
+      return t;
+    else
+      return std::vector<double>(t.begin(), t.end());
   }
   void zero(cudaStream_t s) {
     if (n_) CU(cudaMemsetAsync(p_, 0, n_ * sizeof(T), s));
