@@ -42,7 +42,7 @@ dv::FingerContactModel blended(const dv::FingerContactModel& a, const dv::Finger
 
 SimulationLoop::SimulationLoop(dv::TripleBuffer<dv::PoseFrame>& poses, dv::TripleBuffer<dv::ContactFrame>& contacts,
                                SimulationLoopOptions opt)
-    : poses_(poses), contacts_(contacts), opt_(std::move(opt)) {
+    : poses_(poses), contacts_(contacts), opt_(std::move(opt)), pacer_(opt_.dt, opt_.max_dt) {
   const std::size_t nf = opt_.finger_map.size();
   in_.resize(nf);
   out_.resize(nf);
@@ -60,6 +60,7 @@ void SimulationLoop::restart(sim::Simulation& simulation, const std::vector<doub
   good_ = held_ = {};
   recovering_.store(false);
   prev_start_ = 0;
+  pacer_.restart();
   for (auto& f : in_) f.active = false;
 }
 
@@ -87,30 +88,21 @@ void SimulationLoop::run(sim::Simulation& simulation, const std::atomic<bool>& s
     }
     const std::int64_t now = dv::monotonic_ns();
     double h = dt;
-    if (prev_start_ == 0) {
-      first_step_ns_ = prev_slot_ = now;
-      next_due_ = now + std::int64_t(dt * 1e9);
-    } else if (opt_.realtime) {
-      // Steps start on a grid of dt, not dt after the last start: the wake-up's lateness
-      // (tens of microseconds of timer slack) would otherwise add to every period (0.94
-      // steps a millisecond measured with dt 1 ms). A step that overran its slot by more
-      // than a period starts a new grid at once and covers the time it took.
-      const std::int64_t dt_ns = std::int64_t(dt * 1e9);
-      if (now < next_due_) {
-        dv::sleep_until_ns(next_due_);
+    if (opt_.realtime) {
+      const StepPacer::Slot slot = pacer_.next(now);
+      if (slot.wait) {
+        dv::sleep_until_ns(slot.until_ns);
         continue;
       }
-      const std::int64_t slot = now - next_due_ <= dt_ns ? next_due_ : now;
-      h = std::min(double(slot - prev_slot_) * 1e-9, opt_.max_dt);
-      prev_slot_ = slot;
-      next_due_ = slot + dt_ns;
-    } else {
+      h = slot.h;
+    } else if (prev_start_ != 0) {
       const std::int64_t due = first_step_ns_ + std::int64_t(sim_time_ * 1e9);
       if (now < due) {
         dv::sleep_until_ns(due);
         continue;
       }
     }
+    if (prev_start_ == 0) first_step_ns_ = now;
     const double since = prev_start_ == 0 ? 0.0 : double(now - prev_start_) * 1e-9;
     prev_start_ = now;
     for (int k = 0; k < nf; ++k) {

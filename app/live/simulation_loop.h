@@ -21,6 +21,7 @@
 #include "contact_model.h"
 #include "haptic_loop.h"
 #include "live/levels_builder.h"
+#include "live/step_pacer.h"
 #include "params.h"
 #include "simulation.h"
 #include "triple_buffer.h"
@@ -39,11 +40,11 @@ struct SimulationLoopOptions {
   std::vector<double> radius;
   device::RigidFrame registration;     // device frame <-> world frame
   double dt = 0.001;                   // s, the shortest step
-  /// true: the tissue keeps wall-clock time: steps start on a grid of `dt` (never faster
-  /// than real time) and each covers its slot; a step that overran starts a new grid and
-  /// the next covers the time it took, at most max_dt (implicit Euler is stable at any dt;
-  /// the cap bounds the latency one step adds). false: fixed dt, paced to real time when
-  /// the FEM is faster.
+  /// true: the tissue keeps wall-clock time (live/step_pacer.h): steps start on a grid of
+  /// `dt` (never faster than real time); after an overrun they follow at once and each
+  /// covers dt plus a share of the time owed, at most max_dt (implicit Euler is stable at
+  /// any dt; the cap bounds the latency one step adds). false: fixed dt, paced to real
+  /// time when the FEM is faster.
   bool realtime = true;
   double max_dt = 0.01;                // s
   /// > 0: virtual coupling (the simulated fingertip is the proxy, device/contact_model.h
@@ -124,7 +125,7 @@ class SimulationLoop {
   std::array<device::FingerContactModel, device::kMaxFingers> last_{};  // newest published, device frame
   std::vector<Eigen::Vector3d> prev_force_;  // previous step's simulated force per finger (spike guard, settling)
   std::int64_t prev_start_ = 0, first_step_ns_ = 0, published_ns_ = 0;
-  std::int64_t prev_slot_ = 0, next_due_ = 0;  // real time: the grid of step starts (run())
+  StepPacer pacer_;  // real time: when steps start and what dt they cover (run())
   std::uint64_t seq_ = 0;
   double sim_time_ = 0;
   // The recovery after a fallback or reset.

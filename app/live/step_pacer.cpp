@@ -1,0 +1,37 @@
+#include "live/step_pacer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace palpation::app::live {
+
+StepPacer::StepPacer(double dt, double max_dt) : dt_(dt), max_dt_(std::max(dt, max_dt)) {}
+
+double StepPacer::max_lag_s() const { return kLagAtDt * dt_ + (max_dt_ - dt_) / kLagShare + max_dt_; }
+
+StepPacer::Slot StepPacer::next(std::int64_t now_ns) {
+  const std::int64_t dt_ns = std::llround(dt_ * 1e9);
+  Slot s;
+  if (covered_ns_ == 0) {
+    covered_ns_ = now_ns;
+    lag_s_ = 0;
+    s.h = dt_;
+    return s;
+  }
+  if (now_ns < covered_ns_ + dt_ns) {
+    s.wait = true;
+    s.until_ns = covered_ns_ + dt_ns;
+    return s;
+  }
+  // Late by a little (a wake-up's slack, a step a little over dt): dt, and the next step
+  // starts that much sooner, on the same grid.
+  const double lag = double(now_ns - covered_ns_) * 1e-9;
+  s.h = std::min(max_dt_, dt_ + kLagShare * std::max(0.0, lag - kLagAtDt * dt_));
+  covered_ns_ += std::llround(s.h * 1e9);
+  const std::int64_t keep_ns = std::llround(max_lag_s() * 1e9);
+  if (now_ns - covered_ns_ > keep_ns) covered_ns_ = now_ns - keep_ns;
+  lag_s_ = double(now_ns - covered_ns_) * 1e-9;
+  return s;
+}
+
+}  // namespace palpation::app::live
