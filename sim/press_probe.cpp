@@ -90,13 +90,14 @@ PressResult press_probe(const Scenario& s, const Model& m, const Materials& mate
     in[0].velocity = k <= n_ramp ? Eigen::Vector3d(-site.normal * (travel / (n_ramp * schedule.dt))) : Eigen::Vector3d::Zero();
     const Simulation::Outcome o = sim.advance(in, out, schedule.dt);
     ++r.steps;
-    r.multigrid_builds = sim.backend().multigrid_counts().builds;
     if (!o.ok) {
       r.finite = false;
       r.force = r.force_normal = 0;
+      r.multigrid_builds = sim.backend().multigrid_counts().builds;
       return r;
     }
   }
+  r.multigrid_builds = sim.backend().multigrid_counts().builds;
   r.force = out[0].force.norm();
   r.force_normal = out[0].force.dot(site.normal);
   return r;
