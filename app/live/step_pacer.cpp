@@ -23,8 +23,8 @@ StepPacer::Slot StepPacer::next(std::int64_t now_ns) {
     s.until_ns = covered_ns_ + dt_ns;
     return s;
   }
-  // Late by a little (a wake-up's slack, a step a little over dt): dt, and the next step
-  // starts that much sooner, on the same grid.
+  // Owed up to kLagAtDt periods (a wake-up's slack, a converged check's overrun): dt, and
+  // the next steps start that much sooner, on the same grid, until the lag is paid.
   const double lag = double(now_ns - covered_ns_) * 1e-9;
   s.h = std::min(max_dt_, dt_ + kLagShare * std::max(0.0, lag - kLagAtDt * dt_));
   covered_ns_ += std::llround(s.h * 1e9);

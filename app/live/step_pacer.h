@@ -10,7 +10,8 @@
 // although a step of dt fits in dt (the coarse breast on the CPU of a 2-core machine:
 // 0.95 ms steps at dt 1 ms, yet 417-497 steps a second at a 2.2-2.5 ms dt once a converged
 // check had overrun). So the lag is paid back gradually: a step covers dt plus a share of
-// the lag beyond one period, and steps follow one another at once until the lag is gone.
+// the lag beyond ten periods (kLagAtDt), and steps follow one another at once until the
+// lag is gone.
 // Where a step of dt does not fit in dt the lag grows until the dt it buys makes the step
 // fit (the steady state is a constant lag, not a drift); past max_dt the lag beyond what
 // max_dt needs is dropped, as it cannot be paid back.
