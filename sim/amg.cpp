@@ -284,14 +284,24 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     b(0, 5) = -d.y(), b(1, 5) = d.x();  // e_z x d
   }
 
+  // The share of A's trace outside `sparser` (Options::chebyshev_share).
+  double share = 0;
+  if (sparser) {
+    const double total = A0.diagonal().sum();
+    if (total > 0) share = std::clamp(1.0 - sparser->diagonal().sum() / total, 0.0, 1.0);
+  }
+  const bool finest_chebyshev = options.smoother == Smoother::Chebyshev || (sparser && share >= options.chebyshev_share);
+
   SpMat A = A0;
   int block = 3;
   for (int depth = 0;; ++depth) {
     Level L;
     L.Dinv = block_diagonal_inverse(A, block);
     const double rho = spectral_radius(L.Dinv, A);
-    const int degree = depth == 0 ? options.degree : options.coarse_degree;
-    const Smoother smoother = depth == 0 ? options.smoother : options.coarse_smoother;
+    const bool switched = depth == 0 && finest_chebyshev && options.smoother != Smoother::Chebyshev;
+    const int degree = switched ? 2 : depth == 0 ? options.degree : options.coarse_degree;
+    const Smoother smoother = depth == 0 ? (finest_chebyshev ? Smoother::Chebyshev : options.smoother) : options.coarse_smoother;
+    L.chebyshev = smoother == Smoother::Chebyshev;
     // Jacobi's damping converges up to 1.5 times the power estimate; Chebyshev's interval
     // ends at 1.1 times its estimate, so it takes Lanczos's.
     L.smoothing = smoother == Smoother::Chebyshev ? chebyshev(largest_eigenvalue(L.Dinv, A), degree, options.chebyshev_ratio)
@@ -385,6 +395,7 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
   }
   levels_ = std::move(levels);
   coarsest_ = std::move(coarsest);
+  sparser_share_ = share;
 }
 
 void Hierarchy::cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& e) const {
@@ -430,6 +441,8 @@ Stats Hierarchy::stats() const {
   long total = 0;
   for (long z : s.nonzeros) total += z;
   s.operator_complexity = s.nonzeros.empty() || s.nonzeros[0] == 0 ? 0 : double(total) / double(s.nonzeros[0]);
+  s.sparser_share = sparser_share_;
+  s.finest_chebyshev = !levels_.empty() && levels_[0].chebyshev;
   return s;
 }
 

@@ -72,9 +72,18 @@ struct Options {
   // 0.40 / 0.49 / 0.499 against one Jacobi sweep's 103 / 219 / 607 (1.5x from 0.40 to 0.49
   // against 2.1x), 25-30 % less time a step at 0.49. Not the default: on the paper sweep (1 ms
   // steps, mass-heavy, 0.45) it saves one iteration in seven and each costs 5 products with
-  // the system instead of 3, 15-40 % more time a step (docs/simulation.md).
+  // the system instead of 3, 15-40 % more time a step (docs/simulation.md); chebyshev_share
+  // picks it by the system instead.
   Smoother smoother = Smoother::Jacobi;
   int degree = 1;
+  // With `sparser` given to build(): when the rest of A (A less sparser: the nodal-pressure
+  // term, where the callers split it off) holds at least this share of A's trace, the
+  // finest level is smoothed by Chebyshev of degree 2 instead of `smoother` / `degree`.
+  // That share is what separates the regimes measured (docs/simulation.md, "The smoother"):
+  // Chebyshev was 13 % faster a step at 0.94 (Hertz, 0.499), 25-30 % at 0.59 (Hertz, 0.49),
+  // level at 0.53 (the paper breast at 1 ms steps, 0.49) and 0.11, slower at 0.17 (the
+  // paper breast at 0.45). More than 1: never (the smoother named is used).
+  double chebyshev_share = 2;
   Smoother coarse_smoother = Smoother::Jacobi;
   int coarse_degree = 1;
   double chebyshev_ratio = 30;
@@ -88,6 +97,8 @@ struct Stats {
   std::vector<int> unknowns;       // per level, the finest first
   std::vector<long> nonzeros;      // per level
   double operator_complexity = 0;  // sum of the levels' nonzeros over the finest's
+  double sparser_share = 0;        // the share of A's trace outside build()'s `sparser` (0 without one)
+  bool finest_chebyshev = false;   // the finest level is smoothed by a Chebyshev polynomial
   int levels() const { return int(unknowns.size()); }
 };
 
@@ -130,6 +141,7 @@ class Hierarchy {
     SpMat P;     // prolongation from the next coarser level
     SpMat R;     // P^T
     Smoothing smoothing;
+    bool chebyshev = false;  // `smoothing` is a Chebyshev polynomial (else damped Jacobi sweeps)
     long fine_nonzeros = 0;  // the finest level's A (for stats)
   };
   /// The levels, the finest first; the last is the coarsest (its operator alone).
@@ -141,6 +153,7 @@ class Hierarchy {
   void cycle(std::size_t k, const Eigen::VectorXd& r, Eigen::VectorXd& e) const;
 
   std::vector<Level> levels_;  // levels_[0] the finest; the last one coarsest (A only)
+  double sparser_share_ = 0;   // Stats::sparser_share of the last build
   Eigen::LLT<Eigen::MatrixXd> coarsest_;
 };
 

@@ -54,6 +54,12 @@ class Backend {
   struct MultigridCounts {
     long builds = 0;
     long failures = 0;
+    // The levels in use: their finest level smoothed by Chebyshev (multigrid_keeper.h:
+    // where the nodal-pressure term holds a large share of the system), and that share.
+    bool chebyshev = false;
+    double pressure_share = 0;
+    /// For reports: "none" before the first build, else "chebyshev" or "jacobi".
+    const char* smoother() const { return builds == 0 ? "none" : chebyshev ? "chebyshev" : "jacobi"; }
   };
   virtual MultigridCounts multigrid_counts() const { return {}; }
   /// After reset(), with a multigrid preconditioner and the body at rest (no solve until

@@ -138,7 +138,7 @@ class CpuBackend final : public Backend {
     if (element_changed) set_materials(mat_);
   }
   const CpuWorkCounters& counters() const { return counters_; }
-  MultigridCounts multigrid_counts() const override { return multigrid_counts_; }
+  MultigridCounts multigrid_counts() const override { return multigrid_.with_smoother(multigrid_counts_); }
   void prepare_solver() override {
     if (!is_multigrid(p_.solver.preconditioner) || !rested_) return;
     const T h = T(p_.solver.dt);

@@ -69,6 +69,7 @@ HertzResult hertz_indent(const HertzCase& c, const std::string& backend) {
   }
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   res.step_ms = ms[ms.size() / 2];
+  res.smoother = b->multigrid_counts().smoother();
   // Indentation: the sphere's travel from first touch (Hertz's rigid approach) less the
   // penalty penetration (a few micrometres, < 1% of d); the surface node under the sphere
   // goes down by d plus the sag of its facets under the sphere.

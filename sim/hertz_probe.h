@@ -41,6 +41,7 @@ struct HertzResult {
   double error = 0;         // force / reference - 1
   int nodes = 0, tets = 0;
   int max_iterations = 0;   // CG iterations of the hardest step
+  std::string smoother = "none";  // the multigrid's finest smoothing at the end (Backend::MultigridCounts)
   double step_ms = 0;       // median wall time of the pressing steps
 };
 

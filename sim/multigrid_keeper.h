@@ -35,15 +35,25 @@ namespace palpation::sim {
 
 class MultigridKeeper {
  public:
-  /// The options the levels of preconditioner `p` are built with.
+  /// The options the levels of preconditioner `p` are built with. Multigrid: one Jacobi
+  /// sweep, or Chebyshev of degree 2 where the nodal-pressure term holds at least
+  /// kChebyshevShare of the system's trace at the build (nearly incompressible,
+  /// stiffness-dominated systems, whose iterations one sweep lets grow with Poisson's
+  /// ratio). MultigridChebyshev: Chebyshev of degree 2 always.
   static amg::Options options(Preconditioner p) {
     amg::Options o;
     if (p == Preconditioner::MultigridChebyshev) {
       o.smoother = amg::Smoother::Chebyshev;
       o.degree = 2;
+    } else {
+      o.chebyshev_share = kChebyshevShare;
     }
     return o;
   }
+  /// Between the shares where Chebyshev was level with one sweep or slower (0.53 and below:
+  /// the paper breast at 1 ms steps) and where it was faster (0.59 and above: the Hertz
+  /// probe at 0.49 and 0.499); amg::Options::chebyshev_share.
+  static constexpr double kChebyshevShare = 0.5;
 
   /// Before a solve preconditioned by `p` of a system whose stiffness weight is `scale`:
   /// when the levels are due, takes the system they are built from (snapshot(), a
@@ -156,6 +166,14 @@ class MultigridKeeper {
   }
 
   const amg::Hierarchy& levels() const { return levels_; }
+  /// `counts` (a Backend::MultigridCounts) with the smoother of the levels in use filled in.
+  template <class Counts>
+  Counts with_smoother(Counts counts) const {
+    const amg::Stats st = levels_.stats();
+    counts.chebyshev = st.finest_chebyshev;
+    counts.pressure_share = st.sparser_share;
+    return counts;
+  }
 
  private:
   static std::vector<Eigen::Vector3d> rest_nodes(const Model& model) {

@@ -14,11 +14,12 @@ enum class Precision { Double, Float };
 /// cheap per iteration, but the iterations grow with the mesh and with Poisson's ratio.
 /// Multigrid: smoothed aggregation (amg.h), 3-4x fewer iterations that grow less with the
 /// mesh, each about five block-Jacobi iterations' time on the CPU (docs/simulation.md);
-/// CPU backend only. MultigridChebyshev: the same levels smoothed on the finest one by a
-/// Chebyshev polynomial of degree 2 instead of one block-Jacobi sweep: the iterations grow
-/// 1.5x from Poisson's ratio 0.40 to 0.49 (Hertz scene) instead of 2.1x, at two more
-/// products a cycle; for stiffness-dominated, nearly incompressible solves (on the breast at
-/// 1 ms steps it costs more time than it saves).
+/// CPU and CUDA backends. Its finest level is smoothed by one block-Jacobi sweep, or by a
+/// Chebyshev polynomial of degree 2 where the nodal-pressure term holds half the system's
+/// trace or more (multigrid_keeper.h): the Hertz scene's iterations then go 101 -> 94 from
+/// Poisson's ratio 0.40 to 0.49 where one sweep's go 103 -> 219. MultigridChebyshev: the
+/// same levels, Chebyshev on the finest one always (on the breast at 1 ms steps and 0.45 it
+/// costs more time than it saves).
 enum class Preconditioner { BlockJacobi, Multigrid, MultigridChebyshev };
 inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi; }
 inline const char* preconditioner_name(Preconditioner p) {

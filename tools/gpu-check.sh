@@ -16,7 +16,7 @@
 #          default stage (xfine's CPU reference takes minutes); exit 1 on disagreement
 #   hertz  palpation hertz on CUDA (hertz.txt): the nodal-pressure element at Poisson's ratio
 #          0.40-0.499, two radii and moduli, 28 cells across, with each preconditioner of
-#          HERTZ_PRECONDITIONERS (default block-jacobi multigrid-chebyshev), exit 1 beyond 5 % of
+#          HERTZ_PRECONDITIONERS (default block-jacobi multigrid multigrid-chebyshev), exit 1 beyond 5 % of
 #          Hertz; the linear element beside it on the same mesh (its locking, no limit;
 #          HERTZ_LINEAR= leaves it out)
 #   micro  design alternatives on the paper and xfine meshes (palpation run + env switches)
@@ -231,7 +231,7 @@ fi
 if has hertz; then
   say "hertz: nodal-pressure within 5 % on CUDA, linear beside it (hertz.txt)"
   : >"$OUT/hertz.txt"
-  for pc in ${HERTZ_PRECONDITIONERS:-block-jacobi multigrid-chebyshev}; do
+  for pc in ${HERTZ_PRECONDITIONERS:-block-jacobi multigrid multigrid-chebyshev}; do
     for args in "--radius 0.01 --young 19000" "--radius 0.015 --young 60000"; do
       # shellcheck disable=SC2086
       timeout 240 "$P" hertz --backend cuda --elements nodal-pressure --nu 0.40,0.45,0.49,0.499 --cells 28 $args \

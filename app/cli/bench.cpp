@@ -204,7 +204,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                         tr.control.tolerance, tr.control.checks, tr.control.over_target, tr.control.worst_error,
                         tr.control.last_error, tr.divergences);
           if (sim::is_multigrid(sp.params.solver.preconditioner))
-            std::printf("        multigrid: %ld level builds%s\n", tr.multigrid.builds,
+            std::printf("        multigrid: %ld level builds, finest level smoothed by %s (nodal-pressure share %.2f)%s\n",
+                        tr.multigrid.builds, tr.multigrid.smoother(), tr.multigrid.pressure_share,
                         tr.multigrid.failures
                             ? (", " + std::to_string(tr.multigrid.failures) + " builds failed (their steps ran block-Jacobi)").c_str()
                             : "");
@@ -226,6 +227,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"backend_fallbacks", tr.fallbacks},
                                       {"multigrid_builds", tr.multigrid.builds},
                                       {"multigrid_failures", tr.multigrid.failures},
+                                      {"multigrid_smoother", tr.multigrid.smoother()},
+                                      {"multigrid_pressure_share", tr.multigrid.pressure_share},
                                       {"step_ms_median", med},
                                       {"step_ms_p99", p99},
                                       {"cg_iterations_median", percentile(its, 50)},

@@ -51,8 +51,8 @@ CommandAction add_hertz_command(CLI::App& app) {
   return [o]() {
     nlohmann::json rows = nlohmann::json::array();
     bool within = true;
-    std::printf("%-15s %-7s %6s %7s %8s | %10s %10s %8s | %6s %9s\n", "element", "backend", "nu", "cells", "tets", "force N",
-                "Hertz N", "error", "max CG", "step ms");
+    std::printf("%-15s %-7s %6s %7s %8s | %10s %10s %8s | %6s %9s %9s\n", "element", "backend", "nu", "cells", "tets", "force N",
+                "Hertz N", "error", "max CG", "step ms", "smoother");
     for (const auto& el : o->elements)
       for (double nu : o->nu)
         for (int n : o->cells) {
@@ -70,8 +70,9 @@ CommandAction add_hertz_command(CLI::App& app) {
           const bool ok = r.ok && (o->limit <= 0 || std::abs(r.error) <= o->limit);
           within = within && ok;
           if (r.ok)
-            std::printf("%-15s %-7s %6.3f %7d %8d | %10.5f %10.5f %+7.1f%% | %6d %9.3f%s\n", el.c_str(), o->backend.c_str(), nu,
-                        n, r.tets, r.force, r.reference, 100 * r.error, r.max_iterations, r.step_ms, ok ? "" : "  OFF");
+            std::printf("%-15s %-7s %6.3f %7d %8d | %10.5f %10.5f %+7.1f%% | %6d %9.3f %9s%s\n", el.c_str(), o->backend.c_str(),
+                        nu, n, r.tets, r.force, r.reference, 100 * r.error, r.max_iterations, r.step_ms, r.smoother.c_str(),
+                        ok ? "" : "  OFF");
           else
             std::printf("%-15s %-7s %6.3f %7d %8d | FAILED: %s\n", el.c_str(), o->backend.c_str(), nu, n, r.tets, r.why.c_str());
           std::fflush(stdout);
@@ -92,6 +93,7 @@ CommandAction add_hertz_command(CLI::App& app) {
                           {"hertz", r.reference},
                           {"error", r.error},
                           {"max_cg_iterations", r.max_iterations},
+                          {"multigrid_smoother", r.smoother},
                           {"step_ms_median", r.step_ms}});
         }
     if (!o->out.empty()) {

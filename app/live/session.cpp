@@ -371,6 +371,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"cg_iterations_max", cg_max},
                        {"multigrid_builds", simulation.backend().multigrid_counts().builds},
                        {"multigrid_build_failures", simulation.backend().multigrid_counts().failures},
+                       {"multigrid_smoother", simulation.backend().multigrid_counts().smoother()},
+                       {"multigrid_pressure_share", simulation.backend().multigrid_counts().pressure_share},
                        {"divergence_resets", sim_thread.resets},
                        {"backend_fallbacks", sim_thread.fallbacks},
                        {"finite", sim_thread.finite},

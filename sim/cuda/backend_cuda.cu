@@ -294,7 +294,7 @@ class CudaBackend final : public Backend {
   std::string device_name() const override { return device_info().name; }
   Precision precision() const override { return std::is_same_v<T, double> ? Precision::Double : Precision::Float; }
   const SimParams& params() const override { return p_; }
-  MultigridCounts multigrid_counts() const override { return multigrid_counts_; }
+  MultigridCounts multigrid_counts() const override { return multigrid_.with_smoother(multigrid_counts_); }
   void prepare_solver() override {
     if (!is_multigrid(p_.solver.preconditioner) || !rested_ || solver_ != Solver::Persistent) return;
     // The rest state's element pass and assembly, with no finger: what the first step's
