@@ -92,14 +92,12 @@ PressResult press_probe(const Scenario& s, const Model& m, const Materials& mate
     ++r.steps;
     if (!o.ok) {
       r.finite = false;
-      r.force = r.force_normal = 0;
-      r.multigrid_builds = sim.backend().multigrid_counts().builds;
-      return r;
+      break;
     }
   }
   r.multigrid_builds = sim.backend().multigrid_counts().builds;
-  r.force = out[0].force.norm();
-  r.force_normal = out[0].force.dot(site.normal);
+  r.force = r.finite ? out[0].force.norm() : 0.0;
+  r.force_normal = r.finite ? out[0].force.dot(site.normal) : 0.0;
   return r;
 }
 

@@ -52,6 +52,7 @@ class StepPacer {
 
  private:
   double dt_, max_dt_;
+  std::int64_t dt_ns_, keep_ns_;  // dt and max_lag_s() in ns
   std::int64_t covered_ns_ = 0;  // the wall-clock time simulated up to (0: before the first step)
   double lag_s_ = 0;
 };

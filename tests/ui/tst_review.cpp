@@ -246,7 +246,18 @@ class TstReview : public QObject {
     QVERIFY(rw.time_label()->text().startsWith(QLatin1String("0:00.200")));
     QCOMPARE(rw.plot_cursor(), 0.2);
     const auto f1 = s.frame_at(0.2);
-    const double t_press = s.duration() * 0.7;  // the finger is in the tissue there
+    // The finger is deepest in the tissue at the recorded step of the largest force (not at
+    // a fixed share of the recording: its start holds the patient's loading, which a loaded
+    // machine stretches).
+    double t_press = 0;
+    {
+      const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
+      double fbest = -1;
+      for (const auto& st : rec.steps)
+        for (const auto& fg : st.fingers)
+          if (fg.f.norm() > fbest) fbest = fg.f.norm(), t_press = st.t;
+      QVERIFY2(fbest > 0.2 && t_press > 0.2, qPrintable(QString("%1 N at %2 s").arg(fbest).arg(t_press)));
+    }
     rw.seek(t_press);
     const auto f2 = s.frame_at(t_press);
     QVERIFY(f1 && f2 && f1 != f2);
