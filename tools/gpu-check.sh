@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# GPU check (issue 3): build the Qt-free configuration with CUDA, check GPU against CPU,
+# GPU check: build the Qt-free configuration with CUDA, check GPU against CPU,
 # benchmark. Meant for the lent GPU machine (no Qt, Eigen, Gmsh, JSON or CLI11 packages
 # there): run from the repository root through the device tool with .gpu-carry carried,
 #   run(command="bash tools/gpu-check.sh", carry=[".gpu-carry"])

@@ -124,9 +124,11 @@ class TestSession : public QObject {
     }
   }
 
-  // handhiro-emulator as a separate process, talking UDP on loopback.
+  // handhiro-emulator as a separate process, talking UDP on loopback. Two seconds: the
+  // session's clock runs from its first tick, before the child (a sanitized build starts
+  // slowly) answers, and the force ramps in over the half second after it connects.
   void emulatorChildProcess() {
-    const sim::Scenario s = small_press(1.0);
+    const sim::Scenario s = small_press(2.0);
     const std::string path = write_temp("tst_session_press.json", sim::scenario_to_json(s));
     app::live::SessionOptions opt;
     opt.device = "emulator";

@@ -173,7 +173,7 @@ class TstWorkstation : public QObject {
     QVERIFY_THROWS_EXCEPTION(std::runtime_error, app::live::Workstation{opt});
   }
 
-  // Issue 7 section 3: a CUDA error mid-session (the backend throws) and a divergence
+  // A CUDA error mid-session (the backend throws) and a divergence
   // (NaN) in the GUI's simulation thread. The body restarts at rest on the CPU; the hand
   // must not feel it: no force above what it felt before (the restarted body's first
   // steps, a fingertip 7 mm deep in an undeformed dome, push the device to its limit), never
@@ -187,7 +187,7 @@ class TstWorkstation : public QObject {
   // the new forces are steady.
   void divergence_on_a_slow_machine_waits_for_the_new_body() { fault_case(test::FaultBackend::Fault::NaN, 0.07, 0.001); }
 
-  // Issue 7 section 3: a stalled simulation thread (a command that blocks) does not stall
+  // A stalled simulation thread (a command that blocks) does not stall
   // the 1 kHz haptic loop: ticks keep coming, the stale simulation ramps the force to zero,
   // and it comes back when the thread resumes.
   void stalled_simulation_does_not_stall_haptics() {
@@ -225,7 +225,7 @@ class TstWorkstation : public QObject {
     QVERIFY(f.max_all <= 4.0 + 1e-9);
   }
 
-  // Issue 5: force spikes on release at real-time dt. The coarse paper sweep stepped in
+  // Force spikes on release at real-time dt. The coarse paper sweep stepped in
   // lockstep at the workstation's largest dt (10 ms): while the fingertip rises, the
   // simulated force chatters (single steps 3-5x too high, docs/stability.md); what the
   // workstation sends (guard_force_spike) never rises while the fingertip is lifted by
