@@ -101,8 +101,10 @@ class TstReview : public QObject {
     QElapsedTimer clock;
     clock.start();
     bool added = false, painted = false, marked = false, params = false;
-    while (clock.elapsed() < 2500) {
-      const double s = double(clock.elapsed()) / 2500.0;
+    // 2.5 s of wall time, and on until every scripted change was made (a loaded machine can
+    // stall the loop in a change past the time of the next ones).
+    while (clock.elapsed() < 2500 || !params) {
+      const double s = std::min(1.0, double(clock.elapsed()) / 2500.0);
       const double depth = std::min(1.0, 3 * s) * 0.006;
       ws.set_mouse_finger(top + Eigen::Vector3d(0.02 * s - 0.01, 0, r - depth), true);
       if (!added && s > 0.3) {  // the instructor adds a tumour under the finger's path
