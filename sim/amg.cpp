@@ -290,7 +290,12 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     const double total = A0.diagonal().sum();
     if (total > 0) share = std::clamp(1.0 - sparser->diagonal().sum() / total, 0.0, 1.0);
   }
-  const bool finest_chebyshev = options.smoother == Smoother::Chebyshev || (sparser && share >= options.chebyshev_share);
+  Smoother fine_smoother = options.smoother;
+  int fine_degree = options.degree;
+  if (sparser && share >= options.chebyshev_share && fine_smoother != Smoother::Chebyshev) {
+    fine_smoother = Smoother::Chebyshev;
+    fine_degree = 2;
+  }
 
   SpMat A = A0;
   int block = 3;
@@ -298,9 +303,8 @@ void Hierarchy::build(const SpMat& A0, std::span<const Eigen::Vector3d> nodes, c
     Level L;
     L.Dinv = block_diagonal_inverse(A, block);
     const double rho = spectral_radius(L.Dinv, A);
-    const bool switched = depth == 0 && finest_chebyshev && options.smoother != Smoother::Chebyshev;
-    const int degree = switched ? 2 : depth == 0 ? options.degree : options.coarse_degree;
-    const Smoother smoother = depth == 0 ? (finest_chebyshev ? Smoother::Chebyshev : options.smoother) : options.coarse_smoother;
+    const int degree = depth == 0 ? fine_degree : options.coarse_degree;
+    const Smoother smoother = depth == 0 ? fine_smoother : options.coarse_smoother;
     L.chebyshev = smoother == Smoother::Chebyshev;
     // Jacobi's damping converges up to 1.5 times the power estimate; Chebyshev's interval
     // ends at 1.1 times its estimate, so it takes Lanczos's.
