@@ -184,8 +184,8 @@ class TstReview : public QObject {
     // step at or before it): recomputed here from the recording, whose step forces the
     // re-simulated ones equal (max_diff above, 1e-9 N: the bound below). Not zero: the
     // device got the simulated force times the patient's force scale (0.6 on this patient).
+    const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
     {
-      const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
       const std::size_t nf = std::size_t(rec.fingers);
       double sent_diff = 0;
       std::size_t j = 0;
@@ -253,7 +253,6 @@ class TstReview : public QObject {
     // machine stretches).
     double t_press = 0;
     {
-      const app::store::Recording rec = app::store::read_recording(rec_path_.toStdString());
       double fbest = -1;
       for (const auto& st : rec.steps)
         for (const auto& fg : st.fingers)
