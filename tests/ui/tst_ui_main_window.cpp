@@ -573,7 +573,12 @@ class TstUiMainWindow : public QObject {
     const ImageStats mono = stats(v->grabFramebuffer());
     qInfo("mono: mean rgb %.0f %.0f %.0f, skin %.3f; tumour-red %.4f shown, %.4f hidden", mono.mean_r, mono.mean_g,
           mono.mean_b, mono.skin_fraction, seen.tumour, mono.tumour);
-    QVERIFY2(seen.tumour > mono.tumour + 0.005, "the tumour shows through the skin");  // measured 0.013 against 0.004 (the pink fingertip)
+    // Red-above-green pixels: the tumour through the skin when shown; the fingertips in both
+    // grabs (they move between the grabs, and a fingertip over the tumour hides part of it).
+    // Measured 0.013 against 0.004 on an idle machine and 0.0083 against 0.0036 on a loaded
+    // one: the tumour at least doubles the count plus a margin of 0.1% of the view's pixels
+    // above the fingertips' jitter; hidden tumours leave the two counts alike.
+    QVERIFY2(seen.tumour > 1.8 * mono.tumour + 0.001, "the tumour shows through the skin");
     QVERIFY2(mono.skin_fraction > 0.05, "the breast covers part of the view");
     QVERIFY2(mono.bright > 0.05, "lit skin present");
     // A wide eye separation makes the two eyes' images differ clearly at every edge.
