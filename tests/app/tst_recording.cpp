@@ -992,8 +992,9 @@ class TestRecording : public QObject {
     const Recording rec = read_recording(p);
     QVERIFY(rec.complete && !rec.recovered);
     // 0.3 s at 1 kHz is 300 ticks; a loaded 2-core machine drops some (230 measured while
-    // a build and a soak ran): at least half of them, and every tick recorded in order.
-    QVERIFY2(rec.ticks() >= 150, qPrintable(QString("%1 ticks").arg(rec.ticks())));
+    // a build and a soak ran; the tick rate is the bench's figure, not this test's): at
+    // least a third of them, and every tick recorded in order.
+    QVERIFY2(rec.ticks() >= 100, qPrintable(QString("%1 ticks").arg(rec.ticks())));
     for (std::size_t i = 1; i < rec.ticks(); ++i) QVERIFY(rec.t[i] > rec.t[i - 1]);
     QCOMPARE(rec.events.size(), std::size_t(2));
     QCOMPARE(QString::fromStdString(rec.header["session"]["device"].get<std::string>()), QString("scripted"));
