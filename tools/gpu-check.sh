@@ -393,11 +393,12 @@ if has baselines; then
     [[ -f $f ]] && { [[ -f $OUT/baselines.csv ]] && tail -n +2 "$f" >>"$OUT/baselines.csv" || cp "$f" "$OUT/baselines.csv"; }
     # The fast backend with its other preconditioner on the same element and tolerances
     # (the baselines have block-Jacobi only): the comparison at equal error takes whichever
-    # of the fast backend's points is quicker at no larger force error.
+    # of the fast backend's points is quicker at no larger force error. Nothing looser than
+    # 1e-3: a looser fixed tolerance solves on to the rescue tolerance, 1e-3, the same point.
     say "baselines: $m, cuda with the multigrid, the same element and tolerances"
     rm -rf "/tmp/palpation-baselines-mg-$m"
     timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda --precisions double --preconditioner multigrid \
-      --element linear --tolerances 1e-2,1e-3,1e-4,1e-6 --out "/tmp/palpation-baselines-mg-$m" | tee -a "$OUT/baselines.txt"
+      --element linear --tolerances 1e-3,1e-4,1e-6 --out "/tmp/palpation-baselines-mg-$m" | tee -a "$OUT/baselines.txt"
     say "baselines $m multigrid exit ${PIPESTATUS[0]}"
     f=/tmp/palpation-baselines-mg-$m/bench.csv
     [[ -f $f ]] && tail -n +2 "$f" >>"$OUT/baselines.csv"
@@ -406,7 +407,6 @@ if has baselines; then
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 pts = {(r["mesh"], r["cg_tolerance"], r["backend"]): r for r in rows if r["preconditioner"] == "block-jacobi"}
-mg = {(r["mesh"], r["cg_tolerance"]): r for r in rows if r["backend"] == "cuda" and r["preconditioner"] != "block-jacobi"}
 print("Same algorithm (block-Jacobi PCG), same tolerance:")
 print("mesh    tol     cuda ms (it)   cuda-bsr ms (it)  cuda-csr ms (it)  bsr/cuda  csr/cuda  force error cuda/bsr/csr")
 for (mesh, tol, b), r in sorted(pts.items()):
