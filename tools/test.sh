@@ -23,4 +23,10 @@ elif [ -z "${PALPATION_TEST_PG:-}" ]; then
   export PALPATION_TEST_PG
   echo "test: PostgreSQL test server on ${PALPATION_TEST_PG##*@} (started in $(( $(date +%s) - pg_start )) s)"
 fi
-ctest --test-dir build --output-on-failure -j 1
+# The "compute" suites (accuracy and stress: headless, not paced by the clock) run two at
+# a time, then the rest one at a time: the real-time suites (haptic loop, pacing, session,
+# GUI) keep the machine to themselves. Both groups run even when the first fails.
+status=0
+ctest --test-dir build --output-on-failure -j 2 -L compute || status=1
+ctest --test-dir build --output-on-failure -j 1 -LE compute || status=1
+exit $status

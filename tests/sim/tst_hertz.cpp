@@ -27,12 +27,14 @@ class TestHertz : public QObject {
  private slots:
   // Linear tetrahedra resolve the contact radius a = sqrt(R d) = 3.2 mm with a few
   // elements at these sizes: 10% (the bound) at the finest mesh, and the error
-  // must shrink with refinement.
+  // must shrink with refinement. Measured at nu 0.45: +66.9, +32.0, +14.0, +5.8% at 12,
+  // 20, 28, 36 across (+1.7% at 44, a mesh of 256k tetrahedra that took half of this
+  // suite's time for a bound 36 across already meets).
   void matchesHertzAndConverges() {
-    // PALPATION_LIGHT_TESTS=1 (the sanitizer build in CI, .ci/run): the three coarser
-    // meshes only; convergence is still asserted, the 10% bound needs the finest.
+    // PALPATION_LIGHT_TESTS=1 (the sanitizer build in CI, .ci/run): coarser meshes only;
+    // convergence is still asserted, the 10% bound needs the finest.
     const bool light = qEnvironmentVariableIntValue("PALPATION_LIGHT_TESTS") != 0;
-    const std::vector<int> sizes = light ? std::vector<int>{12, 20, 28} : std::vector<int>{12, 20, 28, 36, 44};
+    const std::vector<int> sizes = light ? std::vector<int>{8, 12, 20} : std::vector<int>{12, 20, 28, 36};
     double prev = 1e9;
     for (int n : sizes) {
       const HertzResult r = indent(n);
@@ -46,8 +48,10 @@ class TestHertz : public QObject {
       prev = err;
     }
     if (light)
-      QSKIP(qPrintable(QString("PALPATION_LIGHT_TESTS: convergence checked on 12-28 across; the 10% bound against "
-                               "Hertz is NOT checked (it needs the 44-across mesh; the finest here is %1% off)")
+      QSKIP(qPrintable(QString("PALPATION_LIGHT_TESTS: convergence checked on %1-%2 across; the 10% bound against "
+                               "Hertz is NOT checked (it needs the 36-across mesh; the finest here is %3% off)")
+                           .arg(sizes.front())
+                           .arg(sizes.back())
                            .arg(100 * prev, 0, 'f', 1)));
     QVERIFY2(prev < 0.10, qPrintable(QString::number(prev)));
   }
@@ -81,8 +85,10 @@ class TestHertz : public QObject {
     c.radius = radius;
     c.young = young;
     c.element = Element::NodalPressure;
+    // PALPATION_LIGHT_TESTS: 12 and 20 across, refinement asserted, the 5% bound (28 across) not.
+    const bool light = qEnvironmentVariableIntValue("PALPATION_LIGHT_TESTS") != 0;
     double errs[2];
-    const int sizes[2] = {20, 28};
+    const int sizes[2] = {light ? 12 : 20, light ? 20 : 28};
     for (int k = 0; k < 2; ++k) {
       const HertzResult r = indent(sizes[k], c);
       QVERIFY2(r.ok, r.why.c_str());
@@ -92,19 +98,25 @@ class TestHertz : public QObject {
             r.force, ref, 100 * errs[k], r.max_iterations);
     }
     QVERIFY2(std::abs(errs[1]) < std::abs(errs[0]), "error must shrink with refinement");
+    if (light)
+      QSKIP(qPrintable(QString("PALPATION_LIGHT_TESTS: refinement checked on 12-20 across; the 5% bound (28 across) "
+                               "is NOT checked (%1% at 20)").arg(100 * errs[1], 0, 'f', 1)));
     QVERIFY2(std::abs(errs[1]) < 0.05, qPrintable(QString::number(errs[1])));
   }
 
   // Beside it, the linear element on the same mesh at nu = 0.49 is far off: the locking
   // the nodal-pressure element removes (a test that would pass if the element did not lock
-  // is no test of the nodal one either: this shows the scene can tell them apart).
+  // is no test of the nodal one either: this shows the scene can tell them apart). The
+  // locking only grows on coarser meshes (+41% measured at 28 across), so the sanitizer
+  // build's 20 across asserts the same.
   void linearElementLocksAtNu049() {
     HertzCase c;
     c.nu = 0.49;
-    const HertzResult r = indent(28, c);
+    const int n = qEnvironmentVariableIntValue("PALPATION_LIGHT_TESTS") != 0 ? 20 : 28;
+    const HertzResult r = indent(n, c);
     QVERIFY2(r.ok, r.why.c_str());
     const double err = r.error;
-    qInfo("linear, nu 0.49, n=28: error %+.1f%%", 100 * err);
+    qInfo("linear, nu 0.49, n=%d: error %+.1f%%", n, 100 * err);
     QVERIFY2(err > 0.15, qPrintable(QString::number(err)));
   }
 };
