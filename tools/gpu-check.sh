@@ -27,7 +27,8 @@
 #   baselines that comparison alone, one bench run per mesh of BASELINE_MESHES, then the fast
 #          backend with the multigrid on the same element and tolerances; the speed-ups
 #          printed at equal tolerance (block-Jacobi against block-Jacobi) and at equal
-#          error (the fast backend's quickest point with no larger force error)
+#          error (the fast backend's quickest point with no larger force error), every
+#          backend in each precision of BASELINE_PRECISIONS (default double,float)
 #          (baselines.csv, baselines.txt). Not a default stage
 #   multigrid block-Jacobi against the multigrid preconditioners on CUDA, one bench run per
 #          preconditioner and mesh of MG_MESHES (default paper,xfine,0.00201: the 800k-tet
@@ -115,6 +116,7 @@ export PATH=/usr/local/cuda/bin:$PATH
 STAGES=${*:-build check hertz micro bench idle sweep}
 BENCH_MESHES=${BENCH_MESHES:-coarse,paper,xfine}
 BASELINE_MESHES=${BASELINE_MESHES:-paper,xfine}
+BASELINE_PRECISIONS=${BASELINE_PRECISIONS:-double,float}
 MG_MESHES=${MG_MESHES:-paper,xfine,0.00201}
 BENCH_TIMEOUT=${BENCH_TIMEOUT:-330}
 LOG=$OUT/run.log
@@ -384,9 +386,9 @@ if has baselines; then
   # each mesh its own bench run; the speed-ups from one run's medians.
   rm -f "$OUT/baselines.csv"
   for m in ${BASELINE_MESHES//,/ }; do
-    say "baselines: $m, double, linear element, CG 1e-3 and 1e-6"
+    say "baselines: $m, ${BASELINE_PRECISIONS}, linear element, CG 1e-3 and 1e-6"
     rm -rf "/tmp/palpation-baselines-$m"
-    timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda,cuda-bsr,cuda-csr --precisions double \
+    timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda,cuda-bsr,cuda-csr --precisions "$BASELINE_PRECISIONS" \
       --element linear --tolerances 1e-3,1e-6 --out "/tmp/palpation-baselines-$m" | tee -a "$OUT/baselines.txt"
     say "baselines $m exit ${PIPESTATUS[0]}"
     f=/tmp/palpation-baselines-$m/bench.csv
@@ -406,34 +408,37 @@ if has baselines; then
   [[ -f $OUT/baselines.csv ]] && python3 - "$OUT/baselines.csv" <<'EOF'
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
-pts = {(r["mesh"], r["cg_tolerance"], r["backend"]): r for r in rows if r["preconditioner"] == "block-jacobi"}
-print("Same algorithm (block-Jacobi PCG), same tolerance:")
-print("mesh    tol     cuda ms (it)   cuda-bsr ms (it)  cuda-csr ms (it)  bsr/cuda  csr/cuda  force error cuda/bsr/csr")
-for (mesh, tol, b), r in sorted(pts.items()):
+pts = {(r["mesh"], r["precision"], r["cg_tolerance"], r["backend"]): r for r in rows if r["preconditioner"] == "block-jacobi"}
+print("Same algorithm (block-Jacobi PCG), same precision and tolerance:")
+print("mesh    prec.   tol     cuda ms (it)   cuda-bsr ms (it)  cuda-csr ms (it)  bsr/cuda  csr/cuda  force error cuda/bsr/csr")
+for (mesh, prec, tol, b), r in sorted(pts.items()):
     if b != "cuda": continue
-    o = {k: pts.get((mesh, tol, k)) for k in ("cuda-bsr", "cuda-csr")}
+    o = {k: pts.get((mesh, prec, tol, k)) for k in ("cuda-bsr", "cuda-csr")}
     t = float(r["step_ms_median"])
     def cell(x): return f'{float(x["step_ms_median"]):8.3f} ({float(x["cg_iterations_median"]):4.0f})' if x else "       -       "
     def ratio(x): return f'{float(x["step_ms_median"]) / t:8.2f}' if x else "       -"
     errs = "/".join(f'{float(x["force_error"]):.1e}' if x else "-" for x in (r, o["cuda-bsr"], o["cuda-csr"]))
-    print(f"{mesh:7s} {float(tol):.0e}  {cell(r)}  {cell(o['cuda-bsr'])}  {cell(o['cuda-csr'])}  {ratio(o['cuda-bsr'])}  {ratio(o['cuda-csr'])}  {errs}")
+    print(f"{mesh:7s} {prec:6s}  {float(tol):.0e}  {cell(r)}  {cell(o['cuda-bsr'])}  {cell(o['cuda-csr'])}  {ratio(o['cuda-bsr'])}  {ratio(o['cuda-csr'])}  {errs}")
 # At equal error: for each baseline point, the quickest point of the fast backend (either
-# preconditioner, any tolerance) whose force error is no larger, give or take 10 % (the
-# same algorithm at the same tolerance lands within a few percent of the same error:
-# 1.7e-6 against 1.6e-6 on the paper mesh at CG 1e-3).
+# preconditioner, either precision, any tolerance) whose force error is no larger, give or
+# take 10 % (the same algorithm at the same tolerance lands within a few percent of the
+# same error: 1.7e-6 against 1.6e-6 on the paper mesh at CG 1e-3). The errors are all
+# against the one converged double reference, so a float point counts only where float
+# reaches the baseline's error; the baselines run in float too, and each of their points
+# is a row.
 fast = [r for r in rows if r["backend"] == "cuda"]
 print("At equal error (the fast backend's quickest point with no larger force error, within 10 %):")
-print("mesh    baseline   tol    base ms   error     fast ms  (preconditioner, tol, error)  speed-up")
-for r in sorted(rows, key=lambda r: (r["mesh"], r["backend"], float(r["cg_tolerance"]))):
+print("mesh    baseline  prec.  tol    base ms   error     fast ms  (preconditioner, precision, tol, error)  speed-up")
+for r in sorted(rows, key=lambda r: (r["mesh"], r["backend"], r["precision"], float(r["cg_tolerance"]))):
     if r["backend"] == "cuda": continue
     e = float(r["force_error"])
     ok = [f for f in fast if f["mesh"] == r["mesh"] and float(f["force_error"]) <= 1.1 * e]
     if not ok:
-        print(f'{r["mesh"]:7s} {r["backend"]:9s} {float(r["cg_tolerance"]):.0e} {float(r["step_ms_median"]):8.3f}  {e:.1e}   none at that error')
+        print(f'{r["mesh"]:7s} {r["backend"]:9s} {r["precision"]:6s} {float(r["cg_tolerance"]):.0e} {float(r["step_ms_median"]):8.3f}  {e:.1e}   none at that error')
         continue
     b = min(ok, key=lambda f: float(f["step_ms_median"]))
-    print(f'{r["mesh"]:7s} {r["backend"]:9s} {float(r["cg_tolerance"]):.0e} {float(r["step_ms_median"]):8.3f}  {e:.1e}  '
-          f'{float(b["step_ms_median"]):8.3f}  ({b["preconditioner"]}, {float(b["cg_tolerance"]):.0e}, {float(b["force_error"]):.1e})  '
+    print(f'{r["mesh"]:7s} {r["backend"]:9s} {r["precision"]:6s} {float(r["cg_tolerance"]):.0e} {float(r["step_ms_median"]):8.3f}  {e:.1e}  '
+          f'{float(b["step_ms_median"]):8.3f}  ({b["preconditioner"]}, {b["precision"]}, {float(b["cg_tolerance"]):.0e}, {float(b["force_error"]):.1e})  '
           f'{float(r["step_ms_median"]) / float(b["step_ms_median"]):6.2f}x')
 EOF
 fi
