@@ -62,6 +62,7 @@ HertzResult hertz_indent(const HertzCase& c, const std::string& backend) {
     const StepStats st = b->step(f, out);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     res.max_iterations = std::max(res.max_iterations, st.cg_iterations);
+    res.total_iterations += st.cg_iterations;
     if (!st.finite) {
       res.why = "step " + std::to_string(k) + " is not finite";
       return res;
@@ -70,6 +71,7 @@ HertzResult hertz_indent(const HertzCase& c, const std::string& backend) {
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   res.step_ms = ms[ms.size() / 2];
   res.smoother = b->multigrid_counts().smoother();
+  res.pressure_share = b->multigrid_counts().pressure_share;
   // Indentation: the sphere's travel from first touch (Hertz's rigid approach) less the
   // penalty penetration (a few micrometres, < 1% of d); the surface node under the sphere
   // goes down by d plus the sag of its facets under the sphere.

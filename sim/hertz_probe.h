@@ -41,7 +41,9 @@ struct HertzResult {
   double error = 0;         // force / reference - 1
   int nodes = 0, tets = 0;
   int max_iterations = 0;   // CG iterations of the hardest step
+  long total_iterations = 0;  // CG iterations of all the steps (a smoother's cost compares by it)
   std::string smoother = "none";  // the multigrid's finest smoothing at the end (Backend::MultigridCounts)
+  double pressure_share = 0;      // the nodal-pressure term's share of the trace at the last level build
   double step_ms = 0;       // median wall time of the pressing steps
 };
 

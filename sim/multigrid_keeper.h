@@ -39,13 +39,14 @@ class MultigridKeeper {
   /// sweep, or Chebyshev of degree 2 where the nodal-pressure term holds at least
   /// kChebyshevShare of the system's trace at the build (nearly incompressible,
   /// stiffness-dominated systems, whose iterations one sweep lets grow with Poisson's
-  /// ratio). MultigridChebyshev: Chebyshev of degree 2 always.
+  /// ratio). MultigridChebyshev: Chebyshev of degree 2 always. MultigridJacobi: one Jacobi
+  /// sweep always (amg::Options' default share, above 1, never switches).
   static amg::Options options(Preconditioner p) {
     amg::Options o;
     if (p == Preconditioner::MultigridChebyshev) {
       o.smoother = amg::Smoother::Chebyshev;
       o.degree = 2;
-    } else {
+    } else if (p == Preconditioner::Multigrid) {
       o.chebyshev_share = kChebyshevShare;
     }
     return o;

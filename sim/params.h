@@ -19,17 +19,27 @@ enum class Precision { Double, Float };
 /// trace or more (multigrid_keeper.h): the Hertz scene's iterations then go 101 -> 94 from
 /// Poisson's ratio 0.40 to 0.49 where one sweep's go 103 -> 219. MultigridChebyshev: the
 /// same levels, Chebyshev on the finest one always (on the breast at 1 ms steps and 0.45 it
-/// costs more time than it saves).
-enum class Preconditioner { BlockJacobi, Multigrid, MultigridChebyshev };
+/// costs more time than it saves). MultigridJacobi: the same levels, one Jacobi sweep on the
+/// finest one always (what Multigrid does below the share; to measure where the two cross).
+enum class Preconditioner { BlockJacobi, Multigrid, MultigridChebyshev, MultigridJacobi };
 inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi; }
 inline const char* preconditioner_name(Preconditioner p) {
-  return p == Preconditioner::Multigrid ? "multigrid"
-                                        : (p == Preconditioner::MultigridChebyshev ? "multigrid-chebyshev" : "block-jacobi");
+  switch (p) {
+    case Preconditioner::Multigrid: return "multigrid";
+    case Preconditioner::MultigridChebyshev: return "multigrid-chebyshev";
+    case Preconditioner::MultigridJacobi: return "multigrid-jacobi";
+    case Preconditioner::BlockJacobi: break;
+  }
+  return "block-jacobi";
 }
-inline std::vector<std::string> preconditioner_names() { return {"block-jacobi", "multigrid", "multigrid-chebyshev"}; }
+inline std::vector<std::string> preconditioner_names() {
+  return {"block-jacobi", "multigrid", "multigrid-chebyshev", "multigrid-jacobi"};
+}
+/// The preconditioner named (one of preconditioner_names(); any other name: BlockJacobi).
 inline Preconditioner parse_preconditioner(const std::string& name) {
-  if (name == "multigrid") return Preconditioner::Multigrid;
-  return name == "multigrid-chebyshev" ? Preconditioner::MultigridChebyshev : Preconditioner::BlockJacobi;
+  for (Preconditioner p : {Preconditioner::Multigrid, Preconditioner::MultigridChebyshev, Preconditioner::MultigridJacobi})
+    if (name == preconditioner_name(p)) return p;
+  return Preconditioner::BlockJacobi;
 }
 
 struct SolverParams {

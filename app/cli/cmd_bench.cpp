@@ -24,7 +24,7 @@ CommandAction add_bench_command(CLI::App& app) {
                   "Skin membrane thickness, m (tissue.skin.thickness, 56 kPa unless the scenario says; 0: none; default: the scenario's)")
       ->check(CLI::Range(0.0, sim::kMaxSkinThickness));
   sub->add_option("--preconditioner", o->preconditioner,
-                  "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev; default: the scenario's). Multigrid runs on the cpu and cuda backends: "
+                  "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev, multigrid-jacobi; default: the scenario's). Multigrid runs on the cpu and cuda backends: "
                   "the library baselines are skipped")
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--force-error", o->force_error,

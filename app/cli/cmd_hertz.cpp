@@ -44,15 +44,15 @@ CommandAction add_hertz_command(CLI::App& app) {
   sub->add_option("--cg-tolerance", o->cg_tolerance, "CG relative tolerance")->check(CLI::Range(1e-14, 1e-2));
   sub->add_option("--limit", o->limit, "Exit 1 when |F / Hertz - 1| exceeds this in any row (0: never)")
       ->check(CLI::Range(0.0, 10.0));
-  sub->add_option("--preconditioner", o->preconditioner, "CG preconditioner: block-jacobi, multigrid or multigrid-chebyshev (multigrid: cpu and cuda backends)")
+  sub->add_option("--preconditioner", o->preconditioner, "CG preconditioner: block-jacobi, multigrid, multigrid-chebyshev or multigrid-jacobi (multigrid: cpu and cuda backends)")
       ->check(CLI::IsMember(sim::preconditioner_names()))
       ->capture_default_str();
   sub->add_option("--out", o->out, "Folder for hertz.json");
   return [o]() {
     nlohmann::json rows = nlohmann::json::array();
     bool within = true;
-    std::printf("%-15s %-7s %6s %7s %8s | %10s %10s %8s | %6s %9s %9s\n", "element", "backend", "nu", "cells", "tets", "force N",
-                "Hertz N", "error", "max CG", "step ms", "smoother");
+    std::printf("%-15s %-7s %6s %7s %8s | %10s %10s %8s | %6s %7s %9s %9s %6s\n", "element", "backend", "nu", "cells", "tets",
+                "force N", "Hertz N", "error", "max CG", "all CG", "step ms", "smoother", "share");
     for (const auto& el : o->elements)
       for (double nu : o->nu)
         for (int n : o->cells) {
@@ -70,9 +70,9 @@ CommandAction add_hertz_command(CLI::App& app) {
           const bool ok = r.ok && (o->limit <= 0 || std::abs(r.error) <= o->limit);
           within = within && ok;
           if (r.ok)
-            std::printf("%-15s %-7s %6.3f %7d %8d | %10.5f %10.5f %+7.1f%% | %6d %9.3f %9s%s\n", el.c_str(), o->backend.c_str(),
-                        nu, n, r.tets, r.force, r.reference, 100 * r.error, r.max_iterations, r.step_ms, r.smoother.c_str(),
-                        ok ? "" : "  OFF");
+            std::printf("%-15s %-7s %6.3f %7d %8d | %10.5f %10.5f %+7.1f%% | %6d %7ld %9.3f %9s %6.3f%s\n", el.c_str(),
+                        o->backend.c_str(), nu, n, r.tets, r.force, r.reference, 100 * r.error, r.max_iterations,
+                        r.total_iterations, r.step_ms, r.smoother.c_str(), r.pressure_share, ok ? "" : "  OFF");
           else
             std::printf("%-15s %-7s %6.3f %7d %8d | FAILED: %s\n", el.c_str(), o->backend.c_str(), nu, n, r.tets, r.why.c_str());
           std::fflush(stdout);
@@ -93,7 +93,9 @@ CommandAction add_hertz_command(CLI::App& app) {
                           {"hertz", r.reference},
                           {"error", r.error},
                           {"max_cg_iterations", r.max_iterations},
+                          {"cg_iterations", r.total_iterations},
                           {"multigrid_smoother", r.smoother},
+                          {"multigrid_pressure_share", r.pressure_share},
                           {"step_ms_median", r.step_ms}});
         }
     if (!o->out.empty()) {

@@ -33,6 +33,9 @@ class TestHertzCommand : public QObject {
       QVERIFY(r["ok"].get<bool>());
       QVERIFY(r["force"].get<double>() > 0 && r["hertz"].get<double>() > 0);
       QCOMPARE(r["error"].get<double>(), r["force"].get<double>() / r["hertz"].get<double>() - 1);
+      // All the steps' CG iterations: more than the hardest step's alone (30 steps press).
+      QVERIFY(r["max_cg_iterations"].get<long>() > 0 && r["cg_iterations"].get<long>() > r["max_cg_iterations"].get<long>());
+      QCOMPARE(r["multigrid_smoother"].get<std::string>(), std::string("none"));  // block-Jacobi: no levels
     }
     // The nodal-pressure element does not lock: softer than the linear one at the same
     // ratio and mesh, and far less so than it as nu goes from 0.45 to 0.49.

@@ -208,6 +208,12 @@ class TestScenario : public QObject {
     QVERIFY(sim::parse_scenario(sim::scenario_to_json(ch), "case.json").params.solver.preconditioner ==
             sim::Preconditioner::MultigridChebyshev);
     baseline_refuses(ch.params, "multigrid-chebyshev");
+    // So does the one that keeps one Jacobi sweep whatever the share.
+    const sim::Scenario jac = sim::parse_scenario(with("\"solver\": {\"preconditioner\": \"multigrid-jacobi\"}"), "case.json");
+    QVERIFY(jac.params.solver.preconditioner == sim::Preconditioner::MultigridJacobi);
+    QVERIFY(sim::parse_scenario(sim::scenario_to_json(jac), "case.json").params.solver.preconditioner ==
+            sim::Preconditioner::MultigridJacobi);
+    baseline_refuses(jac.params, "multigrid-jacobi");
   }
 
   // Tissue layers read, write and read back as they were; the layered built-in sweep has

@@ -310,9 +310,9 @@ class TestMultigrid : public QObject {
   // small, Chebyshev at 0.49, where it is large; so its iterations stay within the 2x too.
   void chebyshevHoldsNearIncompressibleIterations() {
     const double nus[2] = {0.40, 0.49};
-    int jacobi[2], chebyshev[2], keeper[2];
+    int jacobi[2], chebyshev[2], keeper[2], forced_jacobi[2];
     double share[2];
-    bool keeper_chebyshev[2];
+    bool keeper_chebyshev[2], forced_jacobi_chebyshev[2];
     for (int k = 0; k < 2; ++k) {
       const NodalSystem s = make_nodal_system(12, nus[k]);
       const Blocks b = to_blocks(s.A);
@@ -334,10 +334,15 @@ class TestMultigrid : public QObject {
       keeper[k] = solve(MultigridKeeper::options(Preconditioner::Multigrid), s.stiffness, &st);
       share[k] = st.sparser_share;
       keeper_chebyshev[k] = st.finest_chebyshev;
+      // "multigrid-jacobi": the same levels with one sweep whatever the share.
+      amg::Stats stj;
+      forced_jacobi[k] = solve(MultigridKeeper::options(Preconditioner::MultigridJacobi), s.stiffness, &stj);
+      forced_jacobi_chebyshev[k] = stj.finest_chebyshev;
       qInfo("nu %.2f, %d unknowns: CG iterations to 1e-8 with one Jacobi sweep %d, Chebyshev of degree 2 %d; "
-            "the multigrid's own choice %d (%s at a volumetric share of %.2f)",
-            nus[k], n, jacobi[k], chebyshev[k], keeper[k], keeper_chebyshev[k] ? "Chebyshev" : "Jacobi", share[k]);
-      QVERIFY(jacobi[k] > 0 && chebyshev[k] > 0 && keeper[k] > 0);
+            "the multigrid's own choice %d (%s at a volumetric share of %.2f); multigrid-jacobi %d",
+            nus[k], n, jacobi[k], chebyshev[k], keeper[k], keeper_chebyshev[k] ? "Chebyshev" : "Jacobi", share[k],
+            forced_jacobi[k]);
+      QVERIFY(jacobi[k] > 0 && chebyshev[k] > 0 && keeper[k] > 0 && forced_jacobi[k] > 0);
     }
     const double rj = double(jacobi[1]) / jacobi[0], rc = double(chebyshev[1]) / chebyshev[0];
     const double rk = double(keeper[1]) / keeper[0];
@@ -349,6 +354,11 @@ class TestMultigrid : public QObject {
              qPrintable(QString("shares %1 and %2").arg(share[0]).arg(share[1])));
     QVERIFY(!keeper_chebyshev[0] && keeper_chebyshev[1]);
     QVERIFY2(rk <= 2.0, qPrintable(QString("the multigrid's choice: %1x").arg(rk)));
+    // Forced to one sweep, the levels keep it above the share too: below it the same solve
+    // as the multigrid's own, above it more iterations than its Chebyshev.
+    QVERIFY(!forced_jacobi_chebyshev[0] && !forced_jacobi_chebyshev[1]);
+    QCOMPARE(forced_jacobi[0], keeper[0]);
+    QVERIFY2(forced_jacobi[1] > keeper[1], qPrintable(QString("%1 against %2").arg(forced_jacobi[1]).arg(keeper[1])));
   }
 
   // The Chebyshev smoother's interval ends at 1.1 times the estimate of D^-1 A's largest
