@@ -115,6 +115,7 @@ RunResult run_headless(sim::Simulation& simulation, const RunOptions& opt) {
   }
   j["finite"] = finite;
   j["error_control"] = error_control_json(simulation.error_control());
+  add_multigrid_json(j, simulation);
   j["max_force_n"] = max_force;
   j["wall_seconds"] = wall;
   j["realtime_factor"] = wall > 0 ? s.duration / wall : 0.0;
@@ -145,6 +146,15 @@ nlohmann::json error_control_json(const sim::ErrorControlStats& c) {
           {"last_error", c.last_error},
           {"worst_error", c.worst_error},
           {"contact_steps", c.contact_steps}};
+}
+
+void add_multigrid_json(nlohmann::json& j, const sim::Simulation& simulation) {
+  const sim::Backend::MultigridCounts m = simulation.backend().multigrid_counts();
+  j["preconditioner"] = sim::preconditioner_name(simulation.scenario().params.solver.preconditioner);
+  j["multigrid_builds"] = m.builds;
+  j["multigrid_build_failures"] = m.failures;
+  j["multigrid_smoother"] = m.smoother();
+  j["multigrid_pressure_share"] = m.pressure_share;
 }
 
 }  // namespace palpation::app::live

@@ -54,4 +54,8 @@ double percentile(std::vector<double> v, double p);
 /// alone when it is off.
 nlohmann::json error_control_json(const sim::ErrorControlStats& c);
 
+/// Adds the preconditioner and its multigrid levels' record (builds, failures, the finest
+/// level's smoother, the nodal-pressure share at the last build) to a summary (run, session).
+void add_multigrid_json(nlohmann::json& j, const sim::Simulation& simulation);
+
 }  // namespace palpation::app::live

@@ -353,7 +353,6 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
     for (int i : sim_thread.cg_iterations) cg_max = std::max(cg_max, i);
     const std::vector<double> timed_steps = after_warmup(sim_thread.step_ms), timed_dt = after_warmup(sim_thread.dt_ms);
     const sim::Model& m = simulation.model();
-    const sim::Backend::MultigridCounts multigrid = simulation.backend().multigrid_counts();
     j["simulation"] = {{"backend", simulation.backend().name()},
                        {"cpu_or_gpu", simulation.backend().device_name()},
                        {"nodes", m.num_nodes()},
@@ -370,14 +369,11 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"dt_ms_max", percentile(timed_dt, 100)},
                        {"simulated_time_s", sim_thread.sim_time},
                        {"cg_iterations_max", cg_max},
-                       {"multigrid_builds", multigrid.builds},
-                       {"multigrid_build_failures", multigrid.failures},
-                       {"multigrid_smoother", multigrid.smoother()},
-                       {"multigrid_pressure_share", multigrid.pressure_share},
                        {"divergence_resets", sim_thread.resets},
                        {"backend_fallbacks", sim_thread.fallbacks},
                        {"finite", sim_thread.finite},
                        {"error_control", error_control_json(simulation.error_control())}};
+    add_multigrid_json(j["simulation"], simulation);
   }
   j["force_mapping"] = {{"scale", mapping.scale},
                         {"rule", force_scale_rule_name(mapping.rule)},
