@@ -34,6 +34,13 @@
 #          preconditioner and mesh of MG_MESHES (default paper,xfine,0.00201: the 800k-tet
 #          breast), double, CG 1e-3 and 1e-6 and the force error held at 1 % (multigrid.csv,
 #          multigrid.txt); MG_PRECONDITIONERS picks some of the three. Not a default stage
+#   smoother the multigrid's finest smoothing against Poisson's ratio on the breast: the paper
+#          sweep's first SMOOTHER_SECONDS (default 3) with tissue and tumour at each ratio of
+#          SMOOTHER_NUS (default 0.45 0.47 0.48 0.484 0.486 0.488 0.49), on SMOOTHER_MESHES
+#          (default paper), CUDA, double, CG 1e-3 fixed, with multigrid-jacobi and
+#          multigrid-chebyshev back to back: CG iterations, step time and the nodal-pressure
+#          share at the build (smoother.txt), where MultigridKeeper::kChebyshevShare should
+#          lie. Not a default stage
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   control the error-controlled tolerance against the fixed ones: bench (all tolerances and
 #          fe1%) and palpation session with --force-error 0 and 0.01, on CONTROL_MESHES
@@ -248,6 +255,40 @@ if has hertz; then
   done
   [[ -n ${HERTZ_LINEAR-1} ]] &&
     timeout 240 "$P" hertz --backend cuda --elements linear --nu 0.40,0.45,0.49,0.499 --cells 28 | tee -a "$OUT/hertz.txt"
+fi
+
+if has smoother; then
+  say "smoother: one Jacobi sweep against Chebyshev of degree 2 by Poisson's ratio (smoother.txt)"
+  M=/tmp/palpation-smoother
+  mkdir -p $M
+  "$P" scenario paper-sweep >$M/sweep.json
+  : >"$OUT/smoother.txt"
+  for mesh in ${SMOOTHER_MESHES:-paper}; do
+    for nu in ${SMOOTHER_NUS:-0.45 0.47 0.48 0.484 0.486 0.488 0.49}; do
+      for pc in multigrid-jacobi multigrid-chebyshev; do
+        python3 - "$M/sweep.json" "$M/s.json" "$mesh" "$nu" "$pc" "${SMOOTHER_SECONDS:-3}" <<'EOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["duration"] = float(sys.argv[6])
+s["patient"]["resolution"] = sys.argv[3]
+s["tissue"]["poisson_ratio"] = float(sys.argv[4])
+for inc in s.get("inclusions", []):
+    inc["poisson_ratio"] = float(sys.argv[4])
+s["solver"].update({"backend": "cuda", "precision": "double", "cg_tolerance": 1e-3, "preconditioner": sys.argv[5]})
+json.dump(s, open(sys.argv[2], "w"))
+EOF
+        rm -rf "$M/out"
+        timeout 300 "$P" run "$M/s.json" --force-error 0 --out "$M/out" --quiet
+        python3 - "$M/out/summary.json" "$mesh" "$nu" "$pc" <<'EOF' | tee -a "$OUT/smoother.txt"
+import json, sys
+d = json.load(open(sys.argv[1]))
+print(f"{sys.argv[2]:<6} nu {float(sys.argv[3]):.3f} {sys.argv[4]:<20} share {d['multigrid_pressure_share']:.3f} "
+      f"{d['multigrid_smoother']:<9} builds {d['multigrid_builds']}  CG mean {d['cg_iterations_mean']:.2f} max {d['cg_iterations_max']}"
+      f"  step med {d['step_ms_median']:.3f} p99 {d['step_ms_p99']:.3f} ms  solved {d['steps_solved']}")
+EOF
+      done
+    done
+  done
 fi
 
 if has micro; then
