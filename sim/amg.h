@@ -79,10 +79,10 @@ struct Options {
   // With `sparser` given to build(): when the rest of A (A less sparser: the nodal-pressure
   // term, where the callers split it off) holds at least this share of A's trace, the
   // finest level is smoothed by Chebyshev of degree 2 instead of `smoother` / `degree`.
-  // That share is what separates the regimes measured (docs/simulation.md, "The smoother"):
-  // Chebyshev was 13 % faster a step at 0.94 (Hertz, 0.499), 25-30 % at 0.59 (Hertz, 0.49),
-  // level at 0.53 (the paper breast at 1 ms steps, 0.49) and 0.11, slower at 0.17 (the
-  // paper breast at 0.45). More than 1: never (the smoother named is used).
+  // The share orders the cases of one scene and mesh, not all of them (docs/simulation.md,
+  // "The smoother"): Chebyshev was the faster step from 0.32 up on the Hertz scene, from
+  // about 0.4 on the paper breast at 1 ms steps, nowhere up to 0.69 on the xfine breast.
+  // More than 1: never (the smoother named is used).
   double chebyshev_share = 2;
   Smoother coarse_smoother = Smoother::Jacobi;
   int coarse_degree = 1;

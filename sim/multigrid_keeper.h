@@ -51,9 +51,11 @@ class MultigridKeeper {
     }
     return o;
   }
-  /// Between the shares where Chebyshev was level with one sweep or slower (0.53 and below:
-  /// the paper breast at 1 ms steps) and where it was faster (0.59 and above: the Hertz
-  /// probe at 0.49 and 0.499); amg::Options::chebyshev_share.
+  /// amg::Options::chebyshev_share. The share where Chebyshev becomes the faster step moves
+  /// with the scene and the mesh (docs/simulation.md, "Where the two cross"): from 0.32 or
+  /// below on the Hertz probe, about 0.4 on the paper breast at 1 ms steps, above 0.69 on
+  /// xfine. At 0.5 the Hertz probe at 0.49 keeps its Chebyshev (1.9x fewer iterations),
+  /// the paper breast forgoes 3-5 % below it and xfine pays 8-9 % just above it.
   static constexpr double kChebyshevShare = 0.5;
 
   /// Before a solve preconditioned by `p` of a system whose stiffness weight is `scale`:
