@@ -32,12 +32,16 @@ inline const char* preconditioner_name(Preconditioner p) {
   }
   return "block-jacobi";
 }
+inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::BlockJacobi, Preconditioner::Multigrid,
+                                                     Preconditioner::MultigridChebyshev, Preconditioner::MultigridJacobi};
 inline std::vector<std::string> preconditioner_names() {
-  return {"block-jacobi", "multigrid", "multigrid-chebyshev", "multigrid-jacobi"};
+  std::vector<std::string> names;
+  for (Preconditioner p : kPreconditioners) names.emplace_back(preconditioner_name(p));
+  return names;
 }
 /// The preconditioner named (one of preconditioner_names(); any other name: BlockJacobi).
 inline Preconditioner parse_preconditioner(const std::string& name) {
-  for (Preconditioner p : {Preconditioner::Multigrid, Preconditioner::MultigridChebyshev, Preconditioner::MultigridJacobi})
+  for (Preconditioner p : kPreconditioners)
     if (name == preconditioner_name(p)) return p;
   return Preconditioner::BlockJacobi;
 }
