@@ -15,6 +15,13 @@ using namespace palpation;
 
 namespace {
 
+// PALPATION_LIGHT_TESTS (the sanitizer stage of .ci/run): the coarse mesh and the first
+// pass only (6 s).
+bool light_tests() {
+  const char* light = std::getenv("PALPATION_LIGHT_TESTS");
+  return light && *light && *light != '0';
+}
+
 sim::Scenario sweep(const std::string& name) {
   sim::Scenario s = sim::builtin_scenario(name);
   // A 7.5 mm edge by default (3,417 nodes, 16,821 tetrahedra: between "coarse" and
@@ -23,10 +30,7 @@ sim::Scenario sweep(const std::string& name) {
   // nodal-pressure element takes about 31 ms a step on CI's kind of VM (one core each):
   // two 12 s runs take about 6 minutes, the whole 24 s sweep took 19 (`palpation run`
   // and tools/gpu-check.sh's sweep stage run all four passes).
-  // PALPATION_LIGHT_TESTS (the sanitizer stage of .ci/run): the coarse mesh and the first
-  // pass only (6 s).
-  const char* light = std::getenv("PALPATION_LIGHT_TESTS");
-  const bool is_light = light && *light && *light != '0';
+  const bool is_light = light_tests();
   const char* env = std::getenv("PALPATION_SWEEP_RESOLUTION");
   if (env && *env) {
     s.patient.resolution = env;
@@ -82,7 +86,7 @@ class TestPaperSweep : public QObject {
     const std::vector<double> few(rt.step_ms.begin(), rt.step_ms.begin() + 10);
     QCOMPARE(app::live::after_warmup(few), few);  // a run shorter than the warm-up keeps all
     const app::cli::SweepAnalysis at = app::cli::analyze_sweep(rt.samples), an = app::cli::analyze_sweep(rn.samples);
-    const bool light = rt.summary["steps"].get<int>() < 10000;
+    const bool light = light_tests();
     QCOMPARE(int(at.passes.size()), light ? 1 : 2);
     int within = 0;
     for (const auto& p : at.passes) {
