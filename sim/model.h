@@ -129,9 +129,12 @@ using FixedPredicate = std::function<bool(const Eigen::Vector3d&)>;
 Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed);
 
 /// Parameters as a backend of this model runs them: Element::Auto resolved from the
-/// tissue's Poisson's ratio (params.h). Both backends apply it to what they are given.
-inline SimParams resolved_for(const Model& m, SimParams p) {
+/// tissue's Poisson's ratio, Preconditioner::Auto from the mesh's size and whether the
+/// backend is the GPU's persistent solver (`gpu`; params.h). Both backends apply it to what
+/// they are given, so params() names what runs.
+inline SimParams resolved_for(const Model& m, SimParams p, bool gpu = false) {
   p.element = resolve_element(p.element, m.tissue.poisson_ratio);
+  p.solver.preconditioner = resolve_preconditioner(p.solver.preconditioner, gpu, m.num_nodes());
   return p;
 }
 

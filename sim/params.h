@@ -21,10 +21,31 @@ enum class Precision { Double, Float };
 /// same levels, Chebyshev on the finest one always (on the breast at 1 ms steps and 0.45 it
 /// costs more time than it saves). MultigridJacobi: the same levels, one Jacobi sweep on the
 /// finest one always (what Multigrid does below the share; to measure where the two cross).
-enum class Preconditioner { BlockJacobi, Multigrid, MultigridChebyshev, MultigridJacobi };
-inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi; }
+/// Auto (the default): the one default_preconditioner picks for the backend and the mesh,
+/// resolved where a backend is made (resolved_for in model.h), as Element::Auto is.
+enum class Preconditioner { Auto, BlockJacobi, Multigrid, MultigridChebyshev, MultigridJacobi };
+inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi && p != Preconditioner::Auto; }
+
+/// Nodes from which Auto means Multigrid on the GPU's persistent solver. Measured on an H200
+/// (docs/simulation.md, "Which preconditioner runs"; CUDA, double, the paper sweep, 1,000
+/// steps; block-Jacobi -> multigrid): the paper breast (8,445 nodes) is quicker with
+/// block-Jacobi (0.77-0.85x), whose few iterations are nearly all barriers; from the fine
+/// breast (24,982 nodes) the multigrid is as quick or quicker (1.08x at CG 1e-3, level held
+/// at 1 % with the p99 4.33 -> 3.58 ms), at 42,967 nodes 1.05-1.20x, on xfine 1.27-1.42x and
+/// on the 800k-tetrahedron breast 1.36-1.69x. On the CPU block-Jacobi's step is the shorter
+/// on every mesh measured, coarse to xfine (paper: 30 -> 7 iterations at CG 1e-3 but 32 ->
+/// 47 ms a step; xfine on 16 cores 258 -> 592 ms), so Auto is block-Jacobi there at any size.
+inline constexpr int kGpuMultigridFromNodes = 20000;
+inline Preconditioner default_preconditioner(bool gpu, int nodes) {
+  return gpu && nodes >= kGpuMultigridFromNodes ? Preconditioner::Multigrid : Preconditioner::BlockJacobi;
+}
+/// The preconditioner that runs: p itself unless it is Auto.
+inline Preconditioner resolve_preconditioner(Preconditioner p, bool gpu, int nodes) {
+  return p == Preconditioner::Auto ? default_preconditioner(gpu, nodes) : p;
+}
 inline const char* preconditioner_name(Preconditioner p) {
   switch (p) {
+    case Preconditioner::Auto: return "auto";
     case Preconditioner::Multigrid: return "multigrid";
     case Preconditioner::MultigridChebyshev: return "multigrid-chebyshev";
     case Preconditioner::MultigridJacobi: return "multigrid-jacobi";
@@ -32,8 +53,9 @@ inline const char* preconditioner_name(Preconditioner p) {
   }
   return "block-jacobi";
 }
-inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::BlockJacobi, Preconditioner::Multigrid,
-                                                     Preconditioner::MultigridChebyshev, Preconditioner::MultigridJacobi};
+inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::Auto, Preconditioner::BlockJacobi,
+                                                     Preconditioner::Multigrid, Preconditioner::MultigridChebyshev,
+                                                     Preconditioner::MultigridJacobi};
 inline std::vector<std::string> preconditioner_names() {
   std::vector<std::string> names;
   for (Preconditioner p : kPreconditioners) names.emplace_back(preconditioner_name(p));
@@ -65,7 +87,7 @@ struct SolverParams {
   // every step, as the CUDA backend does). backend_cpu.cpp says why this is safe;
   // docs/benchmarks.md has the step time against force error.
   double corotation_tolerance = 1e-3;
-  Preconditioner preconditioner = Preconditioner::BlockJacobi;
+  Preconditioner preconditioner = Preconditioner::Auto;
   // > 0: the finger-force error to hold (a fraction of the converged force); the CG
   // tolerance is then chosen and adapted by Simulation (error_control.h), cg_tolerance its
   // start. 0: cg_tolerance as given, fixed. Scenario files that name no cg_tolerance and

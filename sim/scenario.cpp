@@ -417,9 +417,9 @@ std::string scenario_to_json(const Scenario& s) {
                  {"cg_rescue_tolerance", sv.cg_rescue_tolerance},
                  {"cg_rescue_iterations", sv.cg_rescue_iterations},
                  {"corotation_tolerance", sv.corotation_tolerance}};
-  // Written only when not the default, so that a scenario's text (generated cases, which
-  // curricula pin by hash; recordings) stays byte for byte what it was before the key.
-  if (sv.preconditioner != Preconditioner::BlockJacobi) j["solver"]["preconditioner"] = preconditioner_name(sv.preconditioner);
+  // Written only when not the default (auto), so that a scenario's text (generated cases,
+  // which curricula pin by hash; recordings) stays byte for byte what it was before the key.
+  if (sv.preconditioner != Preconditioner::Auto) j["solver"]["preconditioner"] = preconditioner_name(sv.preconditioner);
   // Read back, a scenario with cg_tolerance and no force_error has a fixed tolerance.
   if (sv.force_error > 0) j["solver"]["force_error"] = sv.force_error;
   j["contact"] = {{"stiffness", s.params.contact.stiffness},

@@ -289,7 +289,10 @@ DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<cons
 bool Simulation::fall_back_to_cpu(const std::string& why) {
   if (!backend_ || backend_->name() == "cpu") return false;
   const std::string was = backend_->name();
-  auto cpu = make_backend(BackendKind::Cpu, model_, backend_->params());
+  SimParams p = backend_->params();
+  // A preconditioner the GPU's size rule chose is chosen again for the CPU (block-Jacobi).
+  if (s_.params.solver.preconditioner == Preconditioner::Auto) p.solver.preconditioner = Preconditioner::Auto;
+  auto cpu = make_backend(BackendKind::Cpu, model_, p);
   cpu->set_materials(materials_);
   cpu->reset();
   cpu->set_deferred_levels(deferred_levels_);

@@ -366,9 +366,10 @@ if has bench; then
   timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BENCH_MESHES" --backends cuda --precisions double,float \
     --out /tmp/palpation-bench-a
   say "bench (cuda) exit $?"
-  # The baselines have the linear element only: they are compared with cuda on the same element.
+  # The baselines have the linear element and block-Jacobi only: they are compared with cuda
+  # on the same element and preconditioner (auto would take the multigrid on xfine).
   timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$BASELINE_MESHES" --backends cuda,cuda-bsr,cuda-csr --precisions double \
-    --element linear --tolerances 1e-3,1e-6 --out /tmp/palpation-bench-b
+    --element linear --preconditioner block-jacobi --tolerances 1e-3,1e-6 --out /tmp/palpation-bench-b
   say "bench (cuda, cuda-bsr, cuda-csr; linear element) exit $?"
   python3 - /tmp/palpation-bench-a/bench.csv /tmp/palpation-bench-b/bench.csv "$OUT/bench.csv" <<'EOF'
 import os, sys
@@ -430,7 +431,7 @@ if has baselines; then
     say "baselines: $m, ${BASELINE_PRECISIONS}, linear element, CG 1e-3 and 1e-6"
     rm -rf "/tmp/palpation-baselines-$m"
     timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda,cuda-bsr,cuda-csr --precisions "$BASELINE_PRECISIONS" \
-      --element linear --tolerances 1e-3,1e-6 --out "/tmp/palpation-baselines-$m" | tee -a "$OUT/baselines.txt"
+      --element linear --preconditioner block-jacobi --tolerances 1e-3,1e-6 --out "/tmp/palpation-baselines-$m" | tee -a "$OUT/baselines.txt"
     say "baselines $m exit ${PIPESTATUS[0]}"
     f=/tmp/palpation-baselines-$m/bench.csv
     [[ -f $f ]] && { [[ -f $OUT/baselines.csv ]] && tail -n +2 "$f" >>"$OUT/baselines.csv" || cp "$f" "$OUT/baselines.csv"; }

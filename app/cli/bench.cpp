@@ -203,7 +203,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                         "last %.2e; %d divergence resets\n",
                         tr.control.tolerance, tr.control.checks, tr.control.over_target, tr.control.worst_error,
                         tr.control.last_error, tr.divergences);
-          if (sim::is_multigrid(sp.params.solver.preconditioner))
+          if (sim::is_multigrid(tr.preconditioner))
             std::printf("        multigrid: %ld level builds, finest level smoothed by %s (nodal-pressure share %.2f)%s\n",
                         tr.multigrid.builds, tr.multigrid.smoother(), tr.multigrid.pressure_share,
                         tr.multigrid.failures
@@ -225,6 +225,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"controller_worst_check_error", tr.control.worst_error},
                                       {"divergence_resets", tr.divergences},
                                       {"backend_fallbacks", tr.fallbacks},
+                                      {"preconditioner", sim::preconditioner_name(tr.preconditioner)},
                                       {"multigrid_builds", tr.multigrid.builds},
                                       {"multigrid_failures", tr.multigrid.failures},
                                       {"multigrid_smoother", tr.multigrid.smoother()},
@@ -280,7 +281,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             << p["cg_iterations_median"] << ',' << p["cg_iterations_max"] << ',' << p["force_error"] << ','
             << p["displacement_error"] << ',' << (p["finite"].get<bool>() ? "true" : "false") << ',' << report["date"].get<std::string>()
             << ',' << PALPATION_GIT_COMMIT << ',' << p["floor_ms"] << ',' << p["x_floor"] << ','
-            << report["element"].get<std::string>() << ',' << report["preconditioner"].get<std::string>() << ','
+            << report["element"].get<std::string>() << ',' << p["preconditioner"].get<std::string>() << ','
             << p["force_error_target"] << '\n';
     }
     if (can_plot()) {

@@ -1,5 +1,6 @@
 // palpation bench [--quick] [--out DIR] [--meshes ...] [--backends ...] [--precisions ...] [--score] [--review FILE]
 #include <cstdio>
+#include <string>
 
 #include "cli/bench.h"
 #include "cli/cli.h"
@@ -24,7 +25,8 @@ CommandAction add_bench_command(CLI::App& app) {
                   "Skin membrane thickness, m (tissue.skin.thickness, 56 kPa unless the scenario says; 0: none; default: the scenario's)")
       ->check(CLI::Range(0.0, sim::kMaxSkinThickness));
   sub->add_option("--preconditioner", o->preconditioner,
-                  "CG preconditioner (block-jacobi, multigrid, multigrid-chebyshev, multigrid-jacobi; default: the scenario's). Multigrid runs on the cpu and cuda backends: "
+                  "CG preconditioner (auto, block-jacobi, multigrid, multigrid-chebyshev, multigrid-jacobi; default: the scenario's, auto unless it names one: multigrid on the GPU from " +
+                      std::to_string(sim::kGpuMultigridFromNodes) + " nodes, else block-jacobi). Multigrid runs on the cpu and cuda backends: "
                   "the library baselines are skipped")
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--force-error", o->force_error,

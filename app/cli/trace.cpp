@@ -52,6 +52,7 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
   tr.divergences = sim.divergences();
   tr.fallbacks = sim.fallbacks();
   tr.multigrid = sim.backend().multigrid_counts();
+  tr.preconditioner = sim.backend().params().solver.preconditioner;
   return tr;
 }
 

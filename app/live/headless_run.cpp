@@ -150,7 +150,7 @@ nlohmann::json error_control_json(const sim::ErrorControlStats& c) {
 
 void add_multigrid_json(nlohmann::json& j, const sim::Simulation& simulation) {
   const sim::Backend::MultigridCounts m = simulation.backend().multigrid_counts();
-  j["preconditioner"] = sim::preconditioner_name(simulation.scenario().params.solver.preconditioner);
+  j["preconditioner"] = sim::preconditioner_name(simulation.backend().params().solver.preconditioner);  // as it ran
   j["multigrid_builds"] = m.builds;
   j["multigrid_build_failures"] = m.failures;
   j["multigrid_smoother"] = m.smoother();

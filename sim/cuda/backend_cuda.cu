@@ -203,7 +203,7 @@ template <class T>
 class CudaBackend final : public Backend {
  public:
   CudaBackend(const Model& model, const SimParams& params, Solver solver)
-      : m_(model), p_(resolved_for(model, params)), solver_(solver) {
+      : m_(model), p_(resolved_for(model, params, solver == Solver::Persistent)), solver_(solver) {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
     if (amg::eigen_max_align_bytes() != EIGEN_MAX_ALIGN_BYTES)
@@ -316,7 +316,7 @@ class CudaBackend final : public Backend {
                               multigrid_counts_.builds, multigrid_counts_.failures);
   }
   void set_params(const SimParams& given) override {
-    const SimParams p = resolved_for(m_, given);
+    const SimParams p = resolved_for(m_, given, solver_ == Solver::Persistent);
     // A body at rest is at rest under the parameters it settled with: a new gravity (or
     // anything else but dt and threads) is solved for.
     if (differ_beyond_step(p, p_)) rested_ = false;

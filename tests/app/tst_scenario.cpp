@@ -161,15 +161,21 @@ class TestScenario : public QObject {
     QVERIFY_THROWS_EXCEPTION(sim::ScenarioError, sim::parse_scenario(with("\"tissue\": {\"element\": \"quadratic\"}"), "case.json"));
   }
 
-  // The CG preconditioner: block-Jacobi unless a scenario names multigrid; multigrid is
-  // written back out, so a scenario round-trips with it; multigrid runs on the cpu and cuda
-  // backends (auto takes cuda where there is a GPU, as for block-Jacobi), and a library
-  // baseline asked for by name refuses it with the reason.
+  // The CG preconditioner: auto unless a scenario names one; a named one is written back
+  // out, so a scenario round-trips with it; multigrid runs on the cpu and cuda backends
+  // (auto takes cuda where there is a GPU, as for block-Jacobi), and a library baseline
+  // asked for by name refuses it with the reason.
   void preconditionerRoundTrips() {
     const sim::Scenario plain = sim::parse_scenario(with("\"solver\": {}"), "case.json");
-    QVERIFY(plain.params.solver.preconditioner == sim::Preconditioner::BlockJacobi);
+    QVERIFY(plain.params.solver.preconditioner == sim::Preconditioner::Auto);
     // The default is not written: scenarios written before the key keep their text.
     QVERIFY(sim::scenario_to_json(plain).find("preconditioner") == std::string::npos);
+    // Block-Jacobi named is no longer the default, so it is written and read back.
+    const sim::Scenario bj = sim::parse_scenario(with("\"solver\": {\"preconditioner\": \"block-jacobi\"}"), "case.json");
+    QVERIFY(bj.params.solver.preconditioner == sim::Preconditioner::BlockJacobi);
+    QVERIFY(sim::scenario_to_json(bj).find("\"preconditioner\": \"block-jacobi\"") != std::string::npos);
+    QVERIFY(sim::parse_scenario(sim::scenario_to_json(bj), "case.json").params.solver.preconditioner ==
+            sim::Preconditioner::BlockJacobi);
     const sim::Scenario mg = sim::parse_scenario(with("\"solver\": {\"preconditioner\": \"multigrid\"}"), "case.json");
     QVERIFY(mg.params.solver.preconditioner == sim::Preconditioner::Multigrid);
     const std::string text = sim::scenario_to_json(mg);
@@ -214,6 +220,36 @@ class TestScenario : public QObject {
     QVERIFY(sim::parse_scenario(sim::scenario_to_json(jac), "case.json").params.solver.preconditioner ==
             sim::Preconditioner::MultigridJacobi);
     baseline_refuses(jac.params, "multigrid-jacobi");
+  }
+
+  // Auto is resolved where a backend is made: block-Jacobi on the CPU at any size, and on
+  // the GPU's persistent solver below kGpuMultigridFromNodes nodes; the multigrid from
+  // there (params.h says why). A named preconditioner is never changed, and a backend's
+  // params() name the one that runs.
+  void autoPreconditionerResolves() {
+    using sim::Preconditioner;
+    const int at = sim::kGpuMultigridFromNodes;
+    QVERIFY(sim::resolve_preconditioner(Preconditioner::Auto, true, at) == Preconditioner::Multigrid);
+    QVERIFY(sim::resolve_preconditioner(Preconditioner::Auto, true, at - 1) == Preconditioner::BlockJacobi);
+    QVERIFY(sim::resolve_preconditioner(Preconditioner::Auto, false, 100 * at) == Preconditioner::BlockJacobi);
+    for (Preconditioner p : sim::kPreconditioners)
+      if (p != Preconditioner::Auto)
+        for (bool gpu : {false, true})
+          for (int n : {1, at, 100 * at}) QVERIFY(sim::resolve_preconditioner(p, gpu, n) == p);
+    QVERIFY(!sim::is_multigrid(Preconditioner::Auto));
+    const sim::Scenario plain = sim::parse_scenario(with("\"solver\": {}"), "case.json");
+    const sim::Model m = sim::build_scenario_model(plain, sim::patient_mesh(plain));
+    QVERIFY(m.num_nodes() < at);  // the box: block-Jacobi on either device
+    QVERIFY(sim::resolved_for(m, plain.params, true).solver.preconditioner == Preconditioner::BlockJacobi);
+    const auto cpu = sim::make_backend(sim::BackendKind::Cpu, m, plain.params);
+    QVERIFY(cpu->params().solver.preconditioner == Preconditioner::BlockJacobi);
+    // set_params resolves as the constructor does: what the live loop hands back stays put.
+    cpu->set_params(plain.params);
+    QVERIFY(cpu->params().solver.preconditioner == Preconditioner::BlockJacobi);
+    if (sim::cuda_available()) {
+      const auto gpu = sim::make_backend(sim::BackendKind::Cuda, m, plain.params);
+      QVERIFY(gpu->params().solver.preconditioner == Preconditioner::BlockJacobi);
+    }
   }
 
   // Tissue layers read, write and read back as they were; the layered built-in sweep has
