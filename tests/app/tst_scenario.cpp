@@ -222,36 +222,6 @@ class TestScenario : public QObject {
     baseline_refuses(jac.params, "multigrid-jacobi");
   }
 
-  // Auto is resolved where a backend is made: block-Jacobi on the CPU at any size, and on
-  // the GPU's persistent solver below kGpuMultigridFromNodes nodes; the multigrid from
-  // there (params.h says why). A named preconditioner is never changed, and a backend's
-  // params() name the one that runs.
-  void autoPreconditionerResolves() {
-    using sim::Preconditioner;
-    const int at = sim::kGpuMultigridFromNodes;
-    QVERIFY(sim::resolve_preconditioner(Preconditioner::Auto, true, at) == Preconditioner::Multigrid);
-    QVERIFY(sim::resolve_preconditioner(Preconditioner::Auto, true, at - 1) == Preconditioner::BlockJacobi);
-    QVERIFY(sim::resolve_preconditioner(Preconditioner::Auto, false, 100 * at) == Preconditioner::BlockJacobi);
-    for (Preconditioner p : sim::kPreconditioners)
-      if (p != Preconditioner::Auto)
-        for (bool gpu : {false, true})
-          for (int n : {1, at, 100 * at}) QVERIFY(sim::resolve_preconditioner(p, gpu, n) == p);
-    QVERIFY(!sim::is_multigrid(Preconditioner::Auto));
-    const sim::Scenario plain = sim::parse_scenario(with("\"solver\": {}"), "case.json");
-    const sim::Model m = sim::build_scenario_model(plain, sim::patient_mesh(plain));
-    QVERIFY(m.num_nodes() < at);  // the box: block-Jacobi on either device
-    QVERIFY(sim::resolved_for(m, plain.params, true).solver.preconditioner == Preconditioner::BlockJacobi);
-    const auto cpu = sim::make_backend(sim::BackendKind::Cpu, m, plain.params);
-    QVERIFY(cpu->params().solver.preconditioner == Preconditioner::BlockJacobi);
-    // set_params resolves as the constructor does: what the live loop hands back stays put.
-    cpu->set_params(plain.params);
-    QVERIFY(cpu->params().solver.preconditioner == Preconditioner::BlockJacobi);
-    if (sim::cuda_available()) {
-      const auto gpu = sim::make_backend(sim::BackendKind::Cuda, m, plain.params);
-      QVERIFY(gpu->params().solver.preconditioner == Preconditioner::BlockJacobi);
-    }
-  }
-
   // Tissue layers read, write and read back as they were; the layered built-in sweep has
   // the built-in breasts' layers and its no-tumour twin differs only in the tumour.
   void layersRoundTrip() {

@@ -691,6 +691,56 @@ class TestMultigrid : public QObject {
     QVERIFY(!prepare());  // block-Jacobi after a failed build
   }
 
+  // solver.preconditioner "auto" (the default) is resolved where a backend is made, in its
+  // constructor and in set_params: the multigrid on the GPU's persistent solver from
+  // kGpuMultigridFromNodes nodes (where it measured as quick or quicker than block-Jacobi),
+  // block-Jacobi below it, on the CPU at any size, and for the library baselines, which
+  // have no multigrid. A named preconditioner is never changed. The CUDA cases run where
+  // a GPU is usable (tools/gpu-check.sh tests).
+  void autoPreconditionerResolves() {
+    const int at = kGpuMultigridFromNodes;
+    QVERIFY(resolve_preconditioner(Preconditioner::Auto, true, at) == Preconditioner::Multigrid);
+    QVERIFY(resolve_preconditioner(Preconditioner::Auto, true, at - 1) == Preconditioner::BlockJacobi);
+    QVERIFY(resolve_preconditioner(Preconditioner::Auto, false, 100 * at) == Preconditioner::BlockJacobi);
+    for (Preconditioner p : kPreconditioners)
+      if (p != Preconditioner::Auto)
+        for (bool gpu : {false, true})
+          for (int n : {1, at, 100 * at}) QVERIFY(resolve_preconditioner(p, gpu, n) == p);
+    QVERIFY(!is_multigrid(Preconditioner::Auto));
+
+    Scenario small = press_box();  // 15 x 15 x 8 cells: 2,304 nodes
+    Scenario large = press_box();  // 38 x 38 x 19 cells: 30,420 nodes
+    large.patient.edge = 0.0016;
+    const Model ms = build_scenario_model(small, patient_mesh(small));
+    const Model ml = build_scenario_model(large, patient_mesh(large));
+    qInfo("boxes of %d and %d nodes; the multigrid from %d on the GPU", ms.num_nodes(), ml.num_nodes(), at);
+    QVERIFY(ms.num_nodes() < at && ml.num_nodes() >= at);
+    SimParams p;  // the defaults: preconditioner auto
+    QVERIFY(p.solver.preconditioner == Preconditioner::Auto);
+    // What the backend runs after its constructor, or Auto (never a resolution) where
+    // set_params, given what the live loop hands back, resolved it otherwise.
+    auto resolved = [&](const std::string& backend, const Model& m, SimParams q) {
+      const auto b = make_named_backend(backend, m, q);
+      const Preconditioner made = b->params().solver.preconditioner;
+      b->set_params(q);
+      return b->params().solver.preconditioner == made ? made : Preconditioner::Auto;
+    };
+    QVERIFY(resolved("cpu", ms, p) == Preconditioner::BlockJacobi);
+    QVERIFY(resolved("cpu", ml, p) == Preconditioner::BlockJacobi);
+    SimParams named = p;
+    named.solver.preconditioner = Preconditioner::Multigrid;
+    QVERIFY(resolved("cpu", ms, named) == Preconditioner::Multigrid);
+    std::string why;
+    if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): the CUDA backend's choice is not checked").c_str());
+    QVERIFY(resolved("cuda", ms, p) == Preconditioner::BlockJacobi);
+    QVERIFY(resolved("cuda", ml, p) == Preconditioner::Multigrid);
+    named.solver.preconditioner = Preconditioner::BlockJacobi;
+    QVERIFY(resolved("cuda", ml, named) == Preconditioner::BlockJacobi);
+    SimParams linear = p;  // the baselines have the linear element only
+    linear.element = Element::Linear;
+    QVERIFY(resolved("cuda-bsr", ml, linear) == Preconditioner::BlockJacobi);
+  }
+
   // The whole step with it: a finger presses a box of nodal-pressure tissue
   // (Poisson's ratio 0.45: the pressure term is in the system) at the haptic step. The
   // forces match block-Jacobi's within what a relative residual of 1e-6 allows (1e-4),
