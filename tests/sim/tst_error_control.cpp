@@ -176,16 +176,25 @@ class TestErrorControl : public QObject {
   void rollbackTakesTheSameStepAgain_data() {
     QTest::addColumn<QString>("backend");
     QTest::addColumn<double>("corotation");  // the CPU's corotation_tolerance (0: every element every step)
-    QTest::newRow("cpu") << "cpu" << 1e-3;
-    QTest::newRow("cpu, every rotation every step") << "cpu" << 0.0;
-    QTest::newRow("cuda") << "cuda" << 0.0;
+    QTest::addColumn<double>("bound");       // relative force difference allowed a step
+    QTest::newRow("cpu") << "cpu" << 1e-3 << 1e-12;
+    QTest::newRow("cpu, every rotation every step") << "cpu" << 0.0 << 1e-12;
+    QTest::newRow("cuda") << "cuda" << 0.0 << 1e-9;
   }
   // A step from a checkpoint, rolled back and taken again, gives the same forces and
-  // positions (to the last bits: the same arithmetic from the same state), and the steps
-  // after it go on as if it had been taken once.
+  // positions, and the steps after it go on as if it had been taken once. On the CPU to
+  // the last bits (the same arithmetic from the same state: measured 0). On the GPU the
+  // CG's dot products and the contact terms are summed with atomics, whose order changes
+  // from run to run: two runs of the same steps differ in the last bits, and CG carries
+  // that up (measured on an H200, 16 runs: 4.7e-14 to 5.1e-12, the CG iterations always
+  // the same). 1e-9 is 200x above that. A state the rollback failed to restore would
+  // start the solve from elsewhere, and CG stops once the residual is 1e-3 of the
+  // right-hand side (this scene's tolerance): differences of the order of that tolerance's
+  // force error (2.5e-6 on the coarse breast, params.h), three orders above the bound.
   void rollbackTakesTheSameStepAgain() {
     QFETCH(QString, backend);
     QFETCH(double, corotation);
+    QFETCH(double, bound);
     if (!backend_usable(backend.toStdString())) return;
     Scenario s = box(backend.toStdString());
     s.params.solver.corotation_tolerance = corotation;
@@ -199,9 +208,11 @@ class TestErrorControl : public QObject {
     std::vector<double> rest;
     twice->positions(rest);
     QCOMPARE(int(rest.size()), 3 * m.num_nodes());
+    double worst = 0;
+    int worst_step = 0, its_differ = 0;
     for (int k = 1; k <= 60; ++k) {
       in[0] = finger_at(k, s.params.solver.dt);
-      once->step(in, a);
+      const StepStats sa = once->step(in, a);
       if (k % 7 == 3) {
         QVERIFY(twice->checkpoint());
         SimParams loose = twice->params();
@@ -211,18 +222,22 @@ class TestErrorControl : public QObject {
         twice->rollback();
         twice->set_params(s.params);
       }
-      twice->step(in, b);
-      QVERIFY2((a[0].force_raw - b[0].force_raw).norm() <= 1e-12 * std::max(1.0, a[0].force_raw.norm()),
-               ("step " + std::to_string(k)).c_str());
-      QVERIFY((a[0].force - b[0].force).norm() <= 1e-12 * std::max(1.0, a[0].force.norm()));
+      const StepStats sb = twice->step(in, b);
+      const double d = std::max((a[0].force_raw - b[0].force_raw).norm() / std::max(1.0, a[0].force_raw.norm()),
+                                (a[0].force - b[0].force).norm() / std::max(1.0, a[0].force.norm()));
+      if (d > worst) worst = d, worst_step = k;
+      if (sa.cg_iterations != sb.cg_iterations) ++its_differ;
     }
+    qInfo("%s: largest relative force difference %.2e (step %d); CG iteration counts differed in %d of 60 steps",
+          qPrintable(backend), worst, worst_step, its_differ);
+    QVERIFY2(worst <= bound, qPrintable(QString("step %1: %2").arg(worst_step).arg(worst)));
     QVERIFY(a[0].contacts > 0);
     std::vector<double> xa, xb;
     once->positions(xa);
     twice->positions(xb);
     double d = 0;
     for (std::size_t i = 0; i < xa.size(); ++i) d = std::max(d, std::abs(xa[i] - xb[i]));
-    QVERIFY2(d < 1e-14, std::to_string(d).c_str());
+    QVERIFY2(d < 1e-2 * bound, std::to_string(d).c_str());  // m: the press is 4-7 mm deep
   }
 
   void referenceTakeGoesOnFromTheLooseSolution_data() {
