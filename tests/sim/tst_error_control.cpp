@@ -187,10 +187,11 @@ class TestErrorControl : public QObject {
   // CG's dot products and the contact terms are summed with atomics, whose order changes
   // from run to run: two runs of the same steps differ in the last bits, and CG carries
   // that up (measured on an H200, 37 runs: 4.7e-14 to 5.1e-12, 4 of them over 1e-12, the
-  // CG iterations always the same). 1e-9 is 200x above that. A state the rollback failed to restore would
-  // start the solve from elsewhere, and CG stops once the residual is 1e-3 of the
-  // right-hand side (this scene's tolerance): differences of the order of that tolerance's
-  // force error (2.5e-6 on the coarse breast, params.h), three orders above the bound.
+  // CG iterations always the same). 1e-9 is 200x above that. A state the rollback failed
+  // to restore would start the solve from elsewhere, and CG stops once the residual is
+  // 1e-3 of the right-hand side (this scene's tolerance): differences of the order of that
+  // tolerance's force error (2.5e-6 on the coarse breast, params.h), three orders above
+  // the bound.
   void rollbackTakesTheSameStepAgain() {
     QFETCH(QString, backend);
     QFETCH(double, corotation);
