@@ -1,5 +1,6 @@
 #include "backend.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -28,6 +29,16 @@ std::vector<std::string> available_backends() {
     out.push_back("cuda-bsr");
   }
   return out;
+}
+
+void Backend::begin_step(std::span<const FingerInput> fingers) {
+  begun_out_.assign(fingers.size(), FingerOutput{});
+  begun_stats_ = step(fingers, begun_out_);
+}
+
+StepStats Backend::finish_step(std::span<FingerOutput> out) {
+  std::copy_n(begun_out_.begin(), std::min(begun_out_.size(), out.size()), out.begin());
+  return begun_stats_;
 }
 
 void finish_finger_output(FingerOutput& o, Eigen::Vector3d& filtered, double filter_alpha) {

@@ -48,6 +48,22 @@ class Backend {
   /// tighter tolerance (the converged check's reference), goes on from where the first
   /// take stopped. The steps after it extrapolate as after any take. By default: rollback().
   virtual void rollback_for_reference() { rollback(); }
+  /// The converged check beside the steps (SolverParams::check): a second backend of this
+  /// kind, for this model, that takes the check's reference while this one goes on. On CUDA
+  /// it works in a stream of its own, below this one's priority. Null: this backend cannot
+  /// (the check is then taken in the step).
+  virtual std::unique_ptr<Backend> make_shadow(const SimParams& /*params*/) const { return nullptr; }
+  /// After checkpoint() and a take: puts `shadow` (of make_shadow(), idle) where
+  /// rollback_for_reference() would put this backend: the checkpoint's state, its next take
+  /// starting from this take's solution. The copies are ordered before anything either
+  /// backend does next. False, and `shadow` untouched, when it cannot.
+  virtual bool fork_reference(Backend& /*shadow*/) { return false; }
+  /// A take in two halves, for a backend stepped beside another: begin_step() starts it,
+  /// step_ready() says whether it has finished (never waits), finish_step() waits for it
+  /// and gives what step() would have. By default begin_step() takes the whole step.
+  virtual void begin_step(std::span<const FingerInput> fingers);
+  virtual bool step_ready() const { return true; }
+  virtual StepStats finish_step(std::span<FingerOutput> out);
   /// The multigrid levels this backend built since it was made (solver.preconditioner
   /// multigrid or multigrid-chebyshev), and the builds that threw: their step and the next
   /// 1,000 ran block-Jacobi (multigrid_keeper.h). Zeros for a backend without a multigrid.
@@ -82,6 +98,11 @@ class Backend {
   /// it was taken (reset, materials, element or preconditioner), or not done; false, counted
   /// as a failed build (multigrid_counts), for one whose run() threw.
   virtual bool install_levels(const std::shared_ptr<LevelsJob>& /*job*/) { return false; }
+
+ private:
+  // The default begin_step()'s result, until finish_step() hands it out.
+  StepStats begun_stats_;
+  std::vector<FingerOutput> begun_out_;
 };
 
 enum class BackendKind { Auto, Cpu, Cuda };

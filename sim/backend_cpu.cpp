@@ -187,6 +187,34 @@ class CpuBackend final : public Backend {
     reuse_pending_ = true;
   }
 
+  // Only where every element is extracted in every take (corotation tolerance 0): kept
+  // element caches are formed by a backend's own history, which a shadow does not share, and
+  // a check against a shadow that extracts them all would measure the kept rotations' error
+  // (about 1e-4 of the force, docs/benchmarks.md), not the solve's: the controller could
+  // then never loosen.
+  std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
+    if (p_.solver.corotation_tolerance > 0 || params.solver.corotation_tolerance > 0) return nullptr;
+    auto s = std::make_unique<CpuBackend<T>>(m_, params);
+    s->set_materials(mat_);
+    return s;
+  }
+  bool fork_reference(Backend& shadow) override {
+    auto* s = dynamic_cast<CpuBackend<T>*>(&shadow);
+    if (!s || s == this || &s->m_ != &m_ || !kept_.valid) return false;
+    s->q_ = kept_.q.size() == q_.size() ? kept_.q : q_;  // a warm start of the polar decompositions
+    s->x_ = kept_.x;
+    s->v_ = kept_.v;
+    s->dv_ = kept_.dv;
+    s->dvprev_ = kept_.dvprev;
+    s->filtered_ = kept_.filtered;
+    s->rested_ = kept_.rested;
+    s->last_converged_ = kept_.last_converged;
+    s->reuse_dv_ = dv_;
+    s->reuse_pending_ = true;
+    s->kept_.valid = false;
+    return true;
+  }
+
   void set_materials(const Materials& mat) override {
     const int ne = m_.num_tets();
     if (&mat != &mat_) mat_ = mat;

@@ -23,6 +23,17 @@ enum class Precision { Double, Float };
 /// finest one always (what Multigrid does below the share; to measure where the two cross).
 /// Auto (the default): the one default_preconditioner picks for the backend and the mesh,
 /// resolved where a backend is made (resolved_for in model.h), as Element::Auto is.
+/// Where the error controller's converged check solves its reference (SolverParams::check).
+enum class CheckPlace { Auto, InStep, Beside };
+inline const char* check_place_name(CheckPlace c) {
+  return c == CheckPlace::InStep ? "in-step" : c == CheckPlace::Beside ? "beside" : "auto";
+}
+inline std::vector<std::string> check_place_names() { return {"auto", "in-step", "beside"}; }
+/// The place named (one of check_place_names(); any other name: Auto).
+inline CheckPlace parse_check_place(const std::string& name) {
+  return name == "in-step" ? CheckPlace::InStep : name == "beside" ? CheckPlace::Beside : CheckPlace::Auto;
+}
+
 enum class Preconditioner { Auto, BlockJacobi, Multigrid, MultigridChebyshev, MultigridJacobi };
 inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi && p != Preconditioner::Auto; }
 
@@ -94,6 +105,15 @@ struct SolverParams {
   // the workstation's patients hold kDefaultForceError; scenarios built in code (the
   // built-in ones included) get a fixed tolerance unless they ask (--force-error).
   double force_error = 0;
+  // Where the converged check of the error controller solves its reference
+  // (error_control.h). InStep: within the check's step, which then keeps the reference
+  // (that step takes both solves). Beside: on a second backend of the same kind, beside the
+  // steps (on CUDA a low-priority stream of its own: no step waits for it), the loose step
+  // kept and its error known some steps later; where the backend cannot fork
+  // (Backend::make_shadow), in the step. Auto: Beside on the fast CUDA backend, whose
+  // persistent solve leaves room on the device, InStep elsewhere (on the CPU a second
+  // solve beside the steps would take the same cores).
+  CheckPlace check = CheckPlace::Auto;
 };
 
 /// The force error a scenario holds when it names neither solver.force_error nor

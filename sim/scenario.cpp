@@ -246,7 +246,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     const json& sv = j["solver"];
     rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations",
                              "cg_rescue_tolerance", "cg_rescue_iterations", "threads", "corotation_tolerance",
-                             "preconditioner", "force_error"});
+                             "preconditioner", "force_error", "check"});
     if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
     if (sv.contains("dt")) {
       s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
@@ -276,6 +276,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (sv.contains("preconditioner"))
       s.params.solver.preconditioner =
           parse_preconditioner(rd.choice(sv["preconditioner"], "solver.preconditioner", preconditioner_names()));
+    if (sv.contains("check"))
+      s.params.solver.check = parse_check_place(rd.choice(sv["check"], "solver.check", check_place_names()));
     // A scenario that names a CG tolerance and no force error keeps that tolerance fixed
     // (every scenario written before the key: its results stay what they were).
     s.params.solver.force_error = sv.contains("cg_tolerance") ? 0.0 : kDefaultForceError;
@@ -420,6 +422,7 @@ std::string scenario_to_json(const Scenario& s) {
   // Written only when not the default (auto), so that a scenario's text (generated cases,
   // which curricula pin by hash; recordings) stays byte for byte what it was before the key.
   if (sv.preconditioner != Preconditioner::Auto) j["solver"]["preconditioner"] = preconditioner_name(sv.preconditioner);
+  if (sv.check != CheckPlace::Auto) j["solver"]["check"] = check_place_name(sv.check);
   // Read back, a scenario with cg_tolerance and no force_error has a fixed tolerance.
   if (sv.force_error > 0) j["solver"]["force_error"] = sv.force_error;
   j["contact"] = {{"stiffness", s.params.contact.stiffness},

@@ -159,6 +159,8 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
     cap_base_ = p.solver.cg_max_iterations;
   }
   if (!control_.on()) return backend_->step(in, out);
+  // A check beside the steps that has finished is scored before this step's tolerance is set.
+  collect_check(false);
   // A capped solve is still rescued (SolverParams::cg_rescue_tolerance), but to no
   // tighter than the tolerance the controller chose: a rescue to 1e-3 would make every
   // looser tolerance 1e-3. The check's reference solve is rescued to its own tolerance
@@ -176,7 +178,7 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
   control_set_tol_ = control_.tolerance();
   // A check needs a step in contact to compare: it follows one (a skipped step at rest
   // costs nothing, and no checkpoint is taken then).
-  if (!(last_contact_ && control_.check_due() && backend_->checkpoint())) {
+  if (!(last_contact_ && control_.check_due() && !pending_check_.on && backend_->checkpoint())) {
     const StepStats st = backend_->step(in, out);
     const bool began = st.contacts > 0 && !last_contact_;
     last_contact_ = st.contacts > 0;
@@ -192,6 +194,10 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
     return loose;
   }
   control_.count_contact_step(false);
+  if (loose.finite && check_beside() && start_check_beside(in)) {
+    std::copy(loose_.begin(), loose_.end(), out.begin());  // the loose step is the one kept
+    return loose;
+  }
   backend_->rollback_for_reference();  // the reference solve goes on from the loose solution
   StepStats st;
   try {
@@ -216,6 +222,85 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
   control_set_tol_ = control_.tolerance();
   st.cg_iterations += loose.cg_iterations;  // the work of the step, both solves
   return st;
+}
+
+bool Simulation::check_beside() const {
+  switch (backend_->params().solver.check) {
+    case CheckPlace::InStep: return false;
+    case CheckPlace::Beside: return true;
+    case CheckPlace::Auto: break;
+  }
+  return backend_->name() == "cuda";
+}
+
+bool Simulation::start_check_beside(std::span<const FingerInput> in) {
+  if (shadow_failed_) return false;
+  // The backend's parameters (dt, contact, element as they are now), solved as the in-step
+  // check's reference is: to the reference tolerance, rescued to it, with the rescue's
+  // cap. Block-Jacobi: a multigrid's levels would be built again for the shadow (seconds on
+  // the large meshes), and the shadow's solve is off the steps' path.
+  SimParams p = backend_->params();
+  p.solver.cg_tolerance = control_.reference_tolerance();
+  p.solver.cg_rescue_tolerance = p.solver.cg_tolerance;
+  p.solver.cg_max_iterations = std::max(cap_base_, p.solver.cg_rescue_iterations);
+  p.solver.preconditioner = Preconditioner::BlockJacobi;
+  try {
+    if (!shadow_) {
+      shadow_ = backend_->make_shadow(p);
+      if (!shadow_) {
+        shadow_failed_ = true;  // this backend cannot: every check in the step
+        return false;
+      }
+    } else {
+      shadow_->set_params(p);
+    }
+    if (!backend_->fork_reference(*shadow_)) return false;
+    shadow_->begin_step(in);
+  } catch (const std::exception& e) {
+    // No room for a second backend (device memory on the large meshes): the checks go on
+    // in the step. The backend's own state is untouched by a failed fork.
+    shadow_.reset();
+    shadow_failed_ = true;
+    if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
+    return false;
+  }
+  pending_check_.on = true;
+  pending_check_.tolerance = p.solver.cg_tolerance;
+  pending_loose_ = loose_;
+  return true;
+}
+
+void Simulation::collect_check(bool wait) {
+  if (!pending_check_.on || (!wait && !shadow_->step_ready())) return;
+  pending_check_.on = false;
+  reference_.resize(pending_loose_.size());
+  StepStats st;
+  try {
+    st = shadow_->finish_step(reference_);
+  } catch (...) {
+    shadow_.reset();
+    throw;
+  }
+  // As in the step: a reference that did not reach its tolerance measures nothing.
+  const std::optional<double> e = finger_force_error(pending_loose_, reference_);
+  if (e && st.finite && st.cg_residual <= 1.0001 * pending_check_.tolerance)
+    control_.checked(*e);
+  else
+    control_.deferred();
+}
+
+void Simulation::drop_shadow() {
+  if (pending_check_.on) {
+    pending_check_.on = false;
+    try {
+      reference_.resize(pending_loose_.size());
+      shadow_->finish_step(reference_);
+    } catch (const std::exception&) {
+      // A shadow that failed is dropped with its check; the backend reports its own errors.
+    }
+  }
+  shadow_.reset();
+  shadow_failed_ = false;
 }
 
 DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<const FingerOutput> out) {
@@ -288,6 +373,7 @@ DivergenceCheck Simulation::check_divergence(const StepStats& st, std::span<cons
 
 bool Simulation::fall_back_to_cpu(const std::string& why) {
   if (!backend_ || backend_->name() == "cpu") return false;
+  drop_shadow();
   const std::string was = backend_->name();
   SimParams p = backend_->params();
   // A preconditioner the GPU's size rule chose is chosen again for the CPU (block-Jacobi).
@@ -310,11 +396,15 @@ int Simulation::set_element_young(std::span<const std::pair<int, double>> change
       materials_.set(e, E, materials_.poisson[std::size_t(e)]);
       ++n;
     }
-  if (n > 0) backend_->set_materials(materials_);
+  if (n > 0) {
+    drop_shadow();  // the next check's shadow is made with the new materials
+    backend_->set_materials(materials_);
+  }
   return n;
 }
 
 void Simulation::reset() {
+  drop_shadow();
   backend_->reset();
   backend_->prepare_solver();  // a multigrid's levels at load, not at the first touch
   summary_known_ = false;

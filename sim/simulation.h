@@ -107,6 +107,7 @@ class Simulation {
   bool fall_back_to_cpu(const std::string& why);
   /// Fault injection and tests: replaces the backend (reset first by the caller).
   void replace_backend(std::unique_ptr<Backend> b) {
+    drop_shadow();
     backend_ = std::move(b);
     backend_->set_deferred_levels(deferred_levels_);
   }
@@ -129,6 +130,11 @@ class Simulation {
   /// The error controller's record (solver.force_error > 0; error_control.h): the CG
   /// tolerance it holds now, its converged checks and the errors they measured.
   const ErrorControlStats& error_control() const { return control_.stats(); }
+  /// Where the controller's checks are solved now: "beside" (the steps) or "in-step"; ""
+  /// while the controller is off.
+  const char* check_place() const {
+    return !control_.on() ? "" : check_beside() && !shadow_failed_ ? "beside" : "in-step";
+  }
   void set_log(const LogFn& log) { log_ = log; }
   double time() const { return t_; }
   int steps() const { return steps_; }
@@ -142,6 +148,16 @@ class Simulation {
   /// many steps in contact the converged check (the step taken again, a hundred times
   /// tighter, from a checkpoint; the tighter one is kept).
   StepStats controlled_step(std::span<const FingerInput> in, std::span<FingerOutput> out);
+  /// Whether the converged check goes beside the steps (SolverParams::check).
+  bool check_beside() const;
+  /// After the check's loose take (kept in loose_) and checkpoint: the reference begun on
+  /// the shadow backend. False (nothing begun): the check is taken in the step.
+  bool start_check_beside(std::span<const FingerInput> in);
+  /// Scores the check beside the steps if it has finished (or, `wait`, once it has).
+  void collect_check(bool wait);
+  /// The shadow backend and its check dropped (its state no longer the backend's kind,
+  /// materials or history): the next check makes another.
+  void drop_shadow();
   Scenario s_;
   Model model_;                          // const after construction
   Materials materials_;
@@ -165,6 +181,14 @@ class Simulation {
   int cap_base_ = 200;
   bool last_contact_ = false;            // the last step touched: a check may follow
   std::vector<FingerOutput> loose_;      // the check's loose outputs
+  // The check beside the steps: its backend, the check in flight, its loose outputs.
+  std::unique_ptr<Backend> shadow_;
+  bool shadow_failed_ = false;           // this backend cannot have one: checks in the step
+  struct {
+    bool on = false;
+    double tolerance = 0;                // the reference's
+  } pending_check_;
+  std::vector<FingerOutput> pending_loose_, reference_;
   LogFn log_;
 };
 

@@ -111,6 +111,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     report["skin_thickness"] = s.skin.thickness;
     if (!opt.preconditioner.empty()) s.params.solver.preconditioner = sim::parse_preconditioner(opt.preconditioner);
     report["preconditioner"] = sim::preconditioner_name(s.params.solver.preconditioner);
+    if (!opt.check.empty()) s.params.solver.check = sim::parse_check_place(opt.check);
     const auto t0 = clock_type::now();
     sim::Model model = sim::build_scenario_model(s, sim::patient_mesh(s));
     const double mesh_s = std::chrono::duration<double>(clock_type::now() - t0).count();
@@ -199,9 +200,9 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                       backend.c_str(), prec.c_str(), tol, set.max_iterations, med, p99, percentile(its, 50), itmax, ferr, derr,
                       floor_ms, x_floor, tr.finite ? (tr.fallbacks ? "  FELL BACK TO THE CPU" : "") : "  NOT FINITE");
           if (set.force_error > 0)
-            std::printf("        error controller: CG tolerance %.2e at the end, %d checks (%d over target), worst check %.2e, "
+            std::printf("        error controller: CG tolerance %.2e at the end, %d checks %s (%d over target), worst check %.2e, "
                         "last %.2e; %d divergence resets\n",
-                        tr.control.tolerance, tr.control.checks, tr.control.over_target, tr.control.worst_error,
+                        tr.control.tolerance, tr.control.checks, tr.check_place.c_str(), tr.control.over_target, tr.control.worst_error,
                         tr.control.last_error, tr.divergences);
           if (sim::is_multigrid(tr.preconditioner))
             std::printf("        multigrid: %ld level builds, finest level smoothed by %s (nodal-pressure share %.2f)%s\n",
@@ -222,6 +223,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"force_error_target", set.force_error},
                                       {"controlled_cg_tolerance", tr.control.tolerance},
                                       {"controller_checks", tr.control.checks},
+                                      {"controller_check_place", tr.check_place},
                                       {"controller_worst_check_error", tr.control.worst_error},
                                       {"divergence_resets", tr.divergences},
                                       {"backend_fallbacks", tr.fallbacks},

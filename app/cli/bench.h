@@ -23,6 +23,7 @@ struct BenchOptions {
   bool quick = false;                          // CI subset: coarse, cpu, few settings
   std::string out;                             // folder for bench.json/csv/png
   std::string scenario = "paper-sweep";
+  std::string check;                           // "in-step" | "beside" | "auto"; empty: the scenario's
   std::string preconditioner;                  // "block-jacobi" | "multigrid"; empty: the scenario's
   std::string element;                         // "linear" | "nodal-pressure"; empty: the scenario's
   double skin = -1;                            // >= 0: the skin membrane's thickness, m (0: none); < 0: the scenario's

@@ -29,6 +29,10 @@ CommandAction add_bench_command(CLI::App& app) {
                       std::to_string(sim::kGpuMultigridFromNodes) + " nodes, else block-jacobi). Multigrid runs on the cpu and cuda backends: "
                   "the library baselines are skipped")
       ->check(CLI::IsMember(sim::preconditioner_names()));
+  sub->add_option("--check", o->check,
+                  "Where the error controller's converged check solves its reference (auto, in-step, beside; default: the "
+                  "scenario's, auto unless it names one: beside the steps on the cuda backend, in the step elsewhere)")
+      ->check(CLI::IsMember(sim::check_place_names()));
   sub->add_option("--force-error", o->force_error,
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "
                   "the full sweep has one at 0.01 beside its fixed tolerances), beside those of --tolerances when given")

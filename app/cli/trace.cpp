@@ -49,6 +49,7 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
     }
   }
   tr.control = sim.error_control();
+  tr.check_place = sim.check_place();
   tr.divergences = sim.divergences();
   tr.fallbacks = sim.fallbacks();
   tr.multigrid = sim.backend().multigrid_counts();

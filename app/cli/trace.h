@@ -22,6 +22,7 @@ struct Trace {
   double worst_residual = 0;               // largest relative CG residual a solved step ended at
   int steps_above_tolerance = 0;           // solved steps that ended above the CG tolerance
   sim::ErrorControlStats control;          // the error controller at the end (solver.force_error > 0)
+  std::string check_place;                 // where its checks were solved: "in-step", "beside" (none: "")
   int divergences = 0;                     // steps the guard put back at rest
   int fallbacks = 0;                       // the backend failed and the run went on on the CPU
   sim::Backend::MultigridCounts multigrid; // the multigrid builds of the backend at the end

@@ -202,7 +202,10 @@ struct Profiler {
 template <class T>
 class CudaBackend final : public Backend {
  public:
-  CudaBackend(const Model& model, const SimParams& params, Solver solver)
+  /// `shadow`: the converged check's backend beside another (make_shadow): its stream at
+  /// the device's lowest priority, every other backend's at the highest, so that the
+  /// steps' blocks are scheduled first where both wait for room.
+  CudaBackend(const Model& model, const SimParams& params, Solver solver, bool shadow = false)
       : m_(model), p_(resolved_for(model, params, solver == Solver::Persistent)), solver_(solver) {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
@@ -215,7 +218,10 @@ class CudaBackend final : public Backend {
     const CudaTuning tuning = CudaTuning::from_environment();
     tuning_ = tuning;
     CU(cudaSetDevice(d.device));
-    CU(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+    int least = 0, greatest = 0;
+    CU(cudaDeviceGetStreamPriorityRange(&least, &greatest));
+    CU(cudaStreamCreateWithPriority(&stream_, cudaStreamNonBlocking, shadow ? least : greatest));
+    CU(cudaEventCreateWithFlags(&done_, cudaEventDisableTiming));
     nn_ = m_.num_nodes();
     ne_ = m_.num_tets();
     nf_ = m_.num_free();
@@ -284,7 +290,9 @@ class CudaBackend final : public Backend {
   ~CudaBackend() override {
     prof_.report(name() + (std::is_same_v<T, double> ? " double" : " float"));
     baseline_.reset();  // its cuSPARSE/cuBLAS handles work in stream_: gone before the stream
+    if (stream_) cudaStreamSynchronize(stream_);  // a take begun and never finished
     if (host_res_) cudaFreeHost(host_res_);
+    if (done_) cudaEventDestroy(done_);
     if (stream_) cudaStreamDestroy(stream_);
   }
 
@@ -366,6 +374,7 @@ class CudaBackend final : public Backend {
     last_converged_ = false;
     has_kept_ = false;
     reuse_pending_ = false;
+    pending_ = Pending::None;  // a take begun is dropped (the stream was waited for above)
     multigrid_.invalidate();
     p0_.zero(stream_);
     p1_.zero(stream_);
@@ -415,10 +424,48 @@ class CudaBackend final : public Backend {
     reuse_pending_ = true;
   }
 
+  // The persistent solve only: the baselines' host-driven loops would wait in begin_step.
+  std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
+    if (solver_ != Solver::Persistent) return nullptr;
+    auto s = std::make_unique<CudaBackend<T>>(m_, params, solver_, true);
+    s->set_materials(mat_);
+    return s;
+  }
+  // Device-to-device copies in this backend's stream, after its take; the shadow's stream
+  // waits for them, and this stream's next step (which overwrites the live state, never the
+  // checkpoint) follows them.
+  bool fork_reference(Backend& shadow) override {
+    auto* s = dynamic_cast<CudaBackend<T>*>(&shadow);
+    if (!s || s == this || &s->m_ != &m_ || !has_kept_ || solver_ != Solver::Persistent || s->pending_ != Pending::None) return false;
+    CU(cudaStreamSynchronize(s->stream_));  // nothing of the shadow's own in flight
+    s->x_.copy_from(kept_x_, stream_);
+    s->v_.copy_from(kept_v_, stream_);
+    s->quat_.copy_from(kept_quat_, stream_);
+    s->dv_.copy_from(kept_dv_, stream_);
+    s->dv_prev_.copy_from(kept_dv_prev_, stream_);
+    s->reuse_dv_.copy_from(dv_, stream_);
+    CU(cudaEventRecord(done_, stream_));
+    CU(cudaStreamWaitEvent(s->stream_, done_, 0));
+    s->filtered_ = kept_filtered_;
+    s->rested_ = kept_rested_;
+    s->last_converged_ = kept_last_converged_;
+    s->reuse_pending_ = true;
+    s->has_kept_ = false;
+    return true;
+  }
+
   StepStats step(std::span<const FingerInput> fingers, std::span<FingerOutput> out) override {
+    begin_step(fingers);
+    return finish_step(out);
+  }
+
+  // The solve's launches are queued and the step's end (its statistics, the finger
+  // outputs) waits for finish_step(). At rest the detection decides at once, as in step().
+  void begin_step(std::span<const FingerInput> fingers) override {
     if (fingers.size() > std::size_t(kMaxFingers))
       throw std::runtime_error("cuda backend: at most " + std::to_string(kMaxFingers) + " fingers");
-    StepStats st;
+    if (pending_ != Pending::None) throw std::logic_error("cuda backend: a take begun twice");
+    begun_fingers_.assign(fingers.begin(), fingers.end());
     if (filtered_.size() != fingers.size()) filtered_.assign(fingers.size(), Eigen::Vector3d::Zero());
     FingersArg F{};
     F.n = static_cast<int>(fingers.size());
@@ -440,11 +487,8 @@ class CudaBackend final : public Backend {
       launch_detect(F, k, true);
       fetch_result();
       if (host_res_->start_contacts == 0) {
-        finger_outputs(fingers, out);
-        st.contacts = 0;
-        st.finite = true;
-        for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
-        return st;
+        pending_ = Pending::Rest;
+        return;
       }
       detected = true;
     }
@@ -460,16 +504,41 @@ class CudaBackend final : public Backend {
     launch_skin(k);
     if (nodal()) launch_pressure();
     prof_.mark(2, stream_);
-    int iterations = 0;
-    double residual = 0;
-    const bool mg = solver_ == Solver::Persistent && use_multigrid();
+    begun_mg_ = solver_ == Solver::Persistent && use_multigrid();
     if (solver_ == Solver::Persistent) {
-      launch_pcg(F, k, mg);
+      launch_pcg(F, k, begun_mg_);
     } else {
-      baseline_->solve(pcg_args(), iterations, residual);
+      baseline_->solve(pcg_args(), begun_iterations_, begun_residual_);
       launch_detect(F, k, false);
     }
     prof_.mark(3, stream_);
+    CU(cudaEventRecord(done_, stream_));
+    pending_ = Pending::Solve;
+  }
+
+  bool step_ready() const override {
+    if (pending_ != Pending::Solve) return true;
+    const cudaError_t e = cudaEventQuery(done_);
+    if (e == cudaErrorNotReady) return false;
+    if (e != cudaSuccess) (void)cudaGetLastError();  // finish_step's synchronisation reports it
+    return true;
+  }
+
+  StepStats finish_step(std::span<FingerOutput> out) override {
+    StepStats st;
+    const std::span<const FingerInput> fingers = begun_fingers_;
+    const Pending was = std::exchange(pending_, Pending::None);
+    if (was == Pending::None) throw std::logic_error("cuda backend: no take begun");
+    if (was == Pending::Rest) {
+      finger_outputs(fingers, out);
+      st.contacts = 0;
+      st.finite = true;
+      for (const auto& o : out) st.finite = st.finite && o.force.allFinite();
+      return st;
+    }
+    int iterations = begun_iterations_;
+    double residual = begun_residual_;
+    const bool mg = begun_mg_;
     fetch_result();
     prof_.mark(4, stream_);
     if (prof_.on) {
@@ -867,6 +936,13 @@ class CudaBackend final : public Backend {
   bool kept_rested_ = true, kept_last_converged_ = false, has_kept_ = false;
   DeviceArray<T> reuse_dv_;     // rollback_for_reference(): the undone take's solution
   bool reuse_pending_ = false;  // ... which the next take starts from
+  // A take begun (begin_step) and not yet finished: what its end needs.
+  enum class Pending { None, Rest, Solve } pending_ = Pending::None;
+  std::vector<FingerInput> begun_fingers_;
+  bool begun_mg_ = false;
+  int begun_iterations_ = 0;       // the baselines' solve, which returns them at once
+  double begun_residual_ = 0;
+  cudaEvent_t done_ = nullptr;     // recorded after a take's launches (step_ready) and a fork's copies
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
   DevResult* host_res_ = nullptr;  // mapped pinned memory

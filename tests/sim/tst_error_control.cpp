@@ -1,7 +1,8 @@
 // The error-controlled CG tolerance (error_control.h): the controller's rule, the force
 // error it measures, the backends' checkpoint and rollback (a step taken again from a
 // checkpoint is the same step), and a whole press held to its target against a converged
-// run, with fewer iterations than a tight fixed tolerance. CPU, and CUDA where a GPU is
+// run, with fewer iterations than a tight fixed tolerance, with its checks in the step and
+// beside the steps (a shadow backend forked from the checkpoint). CPU, and CUDA where a GPU is
 // usable (its rows skip with the reason otherwise).
 #include <QtTest>
 
@@ -51,6 +52,7 @@ struct Press {
   std::vector<double> force;  // raw finger force, x y z per step
   long iterations = 0;
   ErrorControlStats control;
+  std::string place;  // where the checks were solved (Simulation::check_place)
 };
 
 Press press(const Scenario& s, const Model& m, int steps) {
@@ -66,6 +68,7 @@ Press press(const Scenario& s, const Model& m, int steps) {
     r.iterations += o.stats.cg_iterations;
   }
   r.control = sim.error_control();
+  r.place = sim.check_place();
   return r;
 }
 
@@ -302,6 +305,75 @@ class TestErrorControl : public QObject {
     QVERIFY2(it_reused < it_plain, (std::to_string(it_reused) + " against " + std::to_string(it_plain)).c_str());
   }
 
+  void forkedReferenceIsTheInStepReference_data() {
+    QTest::addColumn<QString>("backend");
+    QTest::newRow("cpu") << "cpu";
+    QTest::newRow("cuda") << "cuda";
+  }
+  // The check beside the steps: after a checkpoint and a loose take, fork_reference() puts
+  // a shadow backend where rollback_for_reference() puts the backend itself. Two backends
+  // take the same steps and the same in-step checks; one of them also forks each check's
+  // reference to a shadow first. The shadow's reference is the in-step one, and the fork
+  // leaves the forking backend's own steps as they were.
+  void forkedReferenceIsTheInStepReference() {
+    QFETCH(QString, backend);
+    if (!backend_usable(backend.toStdString())) return;
+    Scenario s = box(backend.toStdString());
+    s.params.solver.cg_tolerance = 1e-3;
+    s.params.solver.corotation_tolerance = 0;  // the CPU shadow extracts every element each take
+    const Model m = build_scenario_model(s, patient_mesh(s));
+    auto forking = make_named_backend(backend.toStdString(), m, s.params);
+    auto twin = make_named_backend(backend.toStdString(), m, s.params);
+    SimParams ref = s.params;
+    ref.solver.cg_tolerance = 1e-8;
+    ref.solver.cg_rescue_tolerance = 1e-8;
+    ref.solver.cg_max_iterations = 5000;
+    auto shadow = forking->make_shadow(ref);
+    QVERIFY(shadow);
+    QVERIFY(!twin->fork_reference(*shadow));  // no checkpoint yet: nothing to fork
+    std::vector<FingerInput> in(1);
+    std::vector<FingerOutput> a(1), b(1), forked(1);
+    double worst_ref = 0, worst_path = 0;
+    int forks = 0;
+    for (int k = 1; k <= 60; ++k) {
+      in[0] = finger_at(k, s.params.solver.dt);
+      if (k % 6 == 0 && a[0].contacts > 0) {
+        QVERIFY(forking->checkpoint());
+        QVERIFY(twin->checkpoint());
+        forking->step(in, a);
+        twin->step(in, b);
+        QVERIFY(forking->fork_reference(*shadow));
+        shadow->begin_step(in);
+        forking->rollback_for_reference();
+        twin->rollback_for_reference();
+        forking->set_params(ref);
+        twin->set_params(ref);
+        const StepStats st = shadow->finish_step(forked);
+        forking->step(in, a);
+        twin->step(in, b);
+        forking->set_params(s.params);
+        twin->set_params(s.params);
+        QVERIFY(st.finite && st.cg_residual <= 1e-8);
+        worst_ref = std::max(worst_ref, (forked[0].force_raw - b[0].force_raw).norm() / std::max(1e-3, b[0].force_raw.norm()));
+        ++forks;
+      } else {
+        forking->step(in, a);
+        twin->step(in, b);
+      }
+      worst_path = std::max(worst_path, (a[0].force_raw - b[0].force_raw).norm() / std::max(1e-3, b[0].force_raw.norm()));
+    }
+    qInfo("%s: %d forks; shadow's reference against the in-step one %.2e, the forking backend against its twin %.2e "
+          "(relative force)",
+          qPrintable(backend), forks, worst_ref, worst_path);
+    QVERIFY(forks >= 5);
+    // Both references solve one system from one start to a relative residual of 1e-8: they
+    // differ by rounding and the stopping point, far below 1e-6 of the force.
+    QVERIFY2(worst_ref <= 1e-6, std::to_string(worst_ref).c_str());
+    // The fork only reads the forking backend's state: its steps are its twin's (on CUDA
+    // up to the order of its atomic sums, as between two runs: tst_backend_agreement).
+    QVERIFY2(worst_path <= 1e-9, std::to_string(worst_path).c_str());
+  }
+
   void pressHeldToItsTarget_data() {
     QTest::addColumn<QString>("backend");
     QTest::newRow("cpu") << "cpu";
@@ -326,7 +398,9 @@ class TestErrorControl : public QObject {
     const Press tight = press(fixed, m, kSteps);
     Scenario held = fixed;
     held.params.solver.force_error = 0.01;
+    held.params.solver.check = CheckPlace::InStep;
     const Press controlled = press(held, m, kSteps);
+    QCOMPARE(controlled.place, std::string("in-step"));
 
     const double err = relative_error(controlled.force, converged.force);
     qInfo("%s: controlled force error %.2e (target 1e-2), tolerance 1e-6 -> %.2e, %d checks (%d over), worst check %.2e; "
@@ -338,6 +412,28 @@ class TestErrorControl : public QObject {
     // Loosened by at least 100x: 1e-6 holds the force to far better than 1 %.
     QVERIFY(controlled.control.tolerance >= 1e-4);
     QVERIFY(controlled.iterations < tight.iterations);
+
+    // The checks beside the steps (a shadow backend takes the reference; the loose step is
+    // kept, the error scored when the shadow is done): the same target held, by the same
+    // bounds. What `auto` picks: beside on the fast CUDA backend, in the step on the CPU.
+    Scenario beside = held;
+    beside.params.solver.check = CheckPlace::Beside;
+    beside.params.solver.corotation_tolerance = 0;  // the CPU's shadow: every element each take (CUDA's always)
+    const Press aside = press(beside, m, kSteps);
+    Scenario ref_every = ref;  // against a converged run of the same elements
+    ref_every.params.solver.corotation_tolerance = 0;
+    const double err_aside = relative_error(aside.force, press(ref_every, m, kSteps).force);
+    qInfo("%s, checks beside the steps: force error %.2e, tolerance 1e-6 -> %.2e, %d checks (%d over), worst check %.2e; "
+          "iterations %ld (in the step: %ld, both takes of each check)",
+          qPrintable(backend), err_aside, aside.control.tolerance, aside.control.checks, aside.control.over_target,
+          aside.control.worst_error, aside.iterations, controlled.iterations);
+    QCOMPARE(aside.place, std::string("beside"));
+    QVERIFY2(err_aside <= 0.01, std::to_string(err_aside).c_str());
+    QVERIFY(aside.control.checks >= 3);
+    QVERIFY(aside.control.tolerance >= 1e-4);
+    Scenario automatic = held;
+    automatic.params.solver.check = CheckPlace::Auto;
+    QCOMPARE(press(automatic, m, 30).place, std::string(backend == "cuda" ? "beside" : "in-step"));
 
     // Held at the loosest tolerance the controller allows, then at a target ten times
     // below the error measured there: it has to tighten, and the force series gets closer.
