@@ -114,7 +114,7 @@ RunResult run_headless(sim::Simulation& simulation, const RunOptions& opt) {
     j["cg_iterations_mean"] = r.cg_iterations.empty() ? 0.0 : sum / double(r.cg_iterations.size());
   }
   j["finite"] = finite;
-  j["error_control"] = error_control_json(simulation.error_control());
+  j["error_control"] = error_control_json(simulation.error_control(), simulation.check_place());
   add_multigrid_json(j, simulation);
   j["max_force_n"] = max_force;
   j["wall_seconds"] = wall;
@@ -137,11 +137,12 @@ void write_fingers_csv(const std::string& path, const std::vector<FingerSample>&
   if (std::fclose(f) != 0) throw std::runtime_error(path + ": write failed (disk full?)");
 }
 
-nlohmann::json error_control_json(const sim::ErrorControlStats& c) {
+nlohmann::json error_control_json(const sim::ErrorControlStats& c, const std::string& check_place) {
   if (!(c.target > 0)) return {{"force_error_target", 0.0}};
   return {{"force_error_target", c.target},
           {"cg_tolerance", c.tolerance},
           {"checks", c.checks},
+          {"check_place", check_place},
           {"checks_over_target", c.over_target},
           {"last_error", c.last_error},
           {"worst_error", c.worst_error},

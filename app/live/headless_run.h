@@ -50,9 +50,9 @@ void write_fingers_csv(const std::string& path, const std::vector<FingerSample>&
 /// Median and percentile of a sample (copy sorted), 0 for an empty one.
 double percentile(std::vector<double> v, double p);
 
-/// The error controller's record for summaries (run, session): {"force_error_target": 0}
-/// alone when it is off.
-nlohmann::json error_control_json(const sim::ErrorControlStats& c);
+/// The error controller's record for summaries (run, session), with where its checks were
+/// solved (Simulation::check_place): {"force_error_target": 0} alone when it is off.
+nlohmann::json error_control_json(const sim::ErrorControlStats& c, const std::string& check_place);
 
 /// Adds the preconditioner and its multigrid levels' record (builds, failures, the finest
 /// level's smoother, the nodal-pressure share at the last build) to a summary (run, session).

@@ -372,7 +372,7 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"divergence_resets", sim_thread.resets},
                        {"backend_fallbacks", sim_thread.fallbacks},
                        {"finite", sim_thread.finite},
-                       {"error_control", error_control_json(simulation.error_control())}};
+                       {"error_control", error_control_json(simulation.error_control(), simulation.check_place())}};
     add_multigrid_json(j["simulation"], simulation);
   }
   j["force_mapping"] = {{"scale", mapping.scale},
