@@ -104,6 +104,7 @@ void Simulation::init(const LogFn& log) {
   fingers_.resize(s_.fingers.size());
   outputs_.resize(s_.fingers.size());
   for (std::size_t i = 0; i < s_.fingers.size(); ++i) fingers_[i].radius = s_.fingers[i].radius;
+  prepare_shadow();
 }
 
 StepStats Simulation::step() {
@@ -233,32 +234,43 @@ bool Simulation::check_beside() const {
   return backend_->name() == "cuda";
 }
 
-bool Simulation::start_check_beside(std::span<const FingerInput> in) {
-  if (shadow_failed_) return false;
+SimParams Simulation::shadow_params() const {
   // The backend's parameters (dt, contact, element as they are now), solved as the in-step
   // check's reference is: to the reference tolerance, rescued to it, with the rescue's
   // cap. Block-Jacobi: a multigrid's levels would be built again for the shadow (seconds on
   // the large meshes), and the shadow's solve is off the steps' path.
   SimParams p = backend_->params();
-  p.solver.cg_tolerance = control_.reference_tolerance();
+  p.solver.cg_tolerance = control_.on() ? control_.reference_tolerance()
+                                        : p.solver.cg_tolerance * ToleranceController::kReferenceFactor;
   p.solver.cg_rescue_tolerance = p.solver.cg_tolerance;
   p.solver.cg_max_iterations = std::max(cap_base_, p.solver.cg_rescue_iterations);
   p.solver.preconditioner = Preconditioner::BlockJacobi;
+  return p;
+}
+
+void Simulation::prepare_shadow() {
+  if (shadow_ || shadow_failed_ || !(backend_->params().solver.force_error > 0) || !check_beside()) return;
   try {
-    if (!shadow_) {
-      shadow_ = backend_->make_shadow(p);
-      if (!shadow_) {
-        shadow_failed_ = true;  // this backend cannot: every check in the step
-        return false;
-      }
-    } else {
-      shadow_->set_params(p);
-    }
+    shadow_ = backend_->make_shadow(shadow_params());
+    if (!shadow_) shadow_failed_ = true;  // this backend cannot: every check in the step
+  } catch (const std::exception& e) {
+    // No room for a second backend (device memory on the large meshes): the checks go on
+    // in the step.
+    shadow_failed_ = true;
+    if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
+  }
+}
+
+bool Simulation::start_check_beside(std::span<const FingerInput> in) {
+  prepare_shadow();  // made when the patient loaded, unless the controller was off then
+  if (!shadow_) return false;
+  const SimParams p = shadow_params();
+  try {
+    shadow_->set_params(p);
     if (!backend_->fork_reference(*shadow_)) return false;
     shadow_->begin_step(in);
   } catch (const std::exception& e) {
-    // No room for a second backend (device memory on the large meshes): the checks go on
-    // in the step. The backend's own state is untouched by a failed fork.
+    // The backend's own state is untouched by a failed fork; the checks go on in the step.
     shadow_.reset();
     shadow_failed_ = true;
     if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
@@ -289,16 +301,20 @@ void Simulation::collect_check(bool wait) {
     control_.deferred();
 }
 
-void Simulation::drop_shadow() {
-  if (pending_check_.on) {
-    pending_check_.on = false;
-    try {
-      reference_.resize(pending_loose_.size());
-      shadow_->finish_step(reference_);
-    } catch (const std::exception&) {
-      // A shadow that failed is dropped with its check; the backend reports its own errors.
-    }
+void Simulation::drop_check() {
+  if (!pending_check_.on) return;
+  pending_check_.on = false;
+  try {
+    reference_.resize(pending_loose_.size());
+    shadow_->finish_step(reference_);
+  } catch (const std::exception&) {
+    // A shadow that failed goes with its check; the backend reports its own errors.
+    shadow_.reset();
   }
+}
+
+void Simulation::drop_shadow() {
+  drop_check();
   shadow_.reset();
   shadow_failed_ = false;
 }
@@ -384,6 +400,7 @@ bool Simulation::fall_back_to_cpu(const std::string& why) {
   cpu->set_deferred_levels(deferred_levels_);
   backend_ = std::move(cpu);
   ++fallbacks_;
+  prepare_shadow();
   reason_ = "fell back from " + was + " to cpu: " + why;
   if (log_) log_("backend: " + reason_);
   return true;
@@ -397,14 +414,15 @@ int Simulation::set_element_young(std::span<const std::pair<int, double>> change
       ++n;
     }
   if (n > 0) {
-    drop_shadow();  // the next check's shadow is made with the new materials
+    drop_check();  // it measured the old materials
     backend_->set_materials(materials_);
+    if (shadow_) shadow_->set_materials(materials_);
   }
   return n;
 }
 
 void Simulation::reset() {
-  drop_shadow();
+  drop_check();  // the shadow stays: the same body, the next fork gives it its state
   backend_->reset();
   backend_->prepare_solver();  // a multigrid's levels at load, not at the first touch
   summary_known_ = false;

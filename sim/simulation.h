@@ -110,6 +110,7 @@ class Simulation {
     drop_shadow();
     backend_ = std::move(b);
     backend_->set_deferred_levels(deferred_levels_);
+    prepare_shadow();
   }
   /// Deferred multigrid builds (Backend::set_deferred_levels) on this backend and on any
   /// that replaces it; the caller takes the jobs from backend() and runs them.
@@ -155,8 +156,14 @@ class Simulation {
   bool start_check_beside(std::span<const FingerInput> in);
   /// Scores the check beside the steps if it has finished (or, `wait`, once it has).
   void collect_check(bool wait);
-  /// The shadow backend and its check dropped (its state no longer the backend's kind,
-  /// materials or history): the next check makes another.
+  /// The shadow's parameters: the backend's, solved as a check's reference is.
+  SimParams shadow_params() const;
+  /// Makes the shadow backend where the checks go beside the steps and there is none: when
+  /// the patient loads and the backend changes, so that no step pays for making it.
+  void prepare_shadow();
+  /// The check in flight dropped unscored (the body it measured was reset or changed).
+  void drop_check();
+  /// The shadow dropped with its check (another backend): prepare_shadow() makes another.
   void drop_shadow();
   Scenario s_;
   Model model_;                          // const after construction
