@@ -31,7 +31,7 @@ CommandAction add_bench_command(CLI::App& app) {
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--check", o->check,
                   "Where the error controller's converged check solves its reference (auto, in-step, beside; default: the "
-                  "scenario's, auto unless it names one: beside the steps on the cuda backend, in the step elsewhere)")
+                  "scenario's, auto unless it names one: beside the steps on the cuda backend where it solves with block-jacobi, in the step elsewhere)")
       ->check(CLI::IsMember(sim::check_place_names()));
   sub->add_option("--force-error", o->force_error,
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "

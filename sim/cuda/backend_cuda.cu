@@ -274,9 +274,6 @@ class CudaBackend final : public Backend {
     if (solver_ == Solver::Persistent) {
       launch_ = cuda::pcg_launch<T>(nf_, tuning);
       fused_ = tuning.fused_cg;
-      int per_sm = 0;
-      CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, launch_.fn, launch_.block, 0));
-      room_beside_ = 2 * launch_.grid <= per_sm * d.sms;
     } else {
 #ifdef PALPATION_HAVE_CUSPARSE
       baseline_ = solver_ == Solver::Csr ? cuda::make_csr_baseline<T>(m_, pcg_args(), stream_)
@@ -428,13 +425,14 @@ class CudaBackend final : public Backend {
   }
 
   // The persistent solve only: the baselines' host-driven loops would wait in begin_step.
-  // Asked for by `auto`, only where the shadow's solve fits beside this one's on the
-  // device (room_beside_): on a mesh whose solve takes every resident block (xfine) the
-  // two take turns, and the shadow's long reference holds the steps up (H200, xfine held
+  // Asked for by `auto`, only where the steps solve with block-Jacobi, as the shadow does:
+  // with the multigrid (the large meshes) a step's solve is a few cycles and the shadow's
+  // block-Jacobi reference many times longer, and as both persistent solves want every
+  // resident block they take turns, the reference holding the steps up (H200, xfine held
   // at 1 %: p99 10.9 ms beside against 9.2 in the step; paper 1.01 against 1.26).
   std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
     if (solver_ != Solver::Persistent) return nullptr;
-    if (params.solver.check == CheckPlace::Auto && !room_beside_) return nullptr;
+    if (params.solver.check == CheckPlace::Auto && is_multigrid(p_.solver.preconditioner)) return nullptr;
     auto s = std::make_unique<CudaBackend<T>>(m_, params, solver_, true);
     s->set_materials(mat_);
     return s;
@@ -951,7 +949,6 @@ class CudaBackend final : public Backend {
   int begun_iterations_ = 0;       // the baselines' solve, which returns them at once
   double begun_residual_ = 0;
   cudaEvent_t done_ = nullptr;     // recorded after a take's launches (step_ready) and a fork's copies
-  bool room_beside_ = false;       // the persistent solve takes at most half the resident blocks
   DeviceArray<double> cA_, cb_;
   DeviceArray<DevScratch> scratch_;
   DevResult* host_res_ = nullptr;  // mapped pinned memory
