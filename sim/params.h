@@ -110,9 +110,10 @@ struct SolverParams {
   // (that step takes both solves). Beside: on a second backend of the same kind, beside the
   // steps (on CUDA a low-priority stream of its own: no step waits for it), the loose step
   // kept and its error known some steps later; where the backend cannot fork
-  // (Backend::make_shadow), in the step. Auto: Beside on the fast CUDA backend, whose
-  // persistent solve leaves room on the device, InStep elsewhere (on the CPU a second
-  // solve beside the steps would take the same cores).
+  // (Backend::make_shadow), in the step. Auto: Beside on the fast CUDA backend where the
+  // steps solve with block-Jacobi, as the shadow does (the paper mesh; with the multigrid
+  // the shadow's reference is many times a step's solve, and the two take turns on the
+  // device), InStep elsewhere (on the CPU a second solve would take the same cores).
   CheckPlace check = CheckPlace::Auto;
 };
 

@@ -311,11 +311,11 @@ class TestErrorControl : public QObject {
     // How far the forking backend's forces may stray from its twin's. The CPU's sums run in
     // one order: bitwise. On CUDA two backends' atomic sums run in their own orders (a
     // step taken again differs by up to 5e-12: rollbackTakesTheSameStepAgain), which 60 steps
-    // of loose (1e-3) solves carry on and can grow (2.5e-8 measured on an H200). A fork that
-    // wrote into the forking backend's state would move its forces by the loose solves' own
-    // error, 1e-4 and more.
+    // of loose (1e-3) solves carry on and can grow (1.5e-8 to 3.8e-7 measured on an H200 in
+    // three runs). A fork that wrote into the forking backend's state would move its forces
+    // by the loose solves' own error, 1e-4 and more.
     QTest::newRow("cpu") << "cpu" << 1e-12;
-    QTest::newRow("cuda") << "cuda" << 1e-6;
+    QTest::newRow("cuda") << "cuda" << 1e-5;
   }
   // The check beside the steps: after a checkpoint and a loose take, fork_reference() puts
   // a shadow backend where rollback_for_reference() puts the backend itself. Two backends
@@ -362,7 +362,7 @@ class TestErrorControl : public QObject {
         forking->set_params(s.params);
         twin->set_params(s.params);
         QVERIFY(st.finite && st.cg_residual <= 1e-8);
-        worst_ref = std::max(worst_ref, (forked[0].force_raw - b[0].force_raw).norm() / std::max(1e-3, b[0].force_raw.norm()));
+        worst_ref = std::max(worst_ref, (forked[0].force_raw - a[0].force_raw).norm() / std::max(1e-3, a[0].force_raw.norm()));
         ++forks;
       } else {
         forking->step(in, a);
@@ -374,8 +374,9 @@ class TestErrorControl : public QObject {
           "(relative force)",
           qPrintable(backend), forks, worst_ref, worst_path);
     QVERIFY(forks >= 5);
-    // Both references solve one system from one start to a relative residual of 1e-8: they
-    // differ by rounding and the stopping point, far below 1e-6 of the force.
+    // The shadow's reference and the forking backend's own in-step one solve one system
+    // from one start to a relative residual of 1e-8: they differ by rounding and the
+    // stopping point, far below 1e-6 of the force.
     QVERIFY2(worst_ref <= 1e-6, std::to_string(worst_ref).c_str());
     // The fork only reads the forking backend's state: its steps are its twin's.
     QVERIFY2(worst_path <= path_bound, std::to_string(worst_path).c_str());
