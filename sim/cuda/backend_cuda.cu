@@ -449,6 +449,7 @@ class CudaBackend final : public Backend {
     s->quat_.copy_from(kept_quat_, stream_);
     s->dv_.copy_from(kept_dv_, stream_);
     s->dv_prev_.copy_from(kept_dv_prev_, stream_);
+    s->kept_dv_.copy_from(kept_dv_, stream_);  // what its take keeps as the previous solution
     s->reuse_dv_.copy_from(dv_, stream_);
     CU(cudaEventRecord(done_, stream_));
     CU(cudaStreamWaitEvent(s->stream_, done_, 0));
