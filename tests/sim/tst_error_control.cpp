@@ -82,6 +82,13 @@ bool backend_usable(const std::string& b) {
   return true;
 }
 
+// The rows of a test run on each backend: "cpu", and "cuda" (skipped without a GPU).
+void backend_rows() {
+  QTest::addColumn<QString>("backend");
+  QTest::newRow("cpu") << "cpu";
+  QTest::newRow("cuda") << "cuda";
+}
+
 FingerOutput touching(double fx, double fz) {
   FingerOutput o;
   o.force_raw = Eigen::Vector3d(fx, 0, fz);
@@ -245,9 +252,7 @@ class TestErrorControl : public QObject {
   }
 
   void referenceTakeGoesOnFromTheLooseSolution_data() {
-    QTest::addColumn<QString>("backend");
-    QTest::newRow("cpu") << "cpu";
-    QTest::newRow("cuda") << "cuda";
+    backend_rows();
   }
   // The converged check's second take (rollback_for_reference) solves the same system as
   // a take after a plain rollback, from the loose take's solution: the same reference
@@ -383,9 +388,7 @@ class TestErrorControl : public QObject {
   }
 
   void shadowFollowsPaintingAndReset_data() {
-    QTest::addColumn<QString>("backend");
-    QTest::newRow("cpu") << "cpu";
-    QTest::newRow("cuda") << "cuda";
+    backend_rows();
   }
   // The checks beside the steps across what changes the body under them: every element
   // painted three times stiffer mid-press (the shadow must take the new materials: a
@@ -429,9 +432,7 @@ class TestErrorControl : public QObject {
   }
 
   void pressHeldToItsTarget_data() {
-    QTest::addColumn<QString>("backend");
-    QTest::newRow("cpu") << "cpu";
-    QTest::newRow("cuda") << "cuda";
+    backend_rows();
   }
   // 400 steps of a press. The controller starts at CG 1e-6 and loosens; the force series
   // stays within the 1 % target of a converged run (1e-10) with fewer iterations than the
