@@ -51,7 +51,8 @@ class Backend {
   /// The converged check beside the steps (SolverParams::check): a second backend of this
   /// kind, for this model, that takes the check's reference while this one goes on. On CUDA
   /// it works in a stream of its own, below this one's priority. Null: this backend cannot
-  /// (the check is then taken in the step).
+  /// (the check is then taken in the step). Under CheckPlace::Auto (params.solver.check)
+  /// the backend decides: null where the check beside would not shorten the steps.
   virtual std::unique_ptr<Backend> make_shadow(const SimParams& /*params*/) const { return nullptr; }
   /// After checkpoint() and a take: puts `shadow` (of make_shadow(), idle) where
   /// rollback_for_reference() would put this backend: the checkpoint's state, its next take

@@ -193,6 +193,7 @@ class CpuBackend final : public Backend {
   // (about 1e-4 of the force, docs/benchmarks.md), not the solve's: the controller could
   // then never loosen.
   std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
+    if (params.solver.check == CheckPlace::Auto) return nullptr;  // the in-step check costs no more here
     if (p_.solver.corotation_tolerance > 0 || params.solver.corotation_tolerance > 0) return nullptr;
     auto s = std::make_unique<CpuBackend<T>>(m_, params);
     s->set_materials(mat_);

@@ -161,7 +161,7 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
   }
   if (!control_.on()) return backend_->step(in, out);
   // A check beside the steps that has finished is scored before this step's tolerance is set.
-  collect_check(false);
+  collect_check();
   // A capped solve is still rescued (SolverParams::cg_rescue_tolerance), but to no
   // tighter than the tolerance the controller chose: a rescue to 1e-3 would make every
   // looser tolerance 1e-3. The check's reference solve is rescued to its own tolerance
@@ -225,14 +225,8 @@ StepStats Simulation::controlled_step(std::span<const FingerInput> in, std::span
   return st;
 }
 
-bool Simulation::check_beside() const {
-  switch (backend_->params().solver.check) {
-    case CheckPlace::InStep: return false;
-    case CheckPlace::Beside: return true;
-    case CheckPlace::Auto: break;
-  }
-  return backend_->name() == "cuda";
-}
+// Under auto the backend's make_shadow decides (null where the steps would gain nothing).
+bool Simulation::check_beside() const { return backend_->params().solver.check != CheckPlace::InStep; }
 
 SimParams Simulation::shadow_params() const {
   // The backend's parameters (dt, contact, element as they are now), solved as the in-step
@@ -282,8 +276,8 @@ bool Simulation::start_check_beside(std::span<const FingerInput> in) {
   return true;
 }
 
-void Simulation::collect_check(bool wait) {
-  if (!pending_check_.on || (!wait && !shadow_->step_ready())) return;
+void Simulation::collect_check() {
+  if (!pending_check_.on || !shadow_->step_ready()) return;
   pending_check_.on = false;
   reference_.resize(pending_loose_.size());
   StepStats st;

@@ -134,7 +134,7 @@ class Simulation {
   /// Where the controller's checks are solved now: "beside" (the steps) or "in-step"; ""
   /// while the controller is off.
   const char* check_place() const {
-    return !control_.on() ? "" : check_beside() && !shadow_failed_ ? "beside" : "in-step";
+    return !control_.on() ? "" : shadow_ ? "beside" : "in-step";
   }
   void set_log(const LogFn& log) { log_ = log; }
   double time() const { return t_; }
@@ -154,8 +154,8 @@ class Simulation {
   /// After the check's loose take (kept in loose_) and checkpoint: the reference begun on
   /// the shadow backend. False (nothing begun): the check is taken in the step.
   bool start_check_beside(std::span<const FingerInput> in);
-  /// Scores the check beside the steps if it has finished (or, `wait`, once it has).
-  void collect_check(bool wait);
+  /// Scores the check beside the steps if it has finished (never waits for it).
+  void collect_check();
   /// The shadow's parameters: the backend's, solved as a check's reference is.
   SimParams shadow_params() const;
   /// Makes the shadow backend where the checks go beside the steps and there is none: when

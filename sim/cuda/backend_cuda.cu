@@ -185,11 +185,11 @@ struct Profiler {
   }
   void report(const std::string& who) {
     if (!on || steps == 0) return;
-    std::fprintf(stderr, "cuda profile (%s, %d solved steps), median us per stage:", who.c_str(), steps);
+    std::fprintf(stderr, "cuda profile (%s, %d solved steps), median / p99 us per stage:", who.c_str(), steps);
     for (int i = 0; i < kStages; ++i) {
       auto v = ms[i];
-      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-      std::fprintf(stderr, " %s %.1f", names[i], 1000.0 * v[v.size() / 2]);
+      std::sort(v.begin(), v.end());
+      std::fprintf(stderr, " %s %.1f / %.1f", names[i], 1000.0 * v[v.size() / 2], 1000.0 * v[(v.size() - 1) * 99 / 100]);
     }
     std::fprintf(stderr, "\n");
   }
@@ -202,10 +202,16 @@ struct Profiler {
 template <class T>
 class CudaBackend final : public Backend {
  public:
-  /// `shadow`: the converged check's backend beside another (make_shadow): its stream at
+  /// A backend made by make_shadow for the converged check beside another's steps.
+  struct Beside {
+    bool on = false;
+    int sms = 0;  // its solve on this many multiprocessors; 0: launched as the steps' are
+  };
+
+  /// `shadow.on`: the converged check's backend beside another (make_shadow): its stream at
   /// the device's lowest priority, every other backend's at the highest, so that the
   /// steps' blocks are scheduled first where both wait for room.
-  CudaBackend(const Model& model, const SimParams& params, Solver solver, bool shadow = false)
+  CudaBackend(const Model& model, const SimParams& params, Solver solver, Beside shadow = {})
       : m_(model), p_(resolved_for(model, params, solver == Solver::Persistent)), solver_(solver) {
     const DeviceInfo& d = device_info();
     if (!d.ok) throw std::runtime_error("cuda backend: " + d.why);
@@ -220,7 +226,7 @@ class CudaBackend final : public Backend {
     CU(cudaSetDevice(d.device));
     int least = 0, greatest = 0;
     CU(cudaDeviceGetStreamPriorityRange(&least, &greatest));
-    CU(cudaStreamCreateWithPriority(&stream_, cudaStreamNonBlocking, shadow ? least : greatest));
+    CU(cudaStreamCreateWithPriority(&stream_, cudaStreamNonBlocking, shadow.on ? least : greatest));
     CU(cudaEventCreateWithFlags(&done_, cudaEventDisableTiming));
     nn_ = m_.num_nodes();
     ne_ = m_.num_tets();
@@ -272,7 +278,7 @@ class CudaBackend final : public Backend {
     upload_skin();
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
-      launch_ = cuda::pcg_launch<T>(nf_, tuning);
+      launch_ = shadow.sms > 0 ? cuda::pcg_launch_confined<T>(shadow.sms, tuning) : cuda::pcg_launch<T>(nf_, tuning);
       fused_ = tuning.fused_cg;
     } else {
 #ifdef PALPATION_HAVE_CUSPARSE
@@ -425,17 +431,25 @@ class CudaBackend final : public Backend {
   }
 
   // The persistent solve only: the baselines' host-driven loops would wait in begin_step.
-  // Asked for by `auto`, only where the steps solve with block-Jacobi, as the shadow does:
-  // with the multigrid (the large meshes) a step's solve is a few cycles and the shadow's
-  // block-Jacobi reference many times longer, and as both persistent solves want every
-  // resident block they take turns, the reference holding the steps up (H200, xfine held
-  // at 1 %: p99 10.9 ms beside against 9.2 in the step; paper 1.01 against 1.26).
+  // Both solves are cooperative launches, which start only when all their blocks fit at
+  // once: a shadow launched as the steps' are takes turns with them, each check holding a
+  // step up for the length of its reference solve. So the shadow's solve gets the
+  // multiprocessors the steps' solve leaves (CudaTuning::shadow_sms keeps some), one block
+  // each, and never waits for the steps or makes them wait. `auto` asks for one only where
+  // such room exists (on the paper mesh the steps' solve takes 125 of the H200's 132).
   std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
     if (solver_ != Solver::Persistent) return nullptr;
-    if (params.solver.check == CheckPlace::Auto && is_multigrid(p_.solver.preconditioner)) return nullptr;
-    auto s = std::make_unique<CudaBackend<T>>(m_, params, solver_, true);
+    const int spare = spare_sms();
+    if (params.solver.check == CheckPlace::Auto && spare < 1) return nullptr;
+    const Beside beside{true, tuning_.shadow_confined ? spare : 0};
+    auto s = std::make_unique<CudaBackend<T>>(m_, params, solver_, beside);
     s->set_materials(mat_);
     return s;
+  }
+  // The multiprocessors that neither of the steps' solves (block-Jacobi, multigrid) takes.
+  int spare_sms() const {
+    const int taken = std::max(launch_.sms, mg_launch_.fn ? mg_launch_.sms : cuda::pcg_launch<T>(nf_, tuning_, true).sms);
+    return device_info().sms - taken;
   }
   // Device-to-device copies in this backend's stream, after its take; the shadow's stream
   // waits for them, and this stream's next step (which overwrites the live state, never the

@@ -431,33 +431,47 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
 template <class T, bool MG>
 PcgLaunch pcg_launch_of(int n, const CudaTuning& tuning) {
   const DeviceInfo& d = device_info();
+  // The multiprocessors the steps' solve may take: those kept for a solve beside it left out.
+  const int sms = std::max(1, d.sms - std::max(tuning.shadow_sms, 0));
   PcgLaunch L;
   L.block = tuning.pcg_block;
   const int rows_per_block = L.block / kGroup;
   const int forced = tuning.pcg_grid;
   const int cap_per_sm = tuning.pcg_blocks_per_sm;
+  auto occupying = [&](int per_sm) { L.sms = std::min(sms, (L.grid + per_sm - 1) / per_sm); };
   // Register-resident rows when one pass of lane groups covers every row.
   int per_sm_c = 0;
   CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm_c, k_pcg<T, kCacheBlocks, MG>, L.block, 0));
   if (cap_per_sm > 0) per_sm_c = std::min(per_sm_c, cap_per_sm);
   const int need = (n + rows_per_block - 1) / rows_per_block;
-  if (tuning.rows_in_registers && per_sm_c > 0 && need <= per_sm_c * d.sms) {
+  if (tuning.rows_in_registers && per_sm_c > 0 && need <= per_sm_c * sms) {
     L.fn = reinterpret_cast<const void*>(&k_pcg<T, kCacheBlocks, MG>);
     L.cached = true;
     L.grid = std::max(need, 1);
-    if (forced > 0) L.grid = std::min(forced, per_sm_c * d.sms);
+    if (forced > 0) L.grid = std::min(forced, per_sm_c * sms);
+    occupying(per_sm_c);
     return L;
   }
   int per_sm = 0;
   CU(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, k_pcg<T, 0, MG>, L.block, 0));
   per_sm = std::max(per_sm, 1);
   if (cap_per_sm > 0) per_sm = std::min(per_sm, cap_per_sm);
-  const int max_blocks = per_sm * d.sms;
+  const int max_blocks = per_sm * sms;
   // Enough blocks that each lane group gets about one block row per SpMV pass; more only
   // makes the barriers dearer.
   L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0, MG>);
   L.grid = std::clamp(need, 1, max_blocks);
   if (forced > 0) L.grid = std::min(forced, max_blocks);
+  occupying(per_sm);
+  return L;
+}
+
+template <class T, bool MG>
+PcgLaunch pcg_launch_confined_of(int sms, const CudaTuning& tuning) {
+  PcgLaunch L;
+  L.block = tuning.pcg_block;
+  L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0, MG>);
+  L.grid = L.sms = std::clamp(sms, 1, device_info().sms);
   return L;
 }
 
@@ -479,8 +493,15 @@ void launch_pcg(cudaStream_t s, const PcgLaunch& L, const PcgArgs<T>& a, const D
   CU(cudaLaunchCooperativeKernel(L.fn, dim3(L.grid), dim3(L.block), args, 0, s));
 }
 
+template <class T>
+PcgLaunch pcg_launch_confined(int sms, const CudaTuning& tuning, bool multigrid) {
+  return multigrid ? pcg_launch_confined_of<T, true>(sms, tuning) : pcg_launch_confined_of<T, false>(sms, tuning);
+}
+
 template PcgLaunch pcg_launch<float>(int, const CudaTuning&, bool);
 template PcgLaunch pcg_launch<double>(int, const CudaTuning&, bool);
+template PcgLaunch pcg_launch_confined<float>(int, const CudaTuning&, bool);
+template PcgLaunch pcg_launch_confined<double>(int, const CudaTuning&, bool);
 template void launch_pcg<float>(cudaStream_t, const PcgLaunch&, const PcgArgs<float>&, const DetectArgs<float>&,
                                 const FingersArg&, const StepConsts&);
 template void launch_pcg<double>(cudaStream_t, const PcgLaunch&, const PcgArgs<double>&, const DetectArgs<double>&,

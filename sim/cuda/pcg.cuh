@@ -134,6 +134,7 @@ struct PcgLaunch {
   int grid = 1;
   int block = kPcgMaxBlock;
   bool cached = false;  // every row's matrix held in registers
+  int sms = 1;          // multiprocessors its blocks occupy at most
 };
 
 /// The launch configuration of k_pcg for n block rows on this device, with the knobs of
@@ -141,6 +142,12 @@ struct PcgLaunch {
 /// kernel preconditioned by the multigrid (PcgArgs::mg) instead of block-Jacobi.
 template <class T>
 PcgLaunch pcg_launch(int n, const CudaTuning& tuning, bool multigrid = false);
+
+/// The launch of a solve beside the steps (the converged check's shadow): the streaming
+/// kernel (no rows in registers: any grid covers every row) on `sms` multiprocessors, one
+/// block each, so that it never holds a block the steps' cooperative launch waits for.
+template <class T>
+PcgLaunch pcg_launch_confined(int sms, const CudaTuning& tuning, bool multigrid = false);
 
 /// Launches the persistent kernel L.fn (cooperative) in stream s.
 template <class T>

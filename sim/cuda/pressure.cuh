@@ -7,11 +7,11 @@
 //   k_pressure_pairs one thread per pair (n, j): its coupling b_nj = sum over the elements
 //                    holding both of (V_e / 4) r_{e,j}, afresh from the element records (the
 //                    GPU re-rotates every element every step, so nothing is kept).
-//   k_pressure_nodes one thread per node n (every node: the chest wall's pressures act on
+//   k_pressure_nodes a group of lanes per node n (every node: the chest wall's pressures act on
 //                    their free neighbours): the rest part c_n = sum over its elements of
 //                    (V_e / 4) (tr R_e - 3) and its pressure
 //                    pi_n = w_n (sum_j b_nj . (u + (beta + h) v)_j + c_n).
-//   k_pressure_free  one thread per free node j: the right-hand side loses
+//   k_pressure_free  a group of lanes per free node j: the right-hand side loses
 //                    h (B^T pi)_j, and its block-Jacobi inverse is formed again with the
 //                    term's diagonal block kscale sum_n w_n b_nj b_nj^T added.
 // Inside k_pcg each product A p gains kscale B^T W B p: the pressures of p over every node

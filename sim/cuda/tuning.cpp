@@ -28,6 +28,8 @@ CudaTuning CudaTuning::from_environment() {
   t.pcg_blocks_per_sm = env_int("PALPATION_CUDA_BLOCKS_PER_SM", 0);
   t.rows_in_registers = env_int("PALPATION_CUDA_CACHE", 1) != 0;
   t.fused_cg = env_str("PALPATION_CUDA_CG", "fused") != "3sync";
+  t.shadow_sms = env_int("PALPATION_CUDA_SHADOW_SMS", 0);
+  t.shadow_confined = env_str("PALPATION_CUDA_SHADOW", "confined") != "full";
   t.profile = env_int("PALPATION_CUDA_PROFILE", 0) != 0;
   return t;
 }

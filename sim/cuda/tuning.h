@@ -26,6 +26,14 @@ struct CudaTuning {
   /// own (three grid barriers per iteration); anything else (default "fused") forms it
   /// inside the SpMV (two barriers per iteration).
   bool fused_cg = true;
+  /// PALPATION_CUDA_SHADOW_SMS: multiprocessors the steps' persistent solve leaves free for
+  /// a converged check's solve beside it (Simulation's shadow). 0 (default, or any value
+  /// <= 0): none kept; the shadow takes what the steps' launch leaves, if anything.
+  int shadow_sms = 0;
+  /// PALPATION_CUDA_SHADOW: "full" launches the shadow's solve as the steps' are (on the
+  /// whole device, so that the two take turns); anything else (default "confined") keeps it
+  /// on the multiprocessors the steps' solve leaves.
+  bool shadow_confined = true;
   /// PALPATION_CUDA_PROFILE: non-zero times the stages of each solved step with events and
   /// prints their medians on stderr when the backend is destroyed. Default 0 (off).
   bool profile = false;

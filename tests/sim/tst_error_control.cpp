@@ -338,6 +338,7 @@ class TestErrorControl : public QObject {
     auto forking = make_named_backend(backend.toStdString(), m, s.params);
     auto twin = make_named_backend(backend.toStdString(), m, s.params);
     SimParams ref = s.params;
+    ref.solver.check = CheckPlace::Beside;  // under auto the CPU declines a shadow
     ref.solver.cg_tolerance = 1e-8;
     ref.solver.cg_rescue_tolerance = 1e-8;
     ref.solver.cg_max_iterations = 5000;
@@ -385,6 +386,69 @@ class TestErrorControl : public QObject {
     QVERIFY2(worst_ref <= 1e-6, std::to_string(worst_ref).c_str());
     // The fork only reads the forking backend's state: its steps are its twin's.
     QVERIFY2(worst_path <= path_bound, std::to_string(worst_path).c_str());
+  }
+
+  // On CUDA the steps' solve and the shadow's are cooperative launches, which start only
+  // when all their blocks fit at once: the shadow's must leave the steps' room, or each
+  // check holds the steps up for its whole reference solve. Here the steps' solve is made
+  // to take every multiprocessor but two (PALPATION_CUDA_GRID at its most,
+  // PALPATION_CUDA_SHADOW_SMS 2), and the shadow is given a reference that runs to a cap of
+  // 20,000 iterations (a tolerance no solve reaches) on what is left. Steps taken meanwhile
+  // return their results while the shadow still solves, and they are the steps of a twin
+  // backend that forks nothing. (Launched as the steps are, PALPATION_CUDA_SHADOW=full,
+  // the shadow is done by the time the first of those steps returns.)
+  void stepsGoOnWhileTheShadowSolves() {
+    if (!backend_usable("cuda")) return;
+    qputenv("PALPATION_CUDA_GRID", "100000");
+    qputenv("PALPATION_CUDA_SHADOW_SMS", "2");
+    struct Unset {
+      ~Unset() {
+        qunsetenv("PALPATION_CUDA_GRID");
+        qunsetenv("PALPATION_CUDA_SHADOW_SMS");
+      }
+    } unset;
+    Scenario s = box("cuda");
+    s.params.solver.cg_tolerance = 1e-3;
+    const Model m = build_scenario_model(s, patient_mesh(s));
+    auto forking = make_named_backend("cuda", m, s.params);
+    auto twin = make_named_backend("cuda", m, s.params);
+    SimParams endless = s.params;
+    endless.solver.check = CheckPlace::Beside;
+    endless.solver.cg_tolerance = endless.solver.cg_rescue_tolerance = 1e-30;
+    endless.solver.cg_max_iterations = endless.solver.cg_rescue_iterations = 20000;
+    auto shadow = forking->make_shadow(endless);
+    QVERIFY(shadow);
+    std::vector<FingerInput> in(1);
+    std::vector<FingerOutput> a(1), b(1), ref(1);
+    int k = 1;
+    for (; k <= 30; ++k) {  // into contact
+      in[0] = finger_at(k, s.params.solver.dt);
+      forking->step(in, a);
+      twin->step(in, b);
+    }
+    QVERIFY(a[0].contacts > 0);
+    QVERIFY(forking->checkpoint());
+    in[0] = finger_at(k, s.params.solver.dt);
+    forking->step(in, a);
+    twin->step(in, b);
+    QVERIFY(forking->fork_reference(*shadow));
+    shadow->begin_step(in);
+    double worst = 0;
+    for (int j = 1; j <= 3; ++j) {
+      in[0] = finger_at(k + j, s.params.solver.dt);
+      forking->step(in, a);
+      twin->step(in, b);
+      worst = std::max(worst, (a[0].force_raw - b[0].force_raw).norm() / std::max(1e-3, b[0].force_raw.norm()));
+    }
+    const bool still_solving = !shadow->step_ready();
+    const StepStats st = shadow->finish_step(ref);
+    qInfo("shadow still solving after three steps: %s; its reference took %d iterations; the steps against the twin's %.2e",
+          still_solving ? "yes" : "no", st.cg_iterations, worst);
+    QVERIFY(still_solving);
+    QVERIFY(st.finite && ref[0].force_raw.allFinite());
+    // The two backends take one path; they differ by the order of the GPU's atomic sums
+    // (forkedReferenceIsTheInStepReference's bound).
+    QVERIFY2(worst <= 1e-5, std::to_string(worst).c_str());
   }
 
   void shadowFollowsPaintingAndReset_data() {
