@@ -392,11 +392,12 @@ class TestErrorControl : public QObject {
   // when all their blocks fit at once: the shadow's must leave the steps' room, or each
   // check holds the steps up for its whole reference solve. Here the steps' solve is made
   // to take every multiprocessor but two (PALPATION_CUDA_GRID at its most,
-  // PALPATION_CUDA_SHADOW_SMS 2), and the shadow is given a reference that runs to a cap of
-  // 20,000 iterations (a tolerance no solve reaches) on what is left. Steps taken meanwhile
-  // return their results while the shadow still solves, and they are the steps of a twin
-  // backend that forks nothing. (Launched as the steps are, PALPATION_CUDA_SHADOW=full,
-  // the shadow is done by the time the first of those steps returns.)
+  // PALPATION_CUDA_SHADOW_SMS 2), and the shadow is given a reference to a tolerance no
+  // solve reaches (on the H200 it ran about 310 iterations, to CG's breakdown test, on its
+  // two multiprocessors: a hundred times a step's). Steps taken meanwhile return their
+  // results while the shadow still solves, and they are the steps of a twin backend that
+  // forks nothing. (Launched as the steps are, PALPATION_CUDA_SHADOW=full, the shadow was
+  // done by the time those steps returned, and this test failed.)
   void stepsGoOnWhileTheShadowSolves() {
     if (!backend_usable("cuda")) return;
     qputenv("PALPATION_CUDA_GRID", "100000");
