@@ -50,9 +50,15 @@ inline V4<T> mul(const V4<T> c[3], V4<T> y) {
 /// writing only those nine (two four-lane adds and one scalar).
 template <class T>
 inline void add_block(T* dst, const V4<T> c[3]) {
+  // Lanes of two vectors (index 4 and up: the second), by each compiler's own builtin.
+#if defined(__clang__)
+  store4(dst, load4(dst) + __builtin_shufflevector(c[0], c[1], 0, 1, 2, 4));
+  store4(dst + 4, load4(dst + 4) + __builtin_shufflevector(c[1], c[2], 1, 2, 4, 5));
+#else
   using Mask = typename Lanes4<T>::Mask;
   store4(dst, load4(dst) + __builtin_shuffle(c[0], c[1], Mask{0, 1, 2, 4}));
   store4(dst + 4, load4(dst + 4) + __builtin_shuffle(c[1], c[2], Mask{1, 2, 4, 5}));
+#endif
   dst[8] += c[2][2];
 }
 
