@@ -436,7 +436,8 @@ class CudaBackend final : public Backend {
   // step up for the length of its reference solve. So the shadow's solve gets the
   // multiprocessors the steps' solve leaves (CudaTuning::shadow_sms keeps some), one block
   // each, and never waits for the steps or makes them wait. `auto` asks for one only where
-  // such room exists (on the paper mesh the steps' solve takes 125 of the H200's 132).
+  // such room exists (on the paper mesh the steps' solve is a grid of 119 blocks; the H200
+  // has 132 multiprocessors).
   std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
     if (solver_ != Solver::Persistent) return nullptr;
     const int spare = spare_sms();
