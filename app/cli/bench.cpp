@@ -82,6 +82,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
   report["warmup"] = live::kWarmupSteps;
   report["reference"] = {{"backend", ref_backend}, {"precision", "double"}, {"cg_tolerance", 1e-10}};
   report["points"] = nlohmann::json::array();
+  std::ostringstream series;  // series.csv's rows (BenchOptions::series)
   report["floors"] = nlohmann::json::array();
   std::map<std::string, std::string> devices;
 
@@ -196,6 +197,12 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             std::snprintf(tol, sizeof tol, "fe%g%%", 100 * set.force_error);  // the error controller's target
           else
             std::snprintf(tol, sizeof tol, "%.0e", set.tolerance);
+          if (opt.series) {
+            const std::size_t warm = tr.step_ms.size() - live::after_warmup(tr.step_ms).size();
+            for (std::size_t k = 0; k < tr.step_ms.size(); ++k)
+              series << level << ',' << backend << ',' << prec << ',' << tol << ',' << k << ',' << (k >= warm ? 1 : 0) << ','
+                     << tr.step_ms[k] << ',' << tr.iterations[k] << ',' << tr.contacts[k] << '\n';
+          }
           std::printf("%-7s %-9s %-6s %8s %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
                       backend.c_str(), prec.c_str(), tol, set.max_iterations, med, p99, percentile(its, 50), itmax, ferr, derr,
                       floor_ms, x_floor, tr.finite ? (tr.fallbacks ? "  FELL BACK TO THE CPU" : "") : "  NOT FINITE");
@@ -286,6 +293,10 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             << report["element"].get<std::string>() << ',' << p["preconditioner"].get<std::string>() << ','
             << p["force_error_target"] << '\n';
     }
+    if (opt.series) {
+      std::ofstream csv(out.path("series.csv"));
+      csv << kSeriesHeader << '\n' << series.str();
+    }
     if (can_plot()) {
       PlotSpec plot;
       plot.title = "Step time against force error (" + opt.scenario + ", dt = 1 ms)";
@@ -317,7 +328,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
       write_plot_png(out.path("bench.png"), plot);
     }
     out.commit();
-    std::fprintf(stderr, "bench: wrote %s/bench.json, bench.csv%s\n", opt.out.c_str(), can_plot() ? ", bench.png" : "");
+    std::fprintf(stderr, "bench: wrote %s/bench.json, bench.csv%s%s\n", opt.out.c_str(), opt.series ? ", series.csv" : "",
+                 can_plot() ? ", bench.png" : "");
   }
   return report;
 }

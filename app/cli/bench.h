@@ -29,6 +29,7 @@ struct BenchOptions {
   double skin = -1;                            // >= 0: the skin membrane's thickness, m (0: none); < 0: the scenario's
   double force_error = 0;                      // > 0: only the error-controlled point, at this target
   std::vector<double> tolerances;              // not empty: only these fixed CG tolerances (cap 1,000)
+  bool series = false;                         // also series.csv in `out`: every step of every point
 };
 
 struct BenchSetting {
@@ -36,6 +37,11 @@ struct BenchSetting {
   int max_iterations;
   double force_error = 0;  // > 0: the error controller holds this (SolverParams::force_error)
 };
+
+/// The columns of series.csv (BenchOptions::series): one row per step of each point, the
+/// warm-up steps included (`timed` 0), so that a tail can be traced to its steps.
+inline constexpr const char* kSeriesHeader =
+    "mesh,backend,precision,setting,step,timed,step_ms,cg_iterations,contacts";
 
 /// Runs the sweep; prints the table on stdout. Returns the JSON report.
 nlohmann::json run_bench(const BenchOptions& opt);

@@ -11,7 +11,11 @@ CommandAction add_bench_command(CLI::App& app) {
   auto* sub = app.add_subcommand("bench", "Sweep mesh x backend x precision x solver setting: step time against error");
   auto o = std::make_shared<BenchOptions>();
   sub->add_flag("--quick", o->quick, "Small CPU subset (CI)");
-  sub->add_option("--out", o->out, "Folder for bench.json, bench.csv, bench.png");
+  auto* out = sub->add_option("--out", o->out, "Folder for bench.json, bench.csv, bench.png");
+  sub->add_flag("--series", o->series,
+                "Also DIR/series.csv: every step of every point (time, CG iterations, contacts; the warm-up steps marked), "
+                "to trace a tail to its steps")
+      ->needs(out);
   sub->add_option("--meshes", o->meshes, "Mesh levels (coarse, paper, fine, xfine) or edge lengths in m")->delimiter(',');
   sub->add_option("--backends", o->backends, "Backends (cpu, cuda, cuda-csr, cuda-bsr)")->delimiter(',');
   sub->add_option("--precisions", o->precisions, "double, float")->delimiter(',');
@@ -31,7 +35,8 @@ CommandAction add_bench_command(CLI::App& app) {
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--check", o->check,
                   "Where the error controller's converged check solves its reference (auto, in-step, beside; default: the "
-                  "scenario's, auto unless it names one: beside the steps on the cuda backend where it solves with block-jacobi, in the step elsewhere)")
+                  "scenario's, auto unless it names one: beside the steps on the cuda backend where its solve leaves the GPU room for the "
+                  "check's, as on the paper mesh; in the step elsewhere)")
       ->check(CLI::IsMember(sim::check_place_names()));
   sub->add_option("--force-error", o->force_error,
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "
