@@ -201,7 +201,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
             const std::size_t warm = tr.step_ms.size() - live::after_warmup(tr.step_ms).size();
             for (std::size_t k = 0; k < tr.step_ms.size(); ++k)
               series << level << ',' << backend << ',' << prec << ',' << tol << ',' << k << ',' << (k >= warm ? 1 : 0) << ','
-                     << tr.step_ms[k] << ',' << tr.iterations[k] << ',' << tr.contacts[k] << '\n';
+                     << tr.step_ms[k] << ',' << tr.iterations[k] << ',' << tr.contacts[k] << ',' << tr.tolerance[k] << '\n';
           }
           std::printf("%-7s %-9s %-6s %8s %6d | %9.4f %9.4f %6.0f %6d | %10.2e %10.2e | %9.4f %7.2f%s\n", level.c_str(),
                       backend.c_str(), prec.c_str(), tol, set.max_iterations, med, p99, percentile(its, 50), itmax, ferr, derr,

@@ -40,8 +40,9 @@ struct BenchSetting {
 
 /// The columns of series.csv (BenchOptions::series): one row per step of each point, the
 /// warm-up steps included (`timed` 0), so that a tail can be traced to its steps.
+/// cg_tolerance: the tolerance in force at the step's end (Trace::tolerance).
 inline constexpr const char* kSeriesHeader =
-    "mesh,backend,precision,setting,step,timed,step_ms,cg_iterations,contacts";
+    "mesh,backend,precision,setting,step,timed,step_ms,cg_iterations,contacts,cg_tolerance";
 
 /// Runs the sweep; prints the table on stdout. Returns the JSON report.
 nlohmann::json run_bench(const BenchOptions& opt);

@@ -13,7 +13,7 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_flag("--quick", o->quick, "Small CPU subset (CI)");
   auto* out = sub->add_option("--out", o->out, "Folder for bench.json, bench.csv, bench.png");
   sub->add_flag("--series", o->series,
-                "Also DIR/series.csv: every step of every point (time, CG iterations, contacts; the warm-up steps marked), "
+                "Also DIR/series.csv: every step of every point (time, CG iterations, contacts, CG tolerance; the warm-up steps marked), "
                 "to trace a tail to its steps")
       ->needs(out);
   sub->add_option("--meshes", o->meshes, "Mesh levels (coarse, paper, fine, xfine) or edge lengths in m")->delimiter(',');

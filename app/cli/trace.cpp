@@ -35,6 +35,7 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
     const sim::StepStats st = sim.step();
     tr.step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count());
     tr.iterations.push_back(st.cg_iterations);
+    tr.tolerance.push_back(sim.backend().params().solver.cg_tolerance);
     tr.contacts.push_back(st.contacts);
     tr.finite = tr.finite && st.finite;
     if (st.solved) {

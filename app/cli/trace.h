@@ -17,6 +17,8 @@ struct Trace {
   std::vector<double> force;               // (steps x fingers x 3) filtered finger force, N
   std::vector<int> iterations, contacts;   // (steps)
   std::vector<double> step_ms;             // (steps) wall time of the backend's step
+  std::vector<double> tolerance;           // (steps) the CG tolerance in force at the step's end (the
+                                           // error controller's; after a check in the step, the one it then chose)
   std::vector<std::vector<double>> snaps;  // node positions (nnode x 3, m) at snapshot_steps(steps)
   bool finite = true;
   double worst_residual = 0;               // largest relative CG residual a solved step ended at

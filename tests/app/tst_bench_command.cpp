@@ -66,6 +66,8 @@ class TestBenchCommand : public QObject {
         QVERIFY(ms > 0);
         if (k >= int(palpation::app::live::kWarmupSteps)) timed.push_back(ms);
         itmax = std::max(itmax, rows[k][col("cg_iterations")].toInt());
+        // A fixed tolerance (no error controller) is the one in force at every step.
+        QCOMPARE(rows[k][col("cg_tolerance")].toDouble(), tol);
       }
       // The largest CG count is over every step, the median step time over the timed ones.
       QCOMPARE(itmax, bench[b][bcol("cg_iterations_max")].toInt());
