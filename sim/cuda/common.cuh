@@ -160,10 +160,16 @@ __device__ __forceinline__ void invert3(const T m[9], T inv[9]) {
     for (int j = 0; j < 9; ++j) inv[j] = T(0);
 }
 
-__device__ __forceinline__ double warp_sum(double v) {
-  for (int o = 16; o > 0; o >>= 1) v += __shfl_xor_sync(0xffffffffu, v, o);
+/// The sum of v over the G lanes of each group (G a power of two dividing 32: lanes
+/// gG .. gG + G - 1), on every lane of the group; every lane of the warp must call it.
+template <int G, class T>
+__device__ __forceinline__ T group_sum(T v) {
+#pragma unroll
+  for (int off = G / 2; off > 0; off >>= 1) v += __shfl_xor_sync(0xffffffffu, v, off);
   return v;
 }
+
+__device__ __forceinline__ double warp_sum(double v) { return group_sum<32>(v); }
 
 /// Sums K values over the block and atomically adds them to dst[0..K). All threads call.
 template <int K>

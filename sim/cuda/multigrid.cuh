@@ -82,8 +82,7 @@ __device__ __forceinline__ void csr_groups(const CsrDev& M, Fetch fetch, Emit em
     double y = 0;
     if (row < M.rows)
       for (int k = M.ptr[row] + gl; k < M.ptr[row + 1]; k += G) y += M.val[k] * double(fetch(M.col[k]));
-#pragma unroll
-    for (int o = G / 2; o > 0; o >>= 1) y += __shfl_xor_sync(0xffffffffu, y, o);
+    y = group_sum<G>(y);
     if (row < M.rows && gl == 0) emit(row, y);
   }
 }

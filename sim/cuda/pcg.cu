@@ -107,12 +107,9 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<
       if (a.pres.b) pressure_gather<T, G>(a.pres, i, gl, y0, y1, y2);  // + kscale B^T W B u, pressures formed before
     }
     first_pass = false;
-#pragma unroll
-    for (int o = G / 2; o > 0; o >>= 1) {
-      y0 += __shfl_xor_sync(0xffffffffu, y0, o);
-      y1 += __shfl_xor_sync(0xffffffffu, y1, o);
-      y2 += __shfl_xor_sync(0xffffffffu, y2, o);
-    }
+    y0 = group_sum<G>(y0);
+    y1 = group_sum<G>(y1);
+    y2 = group_sum<G>(y2);
     if (i < a.n && gl < 3) emit(i, gl, gl == 0 ? y0 : (gl == 1 ? y1 : y2));
   }
 }

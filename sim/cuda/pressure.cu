@@ -34,15 +34,6 @@ __global__ void __launch_bounds__(kBlock) k_pressure_pairs(PressureArgs<T> a) {
 constexpr int kNodeLanes = 8;  // k_pressure_nodes: about 25 elements and 20 pairs a node
 constexpr int kFreeLanes = 4;  // k_pressure_free: about 15 pairs a free node
 
-/// The sum of v over the G lanes of each group (G a power of two dividing 32); every lane of
-/// the warp must call it.
-template <int G, class T>
-__device__ __forceinline__ T group_sum(T v) {
-#pragma unroll
-  for (int off = G / 2; off > 0; off >>= 1) v += __shfl_xor_sync(0xffffffffu, v, off);
-  return v;
-}
-
 template <class T>
 __global__ void __launch_bounds__(kBlock) k_pressure_nodes(PressureArgs<T> a) {
   constexpr int G = kNodeLanes;

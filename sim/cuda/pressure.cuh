@@ -84,8 +84,7 @@ __device__ __forceinline__ void pressure_rows(const PressureDev<T>& P, int nnode
         const T* bk = P.b + 3 * std::size_t(k);
         s += bk[0] * fetch(j, 0) + bk[1] * fetch(j, 1) + bk[2] * fetch(j, 2);
       }
-#pragma unroll
-    for (int o = G / 2; o > 0; o >>= 1) s += __shfl_xor_sync(0xffffffffu, s, o);
+    s = group_sum<G>(s);
     if (n < nnode && gl == 0) P.pi[n] = P.scale * P.w[n] * s;
   }
 }
