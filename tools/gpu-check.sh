@@ -334,6 +334,11 @@ EOF
   one "paper d 1e-6 256-thread blocks" p6 PALPATION_CUDA_PCG_BLOCK=256
   one "paper d 1e-6 rows not in registers" p6 PALPATION_CUDA_CACHE=0
   one "paper d 1e-6 3 barriers" p6 PALPATION_CUDA_CG=3sync
+  one "paper d 1e-6 one reduction" p6 PALPATION_CUDA_CG=1sync
+  mk p6l paper 1e-6 1000 double
+  python3 -c "import json,sys; s=json.load(open(sys.argv[1])); s['tissue']['element']='linear'; json.dump(s,open(sys.argv[1],'w'))" "$M/p6l.json"
+  one "paper d 1e-6 linear (default)" p6l
+  one "paper d 1e-6 linear 2 barriers" p6l PALPATION_CUDA_CG=fused
   one "paper d 1e-3" p3
   one "paper d 1e-2" p2
   one "paper f 1e-3" p3f

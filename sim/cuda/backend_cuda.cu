@@ -264,7 +264,7 @@ class CudaBackend final : public Backend {
     rec_.alloc(kRec * std::size_t(ne_));
     vals_.alloc(9 * std::size_t(nb_));
     precond_.alloc(9 * std::size_t(nf_));
-    for (auto* v : {&b_, &dv_, &dv_prev_, &r_, &z_, &p0_, &p1_, &q_}) v->alloc(3 * std::size_t(nf_));
+    for (auto* v : {&b_, &dv_, &dv_prev_, &r_, &z_, &p0_, &p1_, &q_, &ext_[0], &ext_[1], &ext_[2], &ext_[3], &ext_[4]}) v->alloc(3 * std::size_t(nf_));
     cA_.alloc(6 * std::size_t(std::max(ns_, 1)));
     cb_.alloc(3 * std::size_t(std::max(ns_, 1)));
     scratch_.alloc(1);
@@ -279,7 +279,7 @@ class CudaBackend final : public Backend {
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
       launch_ = shadow.sms > 0 ? cuda::pcg_launch_confined<T>(shadow.sms, tuning) : cuda::pcg_launch<T>(nf_, tuning);
-      fused_ = tuning.fused_cg;
+      cg_form_ = tuning.cg_form;
     } else {
 #ifdef PALPATION_HAVE_CUSPARSE
       baseline_ = solver_ == Solver::Csr ? cuda::make_csr_baseline<T>(m_, pcg_args(), stream_)
@@ -899,6 +899,7 @@ class CudaBackend final : public Backend {
     a.p0 = p0_.get();
     a.p1 = p1_.get();
     a.q = q_.get();
+    for (int e = 0; e < 5; ++e) a.ext[e] = ext_[e].get();
     a.nnode = nn_;
     a.free_nodes = free_nodes_.get();
     a.xpos = x_.get();
@@ -910,8 +911,13 @@ class CudaBackend final : public Backend {
     a.max_it = p_.solver.cg_max_iterations;
     a.rescue_tol = T(p_.solver.cg_rescue_tolerance);
     a.rescue_it = p_.solver.cg_rescue_iterations;
-    a.fused = fused_ ? 1 : 0;
+    a.fused = cg_form_ != CudaTuning::CgForm::ThreeBarriers ? 1 : 0;
     a.pres = pressure_dev();
+    // The one-reduction form where it was measured quicker (tuning.h): no nodal-pressure
+    // term and every row in registers.
+    const bool quicker = launch_.cached && !a.pres.b;
+    using Form = CudaTuning::CgForm;
+    a.one_reduction = cg_form_ == Form::OneReduction || (cg_form_ == Form::Auto && quicker) ? 1 : 0;
     a.scr = scratch_.get();
     a.res = dev_res_;
     if (multigrid) {
@@ -946,12 +952,12 @@ class CudaBackend final : public Backend {
   int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0, nt_ = 0;
   PcgLaunch launch_;
   int detect_grid_ = 1;
-  bool fused_ = true;
+  CudaTuning::CgForm cg_form_ = CudaTuning::CgForm::Auto;
   cudaStream_t stream_ = nullptr;
   DeviceArray<int4> tets_;
   DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_;
   DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
-  DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, dv_prev_, r_, z_, p0_, p1_, q_;
+  DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, dv_prev_, r_, z_, p0_, p1_, q_, ext_[5];
   bool last_converged_ = false;  // the last solve reached the tolerance: extrapolate the warm start
   DeviceArray<T> kept_x_, kept_v_, kept_quat_, kept_dv_, kept_dv_prev_;  // checkpoint()
   std::vector<Eigen::Vector3d> kept_filtered_;

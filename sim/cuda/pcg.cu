@@ -58,12 +58,13 @@ __device__ void load_row_cache(const PcgArgs<T>& a, RowCache<T, B>& rc) {
 }
 
 /// y_i = sum_k A_k u_col(k) for the block rows of this thread's group, then
-/// emit(i, c, y_c) on lanes c = 0..2 of the group. `fetch(j, c)` reads the input vector.
+/// emit(i, c, y0, y1, y2) on lanes c = 0..2 of the group (each holds all of y_i).
+/// `fetch(j, c)` reads the input vector.
 /// The first pass takes its row from the register cache; other passes (rows beyond one
 /// per group, on large meshes) stream the matrix. Warp-uniform loop bounds: every lane of
 /// a warp takes part in every shuffle.
-template <class T, int B, class Fetch, class Emit>
-__device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<T, B>& rc, Fetch fetch, Emit emit) {
+template <class T, int B, class Fetch, class Emit3>
+__device__ __forceinline__ void spmv_groups3(const PcgArgs<T>& a, const RowCache<T, B>& rc, Fetch fetch, Emit3 emit) {
   constexpr int G = kGroup, RPW = 32 / G;
   const int lane = threadIdx.x & 31;
   const int gl = lane % G, gw = lane / G;
@@ -110,8 +111,14 @@ __device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<
     y0 = group_sum<G>(y0);
     y1 = group_sum<G>(y1);
     y2 = group_sum<G>(y2);
-    if (i < a.n && gl < 3) emit(i, gl, gl == 0 ? y0 : (gl == 1 ? y1 : y2));
+    if (i < a.n && gl < 3) emit(i, gl, y0, y1, y2);
   }
+}
+
+/// spmv_groups3 with emit(i, c, y_c): lane c of the group emits component c.
+template <class T, int B, class Fetch, class Emit>
+__device__ __forceinline__ void spmv_groups(const PcgArgs<T>& a, const RowCache<T, B>& rc, Fetch fetch, Emit emit) {
+  spmv_groups3<T, B>(a, rc, fetch, [&](int i, int c, T y0, T y1, T y2) { emit(i, c, c == 0 ? y0 : (c == 1 ? y1 : y2)); });
 }
 
 /// Reduction ring: the values reduced before barrier m live in slot m % 4.
@@ -238,6 +245,123 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
   return rz;
 }
 
+/// Block-Jacobi PCG by the Chronopoulos-Gear recurrences, from r = b - A x (the warm
+/// start's, or b after a restart: `restart`), rnorm = ||r||: solve_cg.h's iterates in exact
+/// arithmetic, with its stopping rule and a breakdown test on the same quantity (p . A p,
+/// here gamma / alpha), but one grid barrier per iteration where the textbook form needs
+/// two (alpha needs p . A p before the update, beta needs r . z after it). With u = P r,
+/// w = A u, s = A p and m = P s:
+///   p = u + beta p,  s = w + beta s,  m = P w + beta m,  x += alpha p,  r -= alpha s,
+///   u -= alpha m,  w = A u,  gamma = r . u,  delta = u . w,  beta' = gamma' / gamma,
+///   alpha' = gamma' / (delta' - beta' gamma' / alpha).
+/// A pass updates its own rows and forms w = A u of the new u in the same sweep: a
+/// neighbour's new u is formed on the fly from its u, P w and m, which stay untouched until
+/// the barrier (the three are double-buffered; x, r, p, s and w are read by their own rows
+/// only). Returns the iterations taken; rnorm is the last residual's norm.
+template <class T, int B>
+__device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, coop::grid_group& grid, Ring& ring,
+                                bool restart, T bnorm, T& rnorm, int tid, int nthreads) {
+  const T* __restrict P = a.P;
+  T* ub[2] = {a.z, a.ext[0]};
+  T* pwb[2] = {a.q, a.ext[1]};
+  T* mb[2] = {a.p1, a.ext[2]};
+  T* r = a.r;
+  T* p = a.p0;
+  T* sv = a.ext[3];
+  T* w = a.ext[4];
+  auto prow = [P](int i, int c, T v0, T v1, T v2) {
+    const T* Pi = P + 9 * i + 3 * c;
+    return Pi[0] * v0 + Pi[1] * v1 + Pi[2] * v2;
+  };
+  // u = P r of the start, and w = A u with its dots (restart: r = b, x = 0).
+  T gamma, delta;
+  {
+    const T* r0 = restart ? a.b : a.r;
+    auto u0 = [=](int j, int c) { return prow(j, c, r0[3 * j], r0[3 * j + 1], r0[3 * j + 2]); };
+    if (a.pres.b) {
+      pressure_rows<T, kGroup>(a.pres, a.nnode, u0, tid, nthreads);
+      grid.sync();
+      ring.skip(a.scr);
+    }
+    double acc[2] = {0, 0};
+    spmv_groups3<T, B>(a, rc, u0, [&](int i, int c, T y0, T y1, T y2) {
+      if (restart) {
+        a.x[3 * i + c] = T(0);
+        r[3 * i + c] = a.b[3 * i + c];
+      }
+      const T u = u0(i, c), y = c == 0 ? y0 : (c == 1 ? y1 : y2);
+      ub[0][3 * i + c] = u;
+      w[3 * i + c] = y;
+      pwb[0][3 * i + c] = prow(i, c, y0, y1, y2);
+      acc[0] += double(r0[3 * i + c]) * double(u);
+      acc[1] += double(u) * double(y);
+    });
+    block_sum_atomic<2>(acc, ring.slot(a.scr));
+    grid.sync();
+    double gd[2];
+    ring.take<2>(a.scr, gd);
+    gamma = T(gd[0]);
+    delta = T(gd[1]);
+  }
+  int it = 0;
+  if (!(delta > T(0))) return it;  // not positive definite along u (or NaN): as pq <= 0
+  T alpha = gamma / delta, beta = 0;
+  bool first = true;
+  int cur = 0;
+  while ((it < a.max_it && rnorm > a.tol * bnorm) || (it < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
+    const T* uo = ub[cur];
+    const T* pwo = pwb[cur];
+    const T* mo = mb[cur];
+    T* un = ub[cur ^ 1];
+    T* pwn = pwb[cur ^ 1];
+    T* mn = mb[cur ^ 1];
+    const bool fst = first;
+    const T al = alpha, bt = beta;
+    auto m_of = [=](int j, int c) { return fst ? pwo[3 * j + c] : fma(bt, mo[3 * j + c], pwo[3 * j + c]); };
+    auto u_next = [=](int j, int c) { return fma(-al, m_of(j, c), uo[3 * j + c]); };
+    if (a.pres.b) {
+      pressure_rows<T, kGroup>(a.pres, a.nnode, u_next, tid, nthreads);
+      grid.sync();
+      ring.skip(a.scr);
+    }
+    double acc[3] = {0, 0, 0};
+    spmv_groups3<T, B>(a, rc, u_next, [&](int i, int c, T y0, T y1, T y2) {
+      const int k = 3 * i + c;
+      const T u = uo[k];
+      const T pi = fst ? u : fma(bt, p[k], u);
+      p[k] = pi;
+      a.x[k] += al * pi;
+      const T si = fst ? w[k] : fma(bt, sv[k], w[k]);
+      sv[k] = si;
+      const T rnew = fma(-al, si, r[k]);
+      r[k] = rnew;
+      mn[k] = m_of(i, c);
+      const T unew = u_next(i, c), y = c == 0 ? y0 : (c == 1 ? y1 : y2);
+      un[k] = unew;
+      w[k] = y;
+      pwn[k] = prow(i, c, y0, y1, y2);
+      acc[0] += double(rnew) * double(unew);
+      acc[1] += double(unew) * double(y);
+      acc[2] += double(rnew) * double(rnew);
+    });
+    block_sum_atomic<3>(acc, ring.slot(a.scr));
+    grid.sync();
+    double gdr[3];
+    ring.take<3>(a.scr, gdr);
+    ++it;
+    rnorm = sqrt(T(gdr[2]));
+    const T gamma_new = T(gdr[0]);
+    beta = gamma_new / gamma;
+    const T pap = T(gdr[1]) - beta * gamma_new / alpha;  // p' . A p' = gamma' / alpha'
+    gamma = gamma_new;
+    cur ^= 1;
+    first = false;
+    if (!(pap > T(0))) break;
+    alpha = gamma_new / pap;
+  }
+  return it;
+}
+
 /// The whole PCG of solve_cg.h (same warm start, restart rule, stopping rule and
 /// breakdown test) in one persistent cooperative kernel, then the state update, the rest
 /// rule and the finger outputs. Per iteration two grid barriers: the search direction
@@ -284,7 +408,11 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   const T bnorm = sqrt(T(br[0]));
   T rnorm = sqrt(T(br[1]));
   int it = 0;
-  if (bnorm > T(0)) {
+  if (bnorm > T(0) && !MG && a.one_reduction) {
+    const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
+    if (restart) rnorm = bnorm;
+    it = cg_one_reduction<T, B>(a, rc, grid, ring, restart, bnorm, rnorm, tid, nthreads);
+  } else if (bnorm > T(0)) {
     const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
     {
       double acc[1] = {0};

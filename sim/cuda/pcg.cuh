@@ -29,6 +29,7 @@ struct PcgArgs {
   T* p0;
   T* p1;
   T* q;
+  T* ext[5];  // the one-reduction form's further vectors (pcg.cu, cg_one_reduction)
   // State update and rest detection.
   int nnode;
   const int* free_nodes;
@@ -42,6 +43,7 @@ struct PcgArgs {
   T rescue_tol;   // past max_it: on while above rescue_tol, up to rescue_it in all
   int rescue_it;
   int fused;  // 1: search direction updated inside the SpMV (2 barriers per iteration)
+  int one_reduction;  // 1: block-Jacobi by the Chronopoulos-Gear recurrences (1 barrier)
   PressureDev<T> pres;  // the nodal-pressure term (pressure.cuh); off when pres.b is null
   // The multigrid preconditioner (multigrid.cuh) in place of block-Jacobi, with its
   // finest level's scratch (3 n each); off when mg is null.

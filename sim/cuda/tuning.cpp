@@ -27,7 +27,11 @@ CudaTuning CudaTuning::from_environment() {
   t.pcg_grid = env_int("PALPATION_CUDA_GRID", 0);
   t.pcg_blocks_per_sm = env_int("PALPATION_CUDA_BLOCKS_PER_SM", 0);
   t.rows_in_registers = env_int("PALPATION_CUDA_CACHE", 1) != 0;
-  t.fused_cg = env_str("PALPATION_CUDA_CG", "fused") != "3sync";
+  const std::string cg = env_str("PALPATION_CUDA_CG", "auto");
+  t.cg_form = cg == "3sync"   ? CudaTuning::CgForm::ThreeBarriers
+              : cg == "fused" ? CudaTuning::CgForm::Fused
+              : cg == "1sync" ? CudaTuning::CgForm::OneReduction
+                              : CudaTuning::CgForm::Auto;
   t.shadow_sms = env_int("PALPATION_CUDA_SHADOW_SMS", 0);
   t.shadow_confined = env_str("PALPATION_CUDA_SHADOW", "confined") != "full";
   t.profile = env_int("PALPATION_CUDA_PROFILE", 0) != 0;

@@ -202,8 +202,11 @@ class TestBackendAgreement : public QObject {
     QTest::newRow("cuda-csr") << "cuda-csr" << false << "block-jacobi" << "coarse" << 700 << false << "";
     QTest::newRow("cuda-bsr") << "cuda-bsr" << false << "block-jacobi" << "coarse" << 700 << false << "";
     QTest::newRow("cuda nodal-pressure") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "";
-    // The persistent kernel's other form of the same PCG (PALPATION_CUDA_CG=3sync: the
-    // search direction in a phase of its own, not inside the SpMV).
+    // The persistent kernel's forms of the same PCG (PALPATION_CUDA_CG; by default the
+    // one-reduction form on the linear element, the two-barrier one with the nodal-pressure
+    // term): the same iterates in other recurrences and summation orders.
+    QTest::newRow("cuda, two-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "fused";
+    QTest::newRow("cuda nodal-pressure, one-reduction form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "1sync";
     QTest::newRow("cuda, three-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "3sync";
     QTest::newRow("cuda nodal-pressure, three-barrier form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "3sync";
     QTest::newRow("cuda nodal-pressure, paper box") << "cuda" << true << "block-jacobi" << "paper" << 700 << false << "";
@@ -284,13 +287,18 @@ class TestBackendAgreement : public QObject {
   // cap, not at the chunk's end.
   void cappedAgreesWithCpu_data() {
     QTest::addColumn<QString>("backend");
-    QTest::newRow("cuda") << "cuda";
-    QTest::newRow("cuda-bsr") << "cuda-bsr";
+    QTest::addColumn<QString>("form");  // PALPATION_CUDA_CG (empty: the default)
+    QTest::newRow("cuda") << "cuda" << "";
+    QTest::newRow("cuda, two-barrier form") << "cuda" << "fused";
+    QTest::newRow("cuda-bsr") << "cuda-bsr" << "";
   }
   void cappedAgreesWithCpu() {
     QFETCH(QString, backend);
+    QFETCH(QString, form);
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): GPU/CPU agreement not checked").c_str());
+    if (!form.isEmpty()) qputenv("PALPATION_CUDA_CG", form.toUtf8());
+    const auto restore = qScopeGuard([] { qunsetenv("PALPATION_CUDA_CG"); });
     Scenario s = hertz_coarse();
     s.params.element = Element::Linear;
     s.params.solver.cg_tolerance = 1e-3;
