@@ -1,5 +1,7 @@
 // PCG stage of the CUDA backends: the PCG of solve_cg.h inside one persistent cooperative
-// kernel (pcg.cu), then the state update, the rest rule and the finger outputs.
+// kernel (pcg.cu), then the state update, the rest rule and the finger outputs. Its
+// iterates are solve_cg.h's; for the linear element with every row in registers they are
+// formed by the one-barrier Chronopoulos-Gear recurrences (pcg.cu, CudaTuning::cg_form).
 //
 // Header-only here: the arguments, the launch plan, and the device pieces that the
 // textbook baseline (baseline.cu) runs as separate kernels: the block-Jacobi
