@@ -142,6 +142,14 @@ struct Ring {
     for (int k = 0; k < K; ++k) out[k] = sh[k];
     ++m;
   }
+  /// The grid-wide sums of v (each thread's share on entry, the totals on every thread on
+  /// return): reduced into this barrier's slot, the barrier, the slot read.
+  template <int K>
+  __device__ void sum(coop::grid_group& grid, DevScratch* s, double (&v)[K]) {
+    block_sum_atomic<K>(v, slot(s));
+    grid.sync();
+    take<K>(s, v);
+  }
   /// A barrier that carries no reduction still advances the ring (and zeroes ahead).
   __device__ void skip(DevScratch* s) {
     if (blockIdx.x == 0 && threadIdx.x == 0)
@@ -296,12 +304,9 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       acc[0] += double(r0[3 * i + c]) * double(u);
       acc[1] += double(u) * double(y);
     });
-    block_sum_atomic<2>(acc, ring.slot(a.scr));
-    grid.sync();
-    double gd[2];
-    ring.take<2>(a.scr, gd);
-    gamma = T(gd[0]);
-    delta = T(gd[1]);
+    ring.sum(grid, a.scr, acc);
+    gamma = T(acc[0]);
+    delta = T(acc[1]);
   }
   int it = 0;
   if (!(delta > T(0))) return it;  // not positive definite along u (or NaN): as pq <= 0
@@ -344,15 +349,12 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       acc[1] += double(unew) * double(y);
       acc[2] += double(rnew) * double(rnew);
     });
-    block_sum_atomic<3>(acc, ring.slot(a.scr));
-    grid.sync();
-    double gdr[3];
-    ring.take<3>(a.scr, gdr);
+    ring.sum(grid, a.scr, acc);
     ++it;
-    rnorm = sqrt(T(gdr[2]));
-    const T gamma_new = T(gdr[0]);
+    rnorm = sqrt(T(acc[2]));
+    const T gamma_new = T(acc[0]);
     beta = gamma_new / gamma;
-    const T pap = T(gdr[1]) - beta * gamma_new / alpha;  // p' . A p' = gamma' / alpha'
+    const T pap = T(acc[1]) - beta * gamma_new / alpha;  // p' . A p' = gamma' / alpha'
     gamma = gamma_new;
     cur ^= 1;
     first = false;
@@ -389,22 +391,17 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     ring.skip(a.scr);
   }
   // r = b - A x (warm start), ||b||^2, ||r||^2.
-  {
-    double acc[2] = {0, 0};
-    spmv_groups<T, B>(
-        a, rc, [&](int j, int c) { return a.x[3 * j + c]; },
-        [&](int i, int c, T y) {
-          const T bi = a.b[3 * i + c];
-          const T ri = bi - y;
-          a.r[3 * i + c] = ri;
-          acc[0] += double(bi) * double(bi);
-          acc[1] += double(ri) * double(ri);
-        });
-    block_sum_atomic<2>(acc, ring.slot(a.scr));
-  }
-  grid.sync();
-  double br[2];
-  ring.take<2>(a.scr, br);
+  double br[2] = {0, 0};
+  spmv_groups<T, B>(
+      a, rc, [&](int j, int c) { return a.x[3 * j + c]; },
+      [&](int i, int c, T y) {
+        const T bi = a.b[3 * i + c];
+        const T ri = bi - y;
+        a.r[3 * i + c] = ri;
+        br[0] += double(bi) * double(bi);
+        br[1] += double(ri) * double(ri);
+      });
+  ring.sum(grid, a.scr, br);
   const T bnorm = sqrt(T(br[0]));
   T rnorm = sqrt(T(br[1]));
   int it = 0;
@@ -414,25 +411,20 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     it = cg_one_reduction<T, B>(a, rc, grid, ring, restart, bnorm, rnorm, tid, nthreads);
   } else if (bnorm > T(0)) {
     const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
-    {
-      double acc[1] = {0};
-      for (int i = tid; i < a.n; i += nthreads) {
-        if (restart)
-          for (int c = 0; c < 3; ++c) {
-            a.x[3 * i + c] = T(0);
-            a.r[3 * i + c] = a.b[3 * i + c];
-          }
-        if constexpr (!MG) {
-          precondition_row(a.P, a.r, a.z, i);
-          for (int c = 0; c < 3; ++c) acc[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
+    double rz1[1] = {0};
+    for (int i = tid; i < a.n; i += nthreads) {
+      if (restart)
+        for (int c = 0; c < 3; ++c) {
+          a.x[3 * i + c] = T(0);
+          a.r[3 * i + c] = a.b[3 * i + c];
         }
+      if constexpr (!MG) {
+        precondition_row(a.P, a.r, a.z, i);
+        for (int c = 0; c < 3; ++c) rz1[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
       }
-      if constexpr (MG) acc[0] = mg_precondition(a, rc, bar, tid, nthreads);
-      block_sum_atomic<1>(acc, ring.slot(a.scr));
     }
-    grid.sync();
-    double rz1[1];
-    ring.take<1>(a.scr, rz1);
+    if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads);
+    ring.sum(grid, a.scr, rz1);
     T rz = T(rz1[0]);
     if (restart) rnorm = bnorm;
     T beta = 0;
@@ -479,43 +471,32 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
               acc[0] += double(pn[3 * i + c]) * double(y);
             });
       }
-      block_sum_atomic<1>(acc, ring.slot(a.scr));
-      grid.sync();
-      double pq1[1];
-      ring.take<1>(a.scr, pq1);
-      const T pq = T(pq1[0]);
+      ring.sum(grid, a.scr, acc);
+      const T pq = T(acc[0]);
       if (!(pq > T(0))) break;
       const T alpha = rz / pq;
-      {
-        double acc2[2] = {0, 0};
-        for (int i = tid; i < a.n; i += nthreads) {
-          for (int c = 0; c < 3; ++c) {
-            a.x[3 * i + c] += alpha * pnew[3 * i + c];
-            a.r[3 * i + c] -= alpha * a.q[3 * i + c];
-          }
-          if constexpr (!MG) precondition_row(a.P, a.r, a.z, i);
-          for (int c = 0; c < 3; ++c) {
-            const double rr = double(a.r[3 * i + c]);
-            if constexpr (!MG) acc2[0] += rr * double(a.z[3 * i + c]);
-            acc2[1] += rr * rr;
-          }
+      double rr2[2] = {0, 0};
+      for (int i = tid; i < a.n; i += nthreads) {
+        for (int c = 0; c < 3; ++c) {
+          a.x[3 * i + c] += alpha * pnew[3 * i + c];
+          a.r[3 * i + c] -= alpha * a.q[3 * i + c];
         }
-        block_sum_atomic<2>(acc2, ring.slot(a.scr));
+        if constexpr (!MG) precondition_row(a.P, a.r, a.z, i);
+        for (int c = 0; c < 3; ++c) {
+          const double rr = double(a.r[3 * i + c]);
+          if constexpr (!MG) rr2[0] += rr * double(a.z[3 * i + c]);
+          rr2[1] += rr * rr;
+        }
       }
-      grid.sync();
-      double rr2[2];
-      ring.take<2>(a.scr, rr2);
+      ring.sum(grid, a.scr, rr2);
       T rz_new = T(rr2[0]);
       rnorm = sqrt(T(rr2[1]));
       if constexpr (MG) {
         // The V-cycle only where the loop goes on (its z would not be used).
         const int nit = it + 1;
         if ((nit < a.max_it && rnorm > a.tol * bnorm) || (nit < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
-          double acc[1] = {mg_precondition(a, rc, bar, tid, nthreads)};
-          block_sum_atomic<1>(acc, ring.slot(a.scr));
-          grid.sync();
-          double rz1[1];
-          ring.take<1>(a.scr, rz1);
+          double rz1[1] = {mg_precondition(a, rc, bar, tid, nthreads)};
+          ring.sum(grid, a.scr, rz1);
           rz_new = T(rz1[0]);
         }
       }
