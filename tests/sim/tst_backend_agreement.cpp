@@ -145,13 +145,26 @@ class TestBackendAgreement : public QObject {
     const Trace kept3 = run(s, m, "cpu", steps);
     s.params.solver.corotation_tolerance = 1e-5;
     const Trace kept5 = run(s, m, "cpu", steps);
+    // Under a force-error target the tolerance follows it (params.h,
+    // resolve_corotation_tolerance): at 1 %, 3e-3 however the scenario set it. The CG is
+    // still run to 1e-10 here (the backend alone has no controller), so what differs from
+    // the full run is the kept rotations' share of the target, which must stay within the
+    // third of it that kCorotationPerForceError allots (C <= 1.1 seen; measured 7e-4).
+    s.params.solver.corotation_tolerance = 1e-3;
+    s.params.solver.force_error = 0.01;
+    QCOMPARE(make_named_backend("cpu", m, s.params)->params().solver.corotation_tolerance,
+             kCorotationPerForceError * 0.01);
+    const Trace held = run(s, m, "cpu", steps);
     double fmax = 0;
     for (double f : full.force) fmax = std::max(fmax, std::abs(f));
     const double e3 = relative_error(kept3.force, full.force), e5 = relative_error(kept5.force, full.force);
-    qInfo("peak force component %.2f N; force error at tolerance 1e-3: %.2e, at 1e-5: %.2e", fmax, e3, e5);
+    const double eh = relative_error(held.force, full.force);
+    qInfo("peak force component %.2f N; force error at tolerance 1e-3: %.2e, at 1e-5: %.2e, at the 1 %% target's %.0e: %.2e",
+          fmax, e3, e5, kCorotationPerForceError * 0.01, eh);
     QVERIFY2(fmax > 1.0, "the fingertip never pressed: nothing compared");
     QVERIFY2(e3 <= 5e-3, qPrintable(QString("force error %1 at 1e-3").arg(e3)));
     QVERIFY2(e5 <= 1e-2 * e3 && e5 <= 1e-5, qPrintable(QString("force error %1 at 1e-5").arg(e5)));
+    QVERIFY2(eh <= 0.01 / 3, qPrintable(QString("force error %1 at the 1 % target's tolerance").arg(eh)));
     QVERIFY2(relative_error(kept3.x, full.x) <= 5e-3, "positions differ");
   }
 
