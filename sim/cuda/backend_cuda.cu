@@ -264,7 +264,7 @@ class CudaBackend final : public Backend {
     rec_.alloc(kRec * std::size_t(ne_));
     vals_.alloc(9 * std::size_t(nb_));
     precond_.alloc(9 * std::size_t(nf_));
-    for (auto* v : {&b_, &dv_, &dv_prev_, &r_, &z_, &p0_, &p1_, &q_, &ext_[0], &ext_[1], &ext_[2], &ext_[3], &ext_[4]}) v->alloc(3 * std::size_t(nf_));
+    for (auto* v : {&b_, &dv_, &dv_prev_, &r_, &z_, &p0_, &p1_, &q_}) v->alloc(3 * std::size_t(nf_));
     cA_.alloc(6 * std::size_t(std::max(ns_, 1)));
     cb_.alloc(3 * std::size_t(std::max(ns_, 1)));
     scratch_.alloc(1);
@@ -885,6 +885,17 @@ class CudaBackend final : public Backend {
     }
   }
 
+  // The PCG's form (tuning.h, CgForm): three barriers when asked; the one-reduction form
+  // (block-Jacobi only) when asked, or under `auto` where it was measured quicker: no
+  // nodal-pressure term and every row in registers; two barriers otherwise.
+  PcgForm pcg_form(bool multigrid, bool nodal_pressure) const {
+    using Form = CudaTuning::CgForm;
+    if (cg_form_ == Form::ThreeBarriers) return kThreeBarriers;
+    const bool quicker = launch_.cached && !nodal_pressure;
+    if (!multigrid && (cg_form_ == Form::OneReduction || (cg_form_ == Form::Auto && quicker))) return kOneReduction;
+    return kTwoBarriers;
+  }
+
   PcgArgs<T> pcg_args(bool multigrid = false) {
     PcgArgs<T> a{};
     a.n = nf_;
@@ -899,7 +910,6 @@ class CudaBackend final : public Backend {
     a.p0 = p0_.get();
     a.p1 = p1_.get();
     a.q = q_.get();
-    for (int e = 0; e < 5; ++e) a.ext[e] = ext_[e].get();
     a.nnode = nn_;
     a.free_nodes = free_nodes_.get();
     a.xpos = x_.get();
@@ -911,13 +921,15 @@ class CudaBackend final : public Backend {
     a.max_it = p_.solver.cg_max_iterations;
     a.rescue_tol = T(p_.solver.cg_rescue_tolerance);
     a.rescue_it = p_.solver.cg_rescue_iterations;
-    a.fused = cg_form_ != CudaTuning::CgForm::ThreeBarriers ? 1 : 0;
     a.pres = pressure_dev();
-    // The one-reduction form where it was measured quicker (tuning.h): no nodal-pressure
-    // term and every row in registers.
-    const bool quicker = launch_.cached && !a.pres.b;
-    using Form = CudaTuning::CgForm;
-    a.one_reduction = cg_form_ == Form::OneReduction || (cg_form_ == Form::Auto && quicker) ? 1 : 0;
+    a.form = pcg_form(multigrid, a.pres.b != nullptr);
+    if (a.form == kOneReduction) {
+      // Its five further vectors, allocated the first time the form is chosen.
+      for (int e = 0; e < 5; ++e) {
+        if (ext_[e].size() != 3 * std::size_t(nf_)) ext_[e].alloc(3 * std::size_t(nf_));
+        a.ext[e] = ext_[e].get();
+      }
+    }
     a.scr = scratch_.get();
     a.res = dev_res_;
     if (multigrid) {

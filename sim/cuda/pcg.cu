@@ -277,10 +277,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
   T* p = a.p0;
   T* sv = a.ext[3];
   T* w = a.ext[4];
-  auto prow = [P](int i, int c, T v0, T v1, T v2) {
-    const T* Pi = P + 9 * i + 3 * c;
-    return Pi[0] * v0 + Pi[1] * v1 + Pi[2] * v2;
-  };
+  auto prow = [P](int i, int c, T v0, T v1, T v2) { return block_jacobi_entry(P, i, c, v0, v1, v2); };
   // u = P r of the start, and w = A u with its dots (restart: r = b, x = 0).
   T gamma, delta;
   {
@@ -313,7 +310,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
   T alpha = gamma / delta, beta = 0;
   bool first = true;
   int cur = 0;
-  while ((it < a.max_it && rnorm > a.tol * bnorm) || (it < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
+  while (pcg_goes_on(a, it, rnorm, bnorm)) {
     const T* uo = ub[cur];
     const T* pwo = pwb[cur];
     const T* mo = mb[cur];
@@ -405,12 +402,12 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   const T bnorm = sqrt(T(br[0]));
   T rnorm = sqrt(T(br[1]));
   int it = 0;
-  if (bnorm > T(0) && !MG && a.one_reduction) {
-    const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
-    if (restart) rnorm = bnorm;
+  // A warm start far worse than zero (or not finite) restarts from x = 0, r = b.
+  const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
+  if (restart) rnorm = bnorm;
+  if (bnorm > T(0) && !MG && a.form == kOneReduction) {
     it = cg_one_reduction<T, B>(a, rc, grid, ring, restart, bnorm, rnorm, tid, nthreads);
   } else if (bnorm > T(0)) {
-    const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
     double rz1[1] = {0};
     for (int i = tid; i < a.n; i += nthreads) {
       if (restart)
@@ -426,20 +423,19 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads);
     ring.sum(grid, a.scr, rz1);
     T rz = T(rz1[0]);
-    if (restart) rnorm = bnorm;
     T beta = 0;
     bool first = true;
     T* pold = a.p0;
     T* pnew = a.p1;
-    while ((it < a.max_it && rnorm > a.tol * bnorm) || (it < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
+    while (pcg_goes_on(a, it, rnorm, bnorm)) {
       // Search direction p = z + beta p (first: p = z) and q = A p.
-      if (!a.fused) {
+      if (a.form == kThreeBarriers) {
         for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];
         grid.sync();
         ring.skip(a.scr);
       }
       double acc[1] = {0};
-      if (a.fused) {
+      if (a.form != kThreeBarriers) {
         const T* z = a.z;
         const T* po = pold;
         T* pn = pnew;
@@ -493,8 +489,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       rnorm = sqrt(T(rr2[1]));
       if constexpr (MG) {
         // The V-cycle only where the loop goes on (its z would not be used).
-        const int nit = it + 1;
-        if ((nit < a.max_it && rnorm > a.tol * bnorm) || (nit < a.rescue_it && rnorm > a.rescue_tol * bnorm)) {
+        if (pcg_goes_on(a, it + 1, rnorm, bnorm)) {
           double rz1[1] = {mg_precondition(a, rc, bar, tid, nthreads)};
           ring.sum(grid, a.scr, rz1);
           rz_new = T(rz1[0]);

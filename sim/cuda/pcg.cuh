@@ -17,6 +17,12 @@ namespace palpation::sim::cuda {
 
 struct MgDev;  // multigrid.cuh
 
+/// The PCG iteration's form in the persistent kernel (tuning.h, CudaTuning::CgForm, says
+/// where each is chosen): the search direction formed in a phase of its own (three grid
+/// barriers an iteration), inside the SpMV (two), or the Chronopoulos-Gear recurrences
+/// (one; block-Jacobi only).
+enum PcgForm : int { kThreeBarriers = 0, kTwoBarriers = 1, kOneReduction = 2 };
+
 template <class T>
 struct PcgArgs {
   int n;  // block rows (free nodes)
@@ -44,8 +50,7 @@ struct PcgArgs {
   int max_it;
   T rescue_tol;   // past max_it: on while above rescue_tol, up to rescue_it in all
   int rescue_it;
-  int fused;  // 1: search direction updated inside the SpMV (2 barriers per iteration)
-  int one_reduction;  // 1: block-Jacobi by the Chronopoulos-Gear recurrences (1 barrier)
+  int form;  // PcgForm: the iteration's form, resolved by the backend (tuning.h, CgForm)
   PressureDev<T> pres;  // the nodal-pressure term (pressure.cuh); off when pres.b is null
   // The multigrid preconditioner (multigrid.cuh) in place of block-Jacobi, with its
   // finest level's scratch (3 n each); off when mg is null.
@@ -56,14 +61,25 @@ struct PcgArgs {
   DevResult* res;
 };
 
+/// Entry c of P_i v for the three entries v0, v1, v2 of row i of a vector.
+template <class T>
+__device__ __forceinline__ T block_jacobi_entry(const T* P, int i, int c, T v0, T v1, T v2) {
+  const T* Pi = P + 9 * i + 3 * c;
+  return Pi[0] * v0 + Pi[1] * v1 + Pi[2] * v2;
+}
+
+/// Whether the PCG goes on after `it` iterations at residual norm rnorm (solve_cg.h's
+/// rule): below max_it while above tol, then on to rescue_it while above rescue_tol.
+template <class T>
+__device__ __forceinline__ bool pcg_goes_on(const PcgArgs<T>& a, int it, T rnorm, T bnorm) {
+  return (it < a.max_it && rnorm > a.tol * bnorm) || (it < a.rescue_it && rnorm > a.rescue_tol * bnorm);
+}
+
 /// t = P_i r_i: block row i of the block-Jacobi preconditioner (P: n x 9, row-major).
 template <class T>
 __device__ __forceinline__ void block_jacobi_row(const T* P, const T* r, int i, T (&t)[3]) {
-  const T* Pi = P + 9 * i;
   const T r0 = r[3 * i], r1 = r[3 * i + 1], r2 = r[3 * i + 2];
-  t[0] = Pi[0] * r0 + Pi[1] * r1 + Pi[2] * r2;
-  t[1] = Pi[3] * r0 + Pi[4] * r1 + Pi[5] * r2;
-  t[2] = Pi[6] * r0 + Pi[7] * r1 + Pi[8] * r2;
+  for (int c = 0; c < 3; ++c) t[c] = block_jacobi_entry(P, i, c, r0, r1, r2);
 }
 
 /// z_i = P_i r_i.

@@ -22,15 +22,16 @@ struct CudaTuning {
   /// other value (default 1) holds each lane group's first block row in registers for the
   /// whole solve where one pass of lane groups covers every row.
   bool rows_in_registers = true;
-  /// PALPATION_CUDA_CG, the block-Jacobi PCG's form in the persistent kernel (the
-  /// multigrid's is always "fused"): "3sync" forms the search direction p = z + beta p in a
-  /// phase of its own (three grid barriers per iteration); "fused" forms it inside the SpMV
-  /// (two barriers: one before alpha, one before beta); "1sync" runs the Chronopoulos-Gear
-  /// recurrences (pcg.cu, cg_one_reduction): the same iterates in exact arithmetic, both
-  /// reductions in one barrier, three vectors read per neighbour where "fused" reads two.
-  /// Anything else (default "auto"): "1sync" for the linear element with every row held in
-  /// registers, "fused" otherwise (measured, docs/benchmarks.md: 1sync is 13-15 % quicker
-  /// there, 2-7 % slower with the nodal-pressure term, 33 % slower streaming the rows).
+  /// PALPATION_CUDA_CG, the PCG's form in the persistent kernel: "3sync" forms the search
+  /// direction p = z + beta p in a phase of its own (three grid barriers per iteration);
+  /// "fused" forms it inside the SpMV (two barriers: one before alpha, one before beta);
+  /// "1sync" runs the Chronopoulos-Gear recurrences (pcg.cu, cg_one_reduction): the same
+  /// iterates in exact arithmetic, both reductions in one barrier, three vectors read per
+  /// neighbour where "fused" reads two. "1sync" is block-Jacobi's only: the multigrid runs
+  /// "fused" under it. Anything else (default "auto"): "1sync" for the linear element with
+  /// every row held in registers, "fused" otherwise (measured, docs/benchmarks.md: 1sync is
+  /// 13-15 % quicker there, 2-7 % slower with the nodal-pressure term, 33 % slower
+  /// streaming the rows).
   enum class CgForm { Auto, ThreeBarriers, Fused, OneReduction };
   CgForm cg_form = CgForm::Auto;
   /// PALPATION_CUDA_SHADOW_SMS: multiprocessors the steps' persistent solve leaves free for
