@@ -336,6 +336,7 @@ class CpuBackend final : public Backend {
       for (int e = 0; e < ne; ++e)
         for (int k = 0; k < 16; ++k) epair_[16 * std::size_t(e) + k] = np_.tet_pair[e][k];
       npi_.resize(nn);
+      npy_.resize(3 * std::size_t(nf));
       npc_.resize(nn);
       npx_.resize(3 * std::size_t(nf));
       npdiag_.resize(9 * std::size_t(nf));
@@ -343,7 +344,7 @@ class CpuBackend final : public Backend {
     const std::vector<double> w = nodal_pressure_weights(m_, np_, mat.lambda);
     npw_.assign(w.begin(), w.end());
     npt_ = cg::PressureTerm<T>{nn, np_.row_ptr.data(), np_.col.data(), np_.t_row_ptr.data(), np_.t_node.data(),
-                               np_.t_pair.data(), npb_.data(), npw_.data(), npi_.data()};
+                               np_.t_pair.data(), npb_.data(), npw_.data(), npi_.data(), npy_.data()};
   }
 
   void reset() override {
@@ -913,6 +914,7 @@ class CpuBackend final : public Backend {
   std::vector<int> epair_;                   // (ntet x 16) pair offsets of each element, -1 fixed
   std::vector<T> npb_, npw_;                 // (npair x 3) couplings b_nj, kept like K; (nnode) lambda_n / V_n
   std::vector<T> npi_, npc_;                 // (nnode) pressures (CG scratch), rest-position part c_n
+  std::vector<T> npy_;                       // (3 nfree) B^T W B x of a one-thread product (CG scratch)
   std::vector<T> npx_, npdiag_;              // (nfree x 3) u + damp v, (nfree x 9) diagonal blocks of B^T W B
   cg::PressureTerm<T> npt_;
   std::vector<membrane::Rest<T>> skin_rest_;  // (ntri) the skin membrane's rest data in T

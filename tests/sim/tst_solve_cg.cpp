@@ -6,6 +6,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "model.h"
+#include "nodal_pressure.h"
 #include "solve_cg.h"
 #include "static_solve.h"
 
@@ -112,6 +113,51 @@ class TestSolveCg : public QObject {
     for (int i = 0; i < n; ++i) num += (xf[i] - x_ref[i]) * (xf[i] - x_ref[i]);
     const double err = std::sqrt(num) / x_ref.norm();
     QVERIFY2(err < 1e-3, qPrintable(QString::number(err)));
+  }
+
+  // The product with the nodal-pressure term B^T W B three ways: on one thread by one
+  // scattering pass over the pressure rows (cg::pressure_product, what a one-thread CPU
+  // backend runs), by the pressures and a gather in each row (on several threads, or with
+  // no scatter scratch), all against the same term as an Eigen sparse matrix. Only the
+  // order of the sums differs: about 30 terms of order 1 a row, so 1e-12 of the largest
+  // entry is a thousand times their rounding; a lost or doubled pair moves an entry by
+  // order 1.
+  void pressureProductMatchesSparse() {
+    const System s = make_system(0.001);
+    const int nf = s.m.num_free(), nn = s.m.num_nodes(), n = 3 * nf;
+    const NodalPressurePattern pat = build_nodal_pressure_pattern(s.m);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<double> b(3 * std::size_t(pat.num_pairs())), w(nn), pi(nn), scratch(n), x(n);
+    for (double& v : b) v = u(rng);
+    for (double& v : w) v = 1.0 + u(rng) * 0.5;
+    for (double& v : x) v = u(rng);
+    cg::PressureTerm<double> P{nn, pat.row_ptr.data(), pat.col.data(), pat.t_row_ptr.data(), pat.t_node.data(),
+                               pat.t_pair.data(), b.data(), w.data(), pi.data(), scratch.data()};
+    cg::BlockSystem<double> sys{nf, s.m.row_ptr.data(), s.m.col.data(), s.blocks.data()};
+    sys.scale = 0.5;
+    sys.pressure = &P;
+    const amg::SpMat M = cg::to_sparse(sys) + cg::pressure_to_sparse(sys);
+    const Eigen::VectorXd ref = M * Eigen::Map<const Eigen::VectorXd>(x.data(), n);
+    QVERIFY(ref.norm() > 0);
+    auto error_of = [&](bool parallel) {
+      std::vector<double> y(n);
+      double xy = 0;
+      cg::multiply(sys, x.data(), y.data(), parallel, &xy);
+      const Eigen::Map<const Eigen::VectorXd> xv(x.data(), n);
+      const double e = (Eigen::Map<const Eigen::VectorXd>(y.data(), n) - ref).cwiseAbs().maxCoeff();
+      const double exy = std::abs(xy - xv.dot(ref));  // the fused x . y with it
+      return std::max(e / ref.cwiseAbs().maxCoeff(), exy / (xv.norm() * ref.norm()));
+    };
+    error_of(false);  // the scratch is reused from product to product: the second must not add to the first
+    const double scattered = error_of(false), threads = error_of(true);
+    P.y = nullptr;
+    const double gathered = error_of(false);
+    qInfo("largest error against the sparse product: scattered %.2e, threads %.2e, gathered %.2e", scattered,
+          threads, gathered);
+    QVERIFY2(scattered <= 1e-12, qPrintable(QString::number(scattered)));
+    QVERIFY2(threads <= 1e-12, qPrintable(QString::number(threads)));
+    QVERIFY2(gathered <= 1e-12, qPrintable(QString::number(gathered)));
   }
 };
 
