@@ -127,7 +127,7 @@ inline constexpr double kDefaultForceError = 0.01;
 
 /// The CPU's corotation tolerance under a force-error target: this times the target. A
 /// rotation kept off by at most tol moves the finger force by C tol; on the breast at the
-/// paper sweep's first push C measured 0.25-0.45 (coarse and paper meshes, tol 1e-3 to
+/// paper sweep's first push C measured 0.2-0.45 (coarse and paper meshes, tol 1e-3 to
 /// 1e-2, docs/benchmarks.md), and at most 1.1 on the meshes Gmsh made before they were the
 /// same on every machine (tst_backend_agreement). So the kept rotations take at most a
 /// third of the target, the rest is left to the CG error the controller holds
