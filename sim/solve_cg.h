@@ -76,8 +76,7 @@ void pressure_rows(const PressureTerm<T>& P, const T* __restrict x, const T* __r
 /// y = B^T W B x over the free rows, in one pass over the pressure rows in storage order:
 /// b_nj pi_n added to y_j for each row's pairs after its pressure. pressure_gather reads
 /// the same pairs by free row, through two index arrays and out of order: a product with
-/// it measured 1.08x (coarse breast) and 1.27x (paper) one with this pass, and the paper
-/// mesh's CPU step 1.2x. One thread only: threads would race on y_j, so multiply() gathers when it
+/// it measured 1.08x (coarse breast) and 1.27x (paper) one with this pass. One thread only: threads would race on y_j, so multiply() gathers when it
 /// runs its rows in parallel.
 template <class T>
 void pressure_product(const PressureTerm<T>& P, const T* __restrict x, T* __restrict y, int nfree) {
