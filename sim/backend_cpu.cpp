@@ -335,8 +335,12 @@ class CpuBackend final : public Backend {
       epair_.resize(16 * std::size_t(ne));
       for (int e = 0; e < ne; ++e)
         for (int k = 0; k < 16; ++k) epair_[16 * std::size_t(e) + k] = np_.tet_pair[e][k];
+      // The couplings in the block order as well, kept beside npb_ by rotate_pairs (with
+      // the blocks' trash slots for fixed rows), for the CG's product by block rows.
+      npbb_.assign(3 * (std::size_t(m_.num_blocks()) + threads_) + 1, T(0));
+      npbt_.assign(npbb_.size(), T(0));
       npi_.resize(nn);
-      npy_.resize(3 * std::size_t(nf));
+      npif_.resize(nf);
       npc_.resize(nn);
       npx_.resize(3 * std::size_t(nf));
       npdiag_.resize(9 * std::size_t(nf));
@@ -344,7 +348,16 @@ class CpuBackend final : public Backend {
     const std::vector<double> w = nodal_pressure_weights(m_, np_, mat.lambda);
     npw_.assign(w.begin(), w.end());
     npt_ = cg::PressureTerm<T>{nn, np_.row_ptr.data(), np_.col.data(), np_.t_row_ptr.data(), np_.t_node.data(),
-                               np_.t_pair.data(), npb_.data(), npw_.data(), npi_.data(), npy_.data()};
+                               np_.t_pair.data(), npb_.data(), npw_.data(), npi_.data()};
+    npt_.bb = npbb_.data();
+    npt_.bt = npbt_.data();
+    npt_.free_node = m_.free_nodes.data();
+    npt_.pif = npif_.data();
+    npt_.nfixed = static_cast<int>(np_.fixed_rows.size());
+    npt_.fixed_rows = np_.fixed_rows.data();
+    npt_.ft_row_ptr = np_.ft_row_ptr.data();
+    npt_.ft_node = np_.ft_node.data();
+    npt_.ft_pair = np_.ft_pair.data();
   }
 
   void reset() override {
@@ -537,6 +550,8 @@ class CpuBackend final : public Backend {
       std::fill(blocks_.begin(), blocks_.end(), T(0));
       std::fill(b0_.begin(), b0_.end(), T(0));
       std::fill(npb_.begin(), npb_.end(), T(0));
+      std::fill(npbb_.begin(), npbb_.end(), T(0));
+      std::fill(npbt_.begin(), npbt_.end(), T(0));
       steps_since_assembly_ = 0;
       ++counters_.full_assemblies;
     }
@@ -655,10 +670,12 @@ class CpuBackend final : public Backend {
   }
 
   // The element's part of the nodal-pressure couplings b_nj, (V / 4) r_j for each of its
-  // nodes n and free nodes j, for r1 (r_j = R g_j), minus that for r0 when given. A pair
-  // (n, j) belongs to elements that hold the free node j, which no two elements of one
-  // colour share: race-free under the coloured parallel pass.
-  void rotate_pairs(std::size_t e, const V4 r1[4], const V4* r0) {
+  // nodes n and free nodes j, for r1 (r_j = R g_j), minus that for r0 when given; into
+  // npb_ (pair order) and npbb_ / npbt_ (block order: pair (n, j) is the element's block
+  // (n, j), and its transpose (j, n); a fixed n's go to the trash slot). A pair (n, j)
+  // belongs to elements that hold the free node j, which no two elements of one colour
+  // share: race-free under the coloured parallel pass.
+  void rotate_pairs(std::size_t e, const V4 r1[4], const V4* r0, const int blk[16]) {
     const T q = T(0.25) * evol_[e];
     const int* pr = &epair_[16 * e];
     for (int b = 0; b < 4; ++b) {
@@ -667,7 +684,13 @@ class CpuBackend final : public Backend {
         const int k = pr[4 * a + b];
         if (k < 0) continue;
         T* bk = &npb_[3 * std::size_t(k)];
-        for (int c = 0; c < 3; ++c) bk[c] += d[c];
+        T* bb = &npbb_[std::size_t(blk[4 * a + b] / 3)];  // blk: 9 T a block, here 3
+        T* bt = &npbt_[std::size_t(blk[4 * b + a] / 3)];
+        for (int c = 0; c < 3; ++c) {
+          bk[c] += d[c];
+          bb[c] += d[c];
+          bt[c] += d[c];
+        }
       }
     }
   }
@@ -805,7 +828,7 @@ class CpuBackend final : public Backend {
       }
       if (full) {
         rotate_blocks(es, r, kept ? y : nullptr, nullptr, nullptr, blk, rows);
-        if (nodal()) rotate_pairs(es, r, nullptr);
+        if (nodal()) rotate_pairs(es, r, nullptr, blk);
       } else {  // the element's old blocks (and its part of b0) out, the new ones in
         const V4 R0[3] = {lanes::load3(Rk), lanes::load3(Rk + 3), lanes::load3(Rk + 6)};
         V4 r0[4], y0[4];
@@ -814,7 +837,7 @@ class CpuBackend final : public Backend {
           y0[a] = rotate(R0, X + 3 * a) - lanes::load3(X + 3 * a);
         }
         rotate_blocks(es, r, y, r0, y0, blk, rows);
-        if (nodal()) rotate_pairs(es, r, r0);
+        if (nodal()) rotate_pairs(es, r, r0, blk);
       }
       for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
     }
@@ -914,7 +937,8 @@ class CpuBackend final : public Backend {
   std::vector<int> epair_;                   // (ntet x 16) pair offsets of each element, -1 fixed
   std::vector<T> npb_, npw_;                 // (npair x 3) couplings b_nj, kept like K; (nnode) lambda_n / V_n
   std::vector<T> npi_, npc_;                 // (nnode) pressures (CG scratch), rest-position part c_n
-  std::vector<T> npy_;                       // (3 nfree) B^T W B x of a one-thread product (CG scratch)
+  std::vector<T> npbb_, npbt_;               // (nblock x 3 + trash) the couplings in the block order (cg::PressureTerm)
+  std::vector<T> npif_;                      // (nfree) free nodes' pressures (CG scratch)
   std::vector<T> npx_, npdiag_;              // (nfree x 3) u + damp v, (nfree x 9) diagonal blocks of B^T W B
   cg::PressureTerm<T> npt_;
   std::vector<membrane::Rest<T>> skin_rest_;  // (ntri) the skin membrane's rest data in T

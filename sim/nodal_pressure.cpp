@@ -1,6 +1,7 @@
 #include "nodal_pressure.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace palpation::sim {
 
@@ -46,6 +47,35 @@ NodalPressurePattern build_nodal_pressure_pattern(const Model& m) {
       p.t_node[slot] = n;
       p.t_pair[slot] = k;
     }
+  // The block order. Pair (n, j) exists where n and j share an element, as block
+  // (dof n, j) does: for a free n the two patterns are the same.
+  p.pair_block.assign(p.col.size(), -1);
+  p.pair_tblock.assign(p.col.size(), -1);
+  std::vector<std::vector<std::pair<int, int>>> fixed_of(nf);  // per free j: (n, pair)
+  for (int n = 0; n < nn; ++n) {
+    const int i = m.dof[n];
+    if (i < 0 && p.row_ptr[n + 1] > p.row_ptr[n]) p.fixed_rows.push_back(n);
+    for (int k = p.row_ptr[n]; k < p.row_ptr[n + 1]; ++k) {
+      if (i < 0) {
+        fixed_of[p.col[k]].emplace_back(n, k);
+        continue;
+      }
+      const int j = p.col[k];
+      p.pair_block[k] = m.block_of(i, j);
+      p.pair_tblock[k] = m.block_of(j, i);
+      if (p.pair_block[k] >= m.row_ptr[i + 1] || m.col[p.pair_block[k]] != j || p.pair_tblock[k] >= m.row_ptr[j + 1] ||
+          m.col[p.pair_tblock[k]] != i)
+        throw std::logic_error("nodal pressure: a pair of free nodes without its stiffness block");
+    }
+  }
+  p.ft_row_ptr.assign(nf + 1, 0);
+  for (int j = 0; j < nf; ++j) {
+    p.ft_row_ptr[j + 1] = p.ft_row_ptr[j] + static_cast<int>(fixed_of[j].size());
+    for (const auto& [n, k] : fixed_of[j]) {
+      p.ft_node.push_back(n);
+      p.ft_pair.push_back(k);
+    }
+  }
   p.node_volume.assign(nn, 0.0);
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 4; ++a) p.node_volume[m.tets[e][a]] += 0.25 * m.volume[e];

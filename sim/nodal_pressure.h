@@ -35,10 +35,31 @@ struct NodalPressurePattern {
   // Pair of element e's nodes (a, b) at 4 a + b, -1 when node b is fixed.
   std::vector<std::array<int, 4 * 4>> tet_pair;  // (ntet)
   std::vector<double> node_volume;               // (nnode) V_n, m^3
+  // The block matrix's order (Model::col), for a product by block rows (solve_cg.h):
+  // pair (n, j) of a free n is block (dof n, j) and its transpose block (j, dof n); -1
+  // for a fixed n, whose rows stay in the pair order.
+  std::vector<int> pair_block, pair_tblock;  // (npair)
+  std::vector<int> fixed_rows;               // the fixed nodes with pairs
+  std::vector<int> ft_row_ptr;               // (nfree + 1) free node j's pairs (n fixed, j):
+  std::vector<int> ft_node, ft_pair;         // n and the pair
   int num_pairs() const { return static_cast<int>(col.size()); }
 };
 
 NodalPressurePattern build_nodal_pressure_pattern(const Model& m);
+
+/// The free rows' couplings b (pair order, 3 per pair) in the block order: bb at block
+/// (i, c) b_{n(i) c}, bt at block (i, c) b_{n(c) i} (solve_cg.h's PressureTerm; bb and bt
+/// hold 3 x the model's blocks and are overwritten there).
+template <class T>
+void couplings_to_block_order(const NodalPressurePattern& p, const T* b, T* bb, T* bt) {
+  for (int k = 0; k < p.num_pairs(); ++k) {
+    if (p.pair_block[k] < 0) continue;
+    for (int c = 0; c < 3; ++c) {
+      bb[3 * std::size_t(p.pair_block[k]) + c] = b[3 * std::size_t(k) + c];
+      bt[3 * std::size_t(p.pair_tblock[k]) + c] = b[3 * std::size_t(k) + c];
+    }
+  }
+}
 
 /// W's diagonal, lambda_n / V_n, for per-element lambda (Pa): lambda_n is the mean of the
 /// elements' lambda around n weighted by volume.
