@@ -713,15 +713,24 @@ class CpuBackend final : public Backend {
       for (int k = 0; k < 3; ++k)
         npx_[3 * i + k] = x_[3 * node + k] - T(m_.rest[node][k]) + damp * v_[3 * node + k];
     }
-    cg::pressure_rows(npt_, npx_.data(), npc_.data(), par);
+    // By block rows, as the CG's products (solve_cg.h): the diagonal block of row j,
+    // sum_n w_n b_nj b_nj^T, from bt along the row (b_{n(c) j} at block (j, c)) and the
+    // row's pairs with fixed nodes.
+    cg::BlockSystem<T> sys{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data()};
+    sys.pressure = &npt_;
+    cg::pressure_rows_by_blocks(sys, npx_.data(), npc_.data(), par);
 #pragma omp parallel for schedule(static) if (par)
     for (int j = 0; j < nf; ++j) {
-      const V4 g = cg::pressure_gather(npt_, j);
+      const V4 g = cg::pressure_by_blocks(sys, j);
       for (int k = 0; k < 3; ++k) b_[3 * j + k] -= g[k];
       M3 D = M3::Zero();
-      for (int k = np_.t_row_ptr[j]; k < np_.t_row_ptr[j + 1]; ++k) {
-        const Eigen::Map<const V3> bk(&npb_[3 * std::size_t(np_.t_pair[k])]);
-        D.noalias() += npw_[np_.t_node[k]] * bk * bk.transpose();
+      for (int k = m_.row_ptr[j]; k < m_.row_ptr[j + 1]; ++k) {
+        const Eigen::Map<const V3> bk(&npbt_[3 * std::size_t(k)]);
+        D.noalias() += npw_[m_.free_nodes[m_.col[k]]] * bk * bk.transpose();
+      }
+      for (int q = np_.ft_row_ptr[j]; q < np_.ft_row_ptr[j + 1]; ++q) {
+        const Eigen::Map<const V3> bk(&npb_[3 * std::size_t(np_.ft_pair[q])]);
+        D.noalias() += npw_[np_.ft_node[q]] * bk * bk.transpose();
       }
       Eigen::Map<M3> dst(&npdiag_[9 * std::size_t(j)]);
       dst = D;

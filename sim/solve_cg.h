@@ -135,38 +135,67 @@ struct Result {
 };
 
 /// The nodal pressures of a product by block rows (A's pressure term has the block
-/// layout): the free rows' from bb along A's own rows into pif, the fixed rows' into pi.
+/// layout), w_n (sum_j b_nj . x_j + c_n) (c: none, or per node): the free rows' from bb
+/// along A's own rows into pif, the fixed rows' into pi.
 template <class T>
-void pressure_rows_by_blocks(const BlockSystem<T>& A, const T* __restrict x, bool parallel) {
+void pressure_rows_by_blocks(const BlockSystem<T>& A, const T* __restrict x, const T* __restrict c, bool parallel) {
   const PressureTerm<T>& P = *A.pressure;
+  using V4 = lanes::V4<T>;
 #pragma omp parallel for schedule(static) if (parallel)
-  for (int i = 0; i < A.n; ++i) P.pif[i] = P.w[P.free_node[i]] * coupling_sum(P.bb, A.col, A.row_ptr[i], A.row_ptr[i + 1], x);
+  for (int i = 0; i < A.n; ++i) {
+    // Four lanes a pair (bb's fourth is the next pair's first, x's a zero): half the
+    // loads and a third of the multiplies of coupling_sum's scalar form, which bb's
+    // padding allows and the pair order's unpadded b does not.
+    V4 s0 = {0, 0, 0, 0}, s1 = {0, 0, 0, 0};
+    int k = A.row_ptr[i];
+    const int end = A.row_ptr[i + 1];
+    for (; k + 2 <= end; k += 2) {
+      s0 += lanes::load4(P.bb + 3 * std::size_t(k)) * lanes::load3(x + 3 * std::size_t(A.col[k]));
+      s1 += lanes::load4(P.bb + 3 * std::size_t(k) + 3) * lanes::load3(x + 3 * std::size_t(A.col[k + 1]));
+    }
+    if (k < end) s0 += lanes::load4(P.bb + 3 * std::size_t(k)) * lanes::load3(x + 3 * std::size_t(A.col[k]));
+    s0 += s1;
+    const int n = P.free_node[i];
+    P.pif[i] = P.w[n] * ((c ? c[n] : T(0)) + (s0[0] + s0[1] + s0[2]));
+  }
   for (int f = 0; f < P.nfixed; ++f) {
     const int n = P.fixed_rows[f];
-    P.pi[n] = P.w[n] * coupling_sum(P.b, P.col, P.row_ptr[n], P.row_ptr[n + 1], x);
+    P.pi[n] = P.w[n] * ((c ? c[n] : T(0)) + coupling_sum(P.b, P.col, P.row_ptr[n], P.row_ptr[n + 1], x));
   }
 }
 
 /// (B^T pi)_i for free row i after pressure_rows_by_blocks: bt along the row, streamed as
-/// the blocks are, and the row's few pairs with fixed nodes.
+/// the blocks are (block k's part here, added by block_rows beside the block), and the
+/// row's few pairs with fixed nodes.
 template <class T>
-[[gnu::always_inline]] inline lanes::V4<T> pressure_by_blocks(const BlockSystem<T>& A, int i) {
+[[gnu::always_inline]] inline lanes::V4<T> pressure_at_block(const BlockSystem<T>& A, int k) {
+  return lanes::load4(A.pressure->bt + 3 * std::size_t(k)) * A.pressure->pif[A.col[k]];
+}
+template <class T>
+[[gnu::always_inline]] inline lanes::V4<T> pressure_fixed_pairs(const BlockSystem<T>& A, int i) {
   const PressureTerm<T>& P = *A.pressure;
   lanes::V4<T> y = {0, 0, 0, 0};
-  for (int k = A.row_ptr[i]; k < A.row_ptr[i + 1]; ++k) y += lanes::load4(P.bt + 3 * std::size_t(k)) * P.pif[A.col[k]];
   for (int q = P.ft_row_ptr[i]; q < P.ft_row_ptr[i + 1]; ++q)
     y += lanes::load3(P.b + 3 * std::size_t(P.ft_pair[q])) * P.pi[P.ft_node[q]];
   return y;
 }
+template <class T>
+lanes::V4<T> pressure_by_blocks(const BlockSystem<T>& A, int i) {
+  lanes::V4<T> y = pressure_fixed_pairs(A, i);
+  for (int k = A.row_ptr[i]; k < A.row_ptr[i + 1]; ++k) y += pressure_at_block(A, k);
+  return y;
+}
 
-/// y_i = scale (sum_k B_ik x_k + extra(i)) + D_i x_i over the block rows; returns x . y.
+/// y_i = scale (sum_k (B_ik x_k + at_block(k)) + at_row(i)) + D_i x_i over the block rows;
+/// returns x . y.
 ///
 /// Blocks are stored column-major, so B_ij x_j is three contiguous columns times three
 /// broadcast scalars, which the compiler turns into 4-wide vector loads and FMAs
 /// (GCC/Clang vector extensions, no intrinsics; any target). The fourth lane reads one
 /// value past each block (the array carries one value of padding) and is ignored.
-template <class T, class Extra>
-T block_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bool parallel, Extra extra) {
+template <class T, class AtBlock, class AtRow>
+T block_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bool parallel, AtBlock at_block,
+             AtRow at_row) {
   using V4 = lanes::V4<T>;
   using lanes::load4;
   // One block: three columns times x's three entries broadcast.
@@ -184,11 +213,11 @@ T block_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bo
     const int end = A.row_ptr[i + 1];
     const T* __restrict b = A.blocks + 9 * std::size_t(k);
     for (; k + 2 <= end; k += 2, b += 18) {
-      acc += block(b, x + 3 * c[k]);
-      acc2 += block(b + 9, x + 3 * c[k + 1]);
+      acc += block(b, x + 3 * c[k]) + at_block(k);
+      acc2 += block(b + 9, x + 3 * c[k + 1]) + at_block(k + 1);
     }
-    if (k < end) acc += block(b, x + 3 * c[k]);
-    acc += acc2 + extra(i);
+    if (k < end) acc += block(b, x + 3 * c[k]) + at_block(k);
+    acc += acc2 + at_row(i);
     if (A.diag) {
       acc = A.scale * acc + block(A.diag + 9 * std::size_t(i), x + 3 * i);
     } else if (A.scale != T(1)) {
@@ -206,22 +235,25 @@ T block_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bo
 ///
 /// The nodal-pressure term, where A has one, in two passes: its pressures, then B^T pi
 /// added in each block row. With the block layout both read the couplings in the blocks'
-/// order beside the rows' own indices: a product measured 1.29x quicker on the coarse
-/// breast (one thread) than one scattering b_nj pi_n into y by pressure row, which was
-/// 1.08x quicker than gathering B^T pi through the pairs' by-free-row index (t_pair,
-/// t_node: out of order). Without the layout, that gather (the multigrid's fine term).
+/// order beside the rows' own indices, with no scatter and no out-of-order gather. The
+/// product against the one this replaced (a one-thread pass scattering b_nj pi_n into y by
+/// pressure row, the gather by free row on threads), this VM, fastest of 8,000: coarse
+/// breast, one thread, 52.3 -> 41.1 us (1.27x); paper mesh 716 -> 572 us (1.25x), on two
+/// threads 449 -> 308-357 us. Without the layout, that gather (a term built elsewhere).
 template <class T>
 void multiply(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bool parallel, T* dot_out = nullptr) {
   using V4 = lanes::V4<T>;
+  const auto none = [](int) { return V4{0, 0, 0, 0}; };
   T xy;
   if (!A.pressure) {
-    xy = block_rows(A, x, y, parallel, [](int) { return V4{0, 0, 0, 0}; });
+    xy = block_rows(A, x, y, parallel, none, none);
   } else if (A.pressure->bb) {
-    pressure_rows_by_blocks(A, x, parallel);
-    xy = block_rows(A, x, y, parallel, [&](int i) { return pressure_by_blocks(A, i); });
+    pressure_rows_by_blocks(A, x, static_cast<const T*>(nullptr), parallel);
+    xy = block_rows(
+        A, x, y, parallel, [&](int k) { return pressure_at_block(A, k); }, [&](int i) { return pressure_fixed_pairs(A, i); });
   } else {
     pressure_rows(*A.pressure, x, static_cast<const T*>(nullptr), parallel);
-    xy = block_rows(A, x, y, parallel, [&](int i) { return pressure_gather(*A.pressure, i); });
+    xy = block_rows(A, x, y, parallel, none, [&](int i) { return pressure_gather(*A.pressure, i); });
   }
   if (dot_out) *dot_out = xy;
 }
