@@ -91,7 +91,8 @@ class CpuBackend final : public Backend {
   using M3 = fem::Mat3<T>;
   using V4 = lanes::V4<T>;
 
-  CpuBackend(const Model& model, const SimParams& params) : m_(model), p_(resolved_for(model, params)) {
+  CpuBackend(const Model& model, const SimParams& params)
+      : m_(model), p_(resolved_for(model, params)), given_corotation_(params.solver.corotation_tolerance) {
     const int nn = m_.num_nodes(), ne = m_.num_tets(), nf = m_.num_free();
     x_.resize(3 * nn + 1);  // + 1: four-lane loads of the last node (element())
     v_.resize(3 * nn);
@@ -124,7 +125,13 @@ class CpuBackend final : public Backend {
   }
   const SimParams& params() const override { return p_; }
   void set_params(const SimParams& given) override {
-    const SimParams p = resolved_for(m_, given);
+    // A corotation tolerance read back from params() (resolved from the force-error
+    // target) and passed again stands for the one first given: a later change of the
+    // target (to 0: fixed) resolves from that, not from the target it replaced.
+    SimParams g = given;
+    if (g.solver.corotation_tolerance == p_.solver.corotation_tolerance) g.solver.corotation_tolerance = given_corotation_;
+    given_corotation_ = g.solver.corotation_tolerance;
+    const SimParams p = resolved_for(m_, g);
     // The kept K and b0 belong to the tolerance they were built under: at 0 b0 is not
     // kept at all, so a switch to above 0 would lose every still element's rotation term
     // until the next full assembly. Any change of tolerance assembles afresh.
@@ -938,6 +945,7 @@ class CpuBackend final : public Backend {
 
   const Model& m_;
   SimParams p_;
+  double given_corotation_;                  // the corotation tolerance as given (p_ holds it resolved)
   std::vector<T> x_, v_;                     // (nnode x 3) state
   std::vector<Eigen::Quaternion<T>> q_;      // (ntet) element rotations, warm start
   std::vector<T> lambda_, mu_;               // (ntet) materials in T (lambda 0: in the nodal term)

@@ -280,6 +280,11 @@ class CudaBackend final : public Backend {
     if (solver_ == Solver::Persistent) {
       launch_ = shadow.sms > 0 ? cuda::pcg_launch_confined<T>(shadow.sms, tuning) : cuda::pcg_launch<T>(nf_, tuning);
       cg_form_ = tuning.cg_form;
+      // The one-reduction form's five further vectors, here rather than in the step that
+      // first takes it, and only where pcg_form may choose it (not beside the large
+      // meshes' streamed rows: 9.8 MB on xfine).
+      if (cg_form_ == CudaTuning::CgForm::OneReduction || (cg_form_ == CudaTuning::CgForm::Auto && launch_.cached))
+        for (auto& e : ext_) e.alloc(3 * std::size_t(nf_));
     } else {
 #ifdef PALPATION_HAVE_CUSPARSE
       baseline_ = solver_ == Solver::Csr ? cuda::make_csr_baseline<T>(m_, pcg_args(), stream_)
@@ -923,13 +928,8 @@ class CudaBackend final : public Backend {
     a.rescue_it = p_.solver.cg_rescue_iterations;
     a.pres = pressure_dev();
     a.form = pcg_form(multigrid, a.pres.b != nullptr);
-    if (a.form == kOneReduction) {
-      // Its five further vectors, allocated the first time the form is chosen.
-      for (int e = 0; e < 5; ++e) {
-        if (ext_[e].size() != 3 * std::size_t(nf_)) ext_[e].alloc(3 * std::size_t(nf_));
-        a.ext[e] = ext_[e].get();
-      }
-    }
+    if (a.form == kOneReduction)
+      for (int e = 0; e < 5; ++e) a.ext[e] = ext_[e].get();
     a.scr = scratch_.get();
     a.res = dev_res_;
     if (multigrid) {

@@ -152,8 +152,20 @@ class TestBackendAgreement : public QObject {
     // third of it that kCorotationPerForceError allots (C <= 1.1 seen; measured 7e-4).
     s.params.solver.corotation_tolerance = 1e-3;
     s.params.solver.force_error = 0.01;
-    QCOMPARE(make_named_backend("cpu", m, s.params)->params().solver.corotation_tolerance,
-             kCorotationPerForceError * 0.01);
+    {
+      const auto b = make_named_backend("cpu", m, s.params);
+      QCOMPARE(b->params().solver.corotation_tolerance, kCorotationPerForceError * 0.01);
+      // Parameters read back and passed again with the target off: the tolerance first
+      // given comes back, not the one the target had resolved.
+      SimParams q = b->params();
+      q.solver.force_error = 0;
+      b->set_params(q);
+      QCOMPARE(b->params().solver.corotation_tolerance, 1e-3);
+      q = b->params();
+      q.solver.force_error = 0.02;
+      b->set_params(q);
+      QCOMPARE(b->params().solver.corotation_tolerance, kCorotationPerForceError * 0.02);
+    }
     const Trace held = run(s, m, "cpu", steps);
     double fmax = 0;
     for (double f : full.force) fmax = std::max(fmax, std::abs(f));
