@@ -356,15 +356,7 @@ class CpuBackend final : public Backend {
     npw_.assign(w.begin(), w.end());
     npt_ = cg::PressureTerm<T>{nn, np_.row_ptr.data(), np_.col.data(), np_.t_row_ptr.data(), np_.t_node.data(),
                                np_.t_pair.data(), npb_.data(), npw_.data(), npi_.data()};
-    npt_.bb = npbb_.data();
-    npt_.bt = npbt_.data();
-    npt_.free_node = m_.free_nodes.data();
-    npt_.pif = npif_.data();
-    npt_.nfixed = static_cast<int>(np_.fixed_rows.size());
-    npt_.fixed_rows = np_.fixed_rows.data();
-    npt_.ft_row_ptr = np_.ft_row_ptr.data();
-    npt_.ft_node = np_.ft_node.data();
-    npt_.ft_pair = np_.ft_pair.data();
+    cg::set_block_layout(npt_, np_, m_.free_nodes.data(), npbb_.data(), npbt_.data(), npif_.data());
   }
 
   void reset() override {

@@ -52,6 +52,23 @@ struct PressureTerm {
   const int* ft_pair = nullptr;     // that pair's index
 };
 
+/// Gives P the block layout: the couplings bb and bt in the block order, each free row's
+/// node, the scratch pif, and the fixed rows of `pattern` (a NodalPressurePattern:
+/// fixed_rows, ft_row_ptr, ft_node, ft_pair).
+template <class T, class Pattern>
+void set_block_layout(PressureTerm<T>& P, const Pattern& pattern, const int* free_node, const T* bb, const T* bt,
+                      T* pif) {
+  P.bb = bb;
+  P.bt = bt;
+  P.free_node = free_node;
+  P.pif = pif;
+  P.nfixed = static_cast<int>(pattern.fixed_rows.size());
+  P.fixed_rows = pattern.fixed_rows.data();
+  P.ft_row_ptr = pattern.ft_row_ptr.data();
+  P.ft_node = pattern.ft_node.data();
+  P.ft_pair = pattern.ft_pair.data();
+}
+
 /// sum_k b_k . x_{col_k} over [k0, k1), in two chains of sums. Inlined by force here and
 /// below: GCC left these row bodies as calls from the OpenMP-outlined loops, a third of
 /// the product's time on the coarse breast.

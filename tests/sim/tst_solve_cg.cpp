@@ -154,15 +154,7 @@ class TestSolveCg : public QObject {
       return std::max(e / ref.cwiseAbs().maxCoeff(), exy / (xv.norm() * ref.norm()));
     };
     const double gathered = error_of(false);
-    P.bb = bb.data();
-    P.bt = bt.data();
-    P.free_node = s.m.free_nodes.data();
-    P.pif = pif.data();
-    P.nfixed = static_cast<int>(pat.fixed_rows.size());
-    P.fixed_rows = pat.fixed_rows.data();
-    P.ft_row_ptr = pat.ft_row_ptr.data();
-    P.ft_node = pat.ft_node.data();
-    P.ft_pair = pat.ft_pair.data();
+    cg::set_block_layout(P, pat, s.m.free_nodes.data(), bb.data(), bt.data(), pif.data());
     const double blocks = error_of(false), threads = error_of(true);
     qInfo("largest error against the sparse product: by blocks %.2e, threads %.2e, gathered %.2e", blocks, threads,
           gathered);
