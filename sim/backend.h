@@ -64,6 +64,12 @@ class Backend {
   /// and gives what step() would have. By default begin_step() takes the whole step.
   virtual void begin_step(std::span<const FingerInput> fingers);
   virtual bool step_ready() const { return true; }
+  /// A take begun in slices (a backend that shares its device with the steps, a slice of
+  /// the solve at a time): queues the next slice where the last one has finished and more
+  /// remain; never waits. The owner calls it after each of its own steps, so that a slice
+  /// runs where the device would otherwise be idle or holds one step up by one slice only.
+  /// finish_step() runs whatever slices remain. By default a take is one piece: nothing.
+  virtual void step_on() {}
   virtual StepStats finish_step(std::span<FingerOutput> out);
   /// The multigrid levels this backend built since it was made (solver.preconditioner
   /// multigrid or multigrid-chebyshev), and the builds that threw: their step and the next

@@ -113,10 +113,11 @@ struct SolverParams {
   // (that step takes both solves). Beside: on a second backend of the same kind, beside the
   // steps (on CUDA a low-priority stream of its own: no step waits for it), the loose step
   // kept and its error known some steps later; where the backend cannot fork
-  // (Backend::make_shadow), in the step. Auto: Beside on the fast CUDA backend where the
-  // steps solve with block-Jacobi, as the shadow does (the paper mesh; with the multigrid
-  // the shadow's reference is many times a step's solve, and the two take turns on the
-  // device), InStep elsewhere (on the CPU a second solve would take the same cores).
+  // (Backend::make_shadow), in the step. Auto: Beside on the fast CUDA backend (on the
+  // multiprocessors the steps' solve leaves, as on the paper mesh; where it leaves none, as
+  // on xfine, on the whole device a slice at a time after each step, so that a check holds
+  // a step up by a slice rather than by a whole reference solve), InStep elsewhere (on the
+  // CPU a second solve would take the same cores).
   CheckPlace check = CheckPlace::Auto;
 };
 

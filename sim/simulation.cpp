@@ -129,6 +129,7 @@ Simulation::Outcome Simulation::advance(std::span<const FingerInput> in, std::sp
     r.error = e.what();
     r.stats = controlled_step(in, out);
   }
+  step_check_on();
   t_ += h;
   ++steps_;
   r.ok = !check_divergence(r.stats, out).diverged;
@@ -293,6 +294,19 @@ void Simulation::collect_check() {
     control_.checked(*e);
   else
     control_.deferred();
+}
+
+void Simulation::step_check_on() {
+  if (!pending_check_.on) return;
+  try {
+    shadow_->step_on();
+  } catch (const std::exception& e) {
+    // As a failed fork: the check is dropped and the checks go on in the step.
+    pending_check_.on = false;
+    shadow_.reset();
+    shadow_failed_ = true;
+    if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
+  }
 }
 
 void Simulation::drop_check() {

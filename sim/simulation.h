@@ -156,6 +156,9 @@ class Simulation {
   bool start_check_beside(std::span<const FingerInput> in);
   /// Scores the check beside the steps if it has finished (never waits for it).
   void collect_check();
+  /// After a step: the check beside the steps queues its next slice, where it takes the
+  /// device a slice at a time (Backend::step_on; never waits).
+  void step_check_on();
   /// The shadow's parameters: the backend's, solved as a check's reference is.
   SimParams shadow_params() const;
   /// Makes the shadow backend where the checks go beside the steps and there is none: when

@@ -35,8 +35,9 @@ CommandAction add_bench_command(CLI::App& app) {
       ->check(CLI::IsMember(sim::preconditioner_names()));
   sub->add_option("--check", o->check,
                   "Where the error controller's converged check solves its reference (auto, in-step, beside; default: the "
-                  "scenario's, auto unless it names one: beside the steps on the cuda backend where its solve leaves the GPU room for the "
-                  "check's, as on the paper mesh; in the step elsewhere)")
+                  "scenario's, auto unless it names one: beside the steps on the cuda backend, on the multiprocessors its solve leaves as "
+                  "on the paper mesh, else on the whole GPU a slice at a time after each step as on xfine; in the step on the cpu "
+                  "and the library baselines)")
       ->check(CLI::IsMember(sim::check_place_names()));
   sub->add_option("--force-error", o->force_error,
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "

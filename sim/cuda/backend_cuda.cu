@@ -205,7 +205,9 @@ class CudaBackend final : public Backend {
   /// A backend made by make_shadow for the converged check beside another's steps.
   struct Beside {
     bool on = false;
-    int sms = 0;  // its solve on this many multiprocessors; 0: launched as the steps' are
+    int sms = 0;    // its solve on this many multiprocessors; 0: launched as the steps' are
+    int slice = 0;     // ... then in slices of this many CG iterations (step_on); 0: in one
+    int slice_mg = 0;  // ... or of this many where it borrows the multigrid levels
   };
 
   /// `shadow.on`: the converged check's backend beside another (make_shadow): its stream at
@@ -279,6 +281,8 @@ class CudaBackend final : public Backend {
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
       launch_ = shadow.sms > 0 ? cuda::pcg_launch_confined<T>(shadow.sms, tuning) : cuda::pcg_launch<T>(nf_, tuning);
+      slice_ = shadow.sms > 0 ? 0 : std::max(shadow.slice, 0);
+      slice_mg_ = slice_ > 0 ? std::max(shadow.slice_mg, 1) : 0;
       cg_form_ = tuning.cg_form;
       // The one-reduction form's five further vectors, here rather than in the step that
       // first takes it, and only where pcg_form may choose it (not beside the large
@@ -440,14 +444,25 @@ class CudaBackend final : public Backend {
   // once: a shadow launched as the steps' are takes turns with them, each check holding a
   // step up for the length of its reference solve. So the shadow's solve gets the
   // multiprocessors the steps' solve leaves (CudaTuning::shadow_sms keeps some), one block
-  // each, and never waits for the steps or makes them wait. `auto` asks for one only where
-  // such room exists (on the paper mesh the steps' solve is a grid of 119 blocks; the H200
-  // has 132 multiprocessors).
+  // each, and never waits for the steps or makes them wait (on the paper mesh the steps'
+  // solve is a grid of 119 blocks; the H200 has 132 multiprocessors). Where the steps'
+  // solve fills the device (xfine and up), the shadow takes the whole device a slice at a
+  // time: its element pass and assembly, then CudaTuning::shadow_slice CG iterations a
+  // launch (shadow_slice_mg with the steps' multigrid levels, which it borrows: see
+  // fork_reference), each queued after one of the steps (step_on), so that a check holds a
+  // step up by one slice instead of a whole reference solve.
   std::unique_ptr<Backend> make_shadow(const SimParams& params) const override {
     if (solver_ != Solver::Persistent) return nullptr;
+    using Place = CudaTuning::ShadowPlace;
     const int spare = spare_sms();
-    if (params.solver.check == CheckPlace::Auto && spare < 1) return nullptr;
-    const Beside beside{true, tuning_.shadow_confined ? spare : 0};
+    if (params.solver.check == CheckPlace::Auto && spare < 1 && tuning_.shadow_place == Place::Full) return nullptr;
+    Beside beside{true, 0, 0};
+    if (tuning_.shadow_place == Place::Confined && spare >= 1)
+      beside.sms = spare;
+    else if (tuning_.shadow_place != Place::Full) {
+      beside.slice = tuning_.shadow_slice;
+      beside.slice_mg = tuning_.shadow_slice_mg;
+    }
     auto s = std::make_unique<CudaBackend<T>>(m_, params, solver_, beside);
     s->set_materials(mat_);
     return s;
@@ -473,6 +488,16 @@ class CudaBackend final : public Backend {
     s->reuse_dv_.copy_from(dv_, stream_);
     CU(cudaEventRecord(done_, stream_));
     CU(cudaStreamWaitEvent(s->stream_, done_, 0));
+    // A shadow in slices solves with this one's multigrid levels where its take used them
+    // (the levels are a preconditioner: those of the last step fit the checkpoint's system
+    // as they fit the next step's): a reference in a few V-cycles instead of block-Jacobi's
+    // many iterations (xfine), with no levels built for it. Confined shadows keep
+    // block-Jacobi: their few multiprocessors would make a V-cycle's many barriers dear.
+    s->borrowed_mg_ = s->slice_ > 0 && begun_mg_ && mg_levels_.dev();
+    if (s->borrowed_mg_) {
+      s->mg_levels_.borrow(mg_levels_, s->stream_);
+      s->prepare_mg_solve();
+    }
     s->filtered_ = kept_filtered_;
     s->rested_ = kept_rested_;
     s->last_converged_ = kept_last_converged_;
@@ -531,8 +556,13 @@ class CudaBackend final : public Backend {
     launch_skin(k);
     if (nodal()) launch_pressure();
     prof_.mark(2, stream_);
-    begun_mg_ = solver_ == Solver::Persistent && use_multigrid();
-    if (solver_ == Solver::Persistent) {
+    begun_mg_ = solver_ == Solver::Persistent && (borrowed_mg_ || use_multigrid());
+    begun_F_ = F;
+    begun_k_ = k;
+    slices_launched_ = 0;
+    if (slice_ > 0) {
+      // In slices: this one is the element pass and assembly; step_on() queues the solve's.
+    } else if (solver_ == Solver::Persistent) {
       launch_pcg(F, k, begun_mg_);
     } else {
       baseline_->solve(pcg_args(), begun_iterations_, begun_residual_);
@@ -547,11 +577,31 @@ class CudaBackend final : public Backend {
     if (pending_ != Pending::Solve) return true;
     const cudaError_t e = cudaEventQuery(done_);
     if (e == cudaErrorNotReady) return false;
-    if (e != cudaSuccess) (void)cudaGetLastError();  // finish_step's synchronisation reports it
-    return true;
+    if (e != cudaSuccess) {
+      (void)cudaGetLastError();  // finish_step's synchronisation reports it
+      return true;
+    }
+    return slice_ == 0 || !slices_remain();
+  }
+
+  void step_on() override {
+    if (pending_ != Pending::Solve || slice_ == 0) return;
+    const cudaError_t e = cudaEventQuery(done_);
+    if (e == cudaErrorNotReady) return;
+    if (e != cudaSuccess) {
+      (void)cudaGetLastError();  // finish_step's synchronisation reports it
+      return;
+    }
+    if (slices_remain()) launch_slice();
   }
 
   StepStats finish_step(std::span<FingerOutput> out) override {
+    if (pending_ == Pending::Solve && slice_ > 0)
+      for (;;) {
+        CU(cudaEventSynchronize(done_));
+        if (!slices_remain()) break;
+        launch_slice();
+      }
     StepStats st;
     const std::span<const FingerInput> fingers = begun_fingers_;
     const Pending was = std::exchange(pending_, Pending::None);
@@ -580,8 +630,10 @@ class CudaBackend final : public Backend {
     st.cg_iterations = iterations;
     st.cg_residual = residual;
     // A solve beyond its tolerance and the rescue tolerance says the levels no longer fit.
-    if (mg) multigrid_.note(iterations, residual <= std::max(p_.solver.cg_tolerance, p_.solver.cg_rescue_tolerance),
-                            p_.solver.cg_tolerance);
+    // (Not for levels borrowed from another backend: that one's own solves judge them.)
+    if (mg && !borrowed_mg_)
+      multigrid_.note(iterations, residual <= std::max(p_.solver.cg_tolerance, p_.solver.cg_rescue_tolerance),
+                      p_.solver.cg_tolerance);
     // The next step extrapolates its warm start only after a converged solve: with the
     // iterations capped below convergence, extrapolating the truncation error doubles it.
     last_converged_ = residual <= p_.solver.cg_tolerance;
@@ -883,6 +935,10 @@ class CudaBackend final : public Backend {
   // goes to the caller.
   void upload_levels(const amg::Hierarchy& levels) {
     mg_levels_.upload(levels, stream_);
+    prepare_mg_solve();
+  }
+  // The multigrid solve's launch and its finest level's scratch, once.
+  void prepare_mg_solve() {
     if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
     if (mg_r_.size() != 3 * std::size_t(nf_)) {
       mg_r_.alloc(3 * std::size_t(nf_));
@@ -896,6 +952,7 @@ class CudaBackend final : public Backend {
   PcgForm pcg_form(bool multigrid, bool nodal_pressure) const {
     using Form = CudaTuning::CgForm;
     if (cg_form_ == Form::ThreeBarriers) return kThreeBarriers;
+    if (slice_ > 0) return kTwoBarriers;  // the one-reduction form does not stop in slices
     const bool quicker = launch_.cached && !nodal_pressure;
     if (!multigrid && (cg_form_ == Form::OneReduction || (cg_form_ == Form::Auto && quicker))) return kOneReduction;
     return kTwoBarriers;
@@ -944,6 +1001,20 @@ class CudaBackend final : public Backend {
     cuda::launch_pcg(stream_, multigrid ? mg_launch_ : launch_, pcg_args(multigrid), detect_args(), F, k);
   }
 
+  // A take in slices, its last slice finished: whether the solve has more to go (none
+  // launched yet, or the last one stopped short: DevResult::unfinished).
+  bool slices_remain() const { return slices_launched_ == 0 || host_res_->unfinished != 0; }
+
+  // The next slice of a take's solve: slice_ CG iterations, going on from the last.
+  void launch_slice() {
+    PcgArgs<T> a = pcg_args(begun_mg_);
+    a.slice = begun_mg_ ? slice_mg_ : slice_;
+    a.resume = slices_launched_ > 0 ? 1 : 0;
+    cuda::launch_pcg(stream_, begun_mg_ ? mg_launch_ : launch_, a, detect_args(), begun_F_, begun_k_);
+    ++slices_launched_;
+    CU(cudaEventRecord(done_, stream_));
+  }
+
   void finger_outputs(std::span<const FingerInput> fingers, std::span<FingerOutput> out) {
     const double a = force_filter_alpha(p_.contact.force_filter_hz, p_.solver.dt);
     for (std::size_t f = 0; f < out.size(); ++f) out[f] = FingerOutput{};
@@ -980,6 +1051,12 @@ class CudaBackend final : public Backend {
   enum class Pending { None, Rest, Solve } pending_ = Pending::None;
   std::vector<FingerInput> begun_fingers_;
   bool begun_mg_ = false;
+  FingersArg begun_F_{};  // ... and its launches' arguments, for the slices after the first
+  StepConsts begun_k_{};
+  int slice_ = 0;             // a shadow's solve in slices of this many CG iterations (Beside)
+  int slice_mg_ = 0;          // ... with borrowed multigrid levels
+  bool borrowed_mg_ = false;  // the levels of the backend it was forked from (fork_reference)
+  int slices_launched_ = 0;   // ... launched for the take begun
   int begun_iterations_ = 0;       // the baselines' solve, which returns them at once
   double begun_residual_ = 0;
   cudaEvent_t done_ = nullptr;     // recorded after a take's launches (step_ready) and a fork's copies

@@ -119,6 +119,9 @@ struct DevScratch {
   int start_contacts;
   int rested;
   int pad;
+  // A solve in slices (PcgArgs::slice): where the last slice stopped, for the next.
+  double cg_rz, cg_beta, cg_bnorm, cg_rnorm;
+  int cg_it, cg_first, cg_p1, cg_pad;
 };
 
 /// What comes back to the host each step.
@@ -130,7 +133,7 @@ struct DevResult {
   int cg_iterations;
   int start_contacts;
   int rested;
-  int pad;
+  int unfinished;  // a slice of a solve ended short of its end (PcgArgs::slice)
 };
 
 // ---------------------------------------------------------------------------------------

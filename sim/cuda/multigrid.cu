@@ -10,11 +10,11 @@ namespace palpation::sim::cuda {
 CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s) {
   CsrDev d;
   d.rows = int(M.rows());
-  auto& ptr = ints_.emplace_back();
+  auto& ptr = mats_->ints.emplace_back();
   ptr.upload(M.outerIndexPtr(), std::size_t(M.rows()) + 1, s);
-  auto& col = ints_.emplace_back();
+  auto& col = mats_->ints.emplace_back();
   col.upload(M.innerIndexPtr(), std::size_t(M.nonZeros()), s);
-  auto& val = dbls_.emplace_back();
+  auto& val = mats_->dbls.emplace_back();
   val.upload(M.valuePtr(), std::size_t(M.nonZeros()), s);
   d.ptr = ptr.get();
   d.col = col.get();
@@ -23,9 +23,31 @@ CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s) {
 }
 
 double* MultigridDevice::vec(int n) {
-  auto& v = dbls_.emplace_back();
+  auto& v = vecs_.emplace_back();
   v.alloc(std::size_t(n));
   return v.get();
+}
+
+void MultigridDevice::own_vectors(cudaStream_t s) {
+  vecs_.clear();
+  for (int k = 1; k < host_.levels; ++k) {
+    MgLevelDev& l = host_.lv[k];
+    l.b = vec(l.n);
+    l.x = vec(l.n);
+    l.r = vec(l.n);
+    l.d = vec(l.n);
+  }
+  desc_.upload(&host_, 1, s);
+  levels_ = host_.levels;
+}
+
+void MultigridDevice::borrow(const MultigridDevice& owner, cudaStream_t s) {
+  if (!owner.mats_) throw std::logic_error("cuda multigrid: no levels to borrow");
+  if (mats_ == owner.mats_) return;  // these levels already, with vectors of this one's own
+  CU(cudaStreamSynchronize(s));      // this one's earlier solves may still read its old vectors
+  mats_ = owner.mats_;
+  host_ = owner.host_;
+  own_vectors(s);
 }
 
 void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
@@ -39,21 +61,14 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
       throw std::runtime_error("cuda multigrid: a smoothing of degree " + std::to_string(lv.smoothing.steps()) +
                                " (at most " + std::to_string(kMgMaxSteps) + " on the GPU)");
   CU(cudaStreamSynchronize(s));  // the kernels of earlier steps may still read the old levels
-  ints_.clear();
-  dbls_.clear();
+  mats_ = std::make_shared<Matrices>();  // the old ones stay while another backend borrows them
   MgDev m;
   m.levels = L;
   for (int k = 0; k < L; ++k) {
     const auto& src = levels[std::size_t(k)];
     MgLevelDev& dst = m.lv[k];
     dst.n = k == 0 ? int(src.P.rows()) : int(src.A.rows());
-    if (k > 0) {
-      dst.A = csr(src.A, s);
-      dst.b = vec(dst.n);
-      dst.x = vec(dst.n);
-      dst.r = vec(dst.n);
-      dst.d = vec(dst.n);
-    }
+    if (k > 0) dst.A = csr(src.A, s);
     if (k + 1 < L) {
       if (k > 0) dst.Dinv = csr(src.Dinv, s);
       dst.P = csr(src.P, s);
@@ -75,8 +90,8 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
   dense.setFromTriplets(t.begin(), t.end());
   dense.makeCompressed();
   m.coarsest_inverse = csr(dense, s);
-  desc_.upload(&m, 1, s);
-  levels_ = L;
+  host_ = m;
+  own_vectors(s);
 }
 
 }  // namespace palpation::sim::cuda

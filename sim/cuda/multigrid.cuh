@@ -11,6 +11,7 @@
 #pragma once
 
 #include <deque>
+#include <memory>
 
 #include "amg.h"
 #include "cuda/common.cuh"
@@ -51,17 +52,29 @@ struct MgDev {
 /// The levels on the device. upload() copies a built hierarchy (throws std::runtime_error
 /// on one the kernel cannot run: one level, too many, too high a degree); dev() is the
 /// descriptor's device address, null before the first upload.
+///
+/// borrow() gives another backend's solve the same levels without a copy: their matrices
+/// (read only, kept alive here for as long as this borrows them, whatever the owner uploads
+/// next) with vectors of its own, so that the two solves never share scratch.
 class MultigridDevice {
  public:
   void upload(const amg::Hierarchy& h, cudaStream_t s);
+  void borrow(const MultigridDevice& owner, cudaStream_t s);
   const MgDev* dev() const { return desc_.size() ? desc_.get() : nullptr; }
   int levels() const { return levels_; }
 
  private:
+  struct Matrices {
+    std::deque<DeviceArray<int>> ints;
+    std::deque<DeviceArray<double>> dbls;
+  };
   CsrDev csr(const amg::SpMat& M, cudaStream_t s);
   double* vec(int n);
-  std::deque<DeviceArray<int>> ints_;
-  std::deque<DeviceArray<double>> dbls_;
+  /// The level vectors of host_ allocated here, and the descriptor uploaded.
+  void own_vectors(cudaStream_t s);
+  std::shared_ptr<Matrices> mats_;
+  std::deque<DeviceArray<double>> vecs_;
+  MgDev host_{};  // the descriptor as uploaded (its vectors this object's own)
   DeviceArray<MgDev> desc_;
   int levels_ = 0;
 };

@@ -1,6 +1,7 @@
 // PCG stage: the persistent cooperative kernel and its launch plan (see pcg.cuh).
 #include "cuda/pcg.cuh"
 
+#include <climits>
 #include <cooperative_groups.h>
 
 #include "cuda/device_info.h"
@@ -380,54 +381,77 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   };
   RowCache<T, B> rc;
   load_row_cache(a, rc);
+  if (tid == 0) a.res->unfinished = 0;
 
-  // The nodal pressures of x (pressure.cuh) for its product below.
-  if (a.pres.b) {
-    pressure_rows<T, kGroup>(a.pres, a.nnode, [&](int j, int c) { return a.x[3 * j + c]; }, tid, nthreads);
-    grid.sync();
-    ring.skip(a.scr);
-  }
-  // r = b - A x (warm start), ||b||^2, ||r||^2.
-  double br[2] = {0, 0};
-  spmv_groups<T, B>(
-      a, rc, [&](int j, int c) { return a.x[3 * j + c]; },
-      [&](int i, int c, T y) {
-        const T bi = a.b[3 * i + c];
-        const T ri = bi - y;
-        a.r[3 * i + c] = ri;
-        br[0] += double(bi) * double(bi);
-        br[1] += double(ri) * double(ri);
-      });
-  ring.sum(grid, a.scr, br);
-  const T bnorm = sqrt(T(br[0]));
-  T rnorm = sqrt(T(br[1]));
+  T bnorm = 0, rnorm = 0;
   int it = 0;
-  // A warm start far worse than zero (or not finite) restarts from x = 0, r = b.
-  const bool restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
-  if (restart) rnorm = bnorm;
+  bool restart = false;
+  if (a.resume) {
+    // The next slice of a solve in slices: x, r, z and the directions are where the last
+    // slice left them, the scalars in the scratch.
+    bnorm = T(a.scr->cg_bnorm);
+    rnorm = T(a.scr->cg_rnorm);
+    it = a.scr->cg_it;
+  } else {
+    // The nodal pressures of x (pressure.cuh) for its product below.
+    if (a.pres.b) {
+      pressure_rows<T, kGroup>(a.pres, a.nnode, [&](int j, int c) { return a.x[3 * j + c]; }, tid, nthreads);
+      grid.sync();
+      ring.skip(a.scr);
+    }
+    // r = b - A x (warm start), ||b||^2, ||r||^2.
+    double br[2] = {0, 0};
+    spmv_groups<T, B>(
+        a, rc, [&](int j, int c) { return a.x[3 * j + c]; },
+        [&](int i, int c, T y) {
+          const T bi = a.b[3 * i + c];
+          const T ri = bi - y;
+          a.r[3 * i + c] = ri;
+          br[0] += double(bi) * double(bi);
+          br[1] += double(ri) * double(ri);
+        });
+    ring.sum(grid, a.scr, br);
+    bnorm = sqrt(T(br[0]));
+    rnorm = sqrt(T(br[1]));
+    // A warm start far worse than zero (or not finite) restarts from x = 0, r = b.
+    restart = !isfinite(rnorm) || rnorm > T(1e3) * bnorm;
+    if (restart) rnorm = bnorm;
+  }
   if (bnorm > T(0) && !MG && a.form == kOneReduction) {
     it = cg_one_reduction<T, B>(a, rc, grid, ring, restart, bnorm, rnorm, tid, nthreads);
   } else if (bnorm > T(0)) {
-    double rz1[1] = {0};
-    for (int i = tid; i < a.n; i += nthreads) {
-      if (restart)
-        for (int c = 0; c < 3; ++c) {
-          a.x[3 * i + c] = T(0);
-          a.r[3 * i + c] = a.b[3 * i + c];
-        }
-      if constexpr (!MG) {
-        precondition_row(a.P, a.r, a.z, i);
-        for (int c = 0; c < 3; ++c) rz1[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
-      }
-    }
-    if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads);
-    ring.sum(grid, a.scr, rz1);
-    T rz = T(rz1[0]);
+    T rz = 0;
     T beta = 0;
     bool first = true;
     T* pold = a.p0;
     T* pnew = a.p1;
-    while (pcg_goes_on(a, it, rnorm, bnorm)) {
+    if (a.resume) {
+      rz = T(a.scr->cg_rz);
+      beta = T(a.scr->cg_beta);
+      first = a.scr->cg_first != 0;
+      if (a.scr->cg_p1) {
+        pold = a.p1;
+        pnew = a.p0;
+      }
+    } else {
+      double rz1[1] = {0};
+      for (int i = tid; i < a.n; i += nthreads) {
+        if (restart)
+          for (int c = 0; c < 3; ++c) {
+            a.x[3 * i + c] = T(0);
+            a.r[3 * i + c] = a.b[3 * i + c];
+          }
+        if constexpr (!MG) {
+          precondition_row(a.P, a.r, a.z, i);
+          for (int c = 0; c < 3; ++c) rz1[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
+        }
+      }
+      if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads);
+      ring.sum(grid, a.scr, rz1);
+      rz = T(rz1[0]);
+    }
+    const int stop = a.slice > 0 ? it + a.slice : INT_MAX;
+    while (it < stop && pcg_goes_on(a, it, rnorm, bnorm)) {
       // Search direction p = z + beta p (first: p = z) and q = A p.
       if (a.form == kThreeBarriers) {
         for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];
@@ -502,6 +526,27 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       pnew = tmp;
       first = false;
       ++it;
+    }
+    if (it == stop && pcg_goes_on(a, it, rnorm, bnorm)) {
+      // The slice ends here (not a breakdown's break, which leaves it below stop) (every thread decides alike: the values are the grid's sums).
+      // Its state goes to the scratch, and the reduction ring is left zeroed, as a whole
+      // step leaves it, once every block has read its last slot.
+      grid.sync();
+      if (tid == 0) {
+        a.scr->cg_rz = double(rz);
+        a.scr->cg_beta = double(beta);
+        a.scr->cg_bnorm = double(bnorm);
+        a.scr->cg_rnorm = double(rnorm);
+        a.scr->cg_it = it;
+        a.scr->cg_first = first ? 1 : 0;
+        a.scr->cg_p1 = pold == a.p1 ? 1 : 0;
+        for (int m = 0; m < 4; ++m)
+          for (int k = 0; k < 4; ++k) a.scr->red[m][k] = 0.0;
+        a.res->cg_iterations = it;
+        a.res->cg_residual = double(rnorm / bnorm);
+        a.res->unfinished = 1;
+      }
+      return;
     }
   } else {
     for (int j = tid; j < 3 * a.n; j += nthreads) a.x[j] = T(0);

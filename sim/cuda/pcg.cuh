@@ -51,6 +51,11 @@ struct PcgArgs {
   T rescue_tol;   // past max_it: on while above rescue_tol, up to rescue_it in all
   int rescue_it;
   int form;  // PcgForm: the iteration's form, resolved by the backend (tuning.h, CgForm)
+  // A solve in slices: at most `slice` iterations a launch (0: the whole solve), the next
+  // launch going on from where the last stopped (`resume`: the state kept in scr). Not
+  // with the one-reduction form.
+  int slice;
+  int resume;
   PressureDev<T> pres;  // the nodal-pressure term (pressure.cuh); off when pres.b is null
   // The multigrid preconditioner (multigrid.cuh) in place of block-Jacobi, with its
   // finest level's scratch (3 n each); off when mg is null.

@@ -1,6 +1,7 @@
 // CudaTuning::from_environment: the one place where the CUDA backends read the environment.
 #include "cuda/tuning.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -33,7 +34,12 @@ CudaTuning CudaTuning::from_environment() {
               : cg == "1sync" ? CudaTuning::CgForm::OneReduction
                               : CudaTuning::CgForm::Auto;
   t.shadow_sms = env_int("PALPATION_CUDA_SHADOW_SMS", 0);
-  t.shadow_confined = env_str("PALPATION_CUDA_SHADOW", "confined") != "full";
+  const std::string place = env_str("PALPATION_CUDA_SHADOW", "confined");
+  t.shadow_place = place == "full"     ? CudaTuning::ShadowPlace::Full
+                   : place == "sliced" ? CudaTuning::ShadowPlace::Sliced
+                                       : CudaTuning::ShadowPlace::Confined;
+  t.shadow_slice = std::max(1, env_int("PALPATION_CUDA_SHADOW_SLICE", 8));
+  t.shadow_slice_mg = std::max(1, env_int("PALPATION_CUDA_SHADOW_SLICE_MG", 2));
   t.profile = env_int("PALPATION_CUDA_PROFILE", 0) != 0;
   return t;
 }

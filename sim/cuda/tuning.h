@@ -38,10 +38,21 @@ struct CudaTuning {
   /// a converged check's solve beside it (Simulation's shadow). 0 (default, or any value
   /// <= 0): none kept; the shadow takes what the steps' launch leaves, if anything.
   int shadow_sms = 0;
-  /// PALPATION_CUDA_SHADOW: "full" launches the shadow's solve as the steps' are (on the
-  /// whole device, so that the two take turns); anything else (default "confined") keeps it
-  /// on the multiprocessors the steps' solve leaves.
-  bool shadow_confined = true;
+  /// PALPATION_CUDA_SHADOW: where the shadow's solve runs.
+  ///   "confined" (default): on the multiprocessors the steps' solve leaves; where it leaves
+  ///     none, on the whole device in slices (below);
+  ///   "sliced": on the whole device in slices wherever it runs;
+  ///   "full": on the whole device in one launch (the two take turns: a check holds a step
+  ///     up for its whole reference solve).
+  enum class ShadowPlace { Confined, Sliced, Full };
+  ShadowPlace shadow_place = ShadowPlace::Confined;
+  /// PALPATION_CUDA_SHADOW_SLICE: CG iterations a slice of a sliced shadow's solve takes
+  /// (the element pass and assembly are a slice of their own). Default 8; at least 1.
+  int shadow_slice = 8;
+  /// PALPATION_CUDA_SHADOW_SLICE_MG: the same for a shadow solving with the steps'
+  /// multigrid levels (a V-cycle costs several block-Jacobi iterations). Default 2; at
+  /// least 1.
+  int shadow_slice_mg = 2;
   /// PALPATION_CUDA_PROFILE: non-zero times the stages of each solved step with events and
   /// prints their medians on stderr when the backend is destroyed. Default 0 (off).
   bool profile = false;

@@ -7,7 +7,9 @@
 #include <QtTest>
 
 #include <cmath>
+#include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "backend.h"
@@ -83,6 +85,27 @@ bool backend_usable(const std::string& b) {
 }
 
 // The rows of a test run on each backend: "cpu", and "cuda" (skipped without a GPU).
+// Sets environment variables for a scope: the CUDA tuning knobs (sim/cuda/tuning.h) a
+// backend reads when it is made. Empty values are left unset.
+class ScopedEnv {
+ public:
+  ScopedEnv(std::initializer_list<std::pair<const char*, QByteArray>> vars) {
+    for (const auto& [name, value] : vars)
+      if (!value.isEmpty()) {
+        qputenv(name, value);
+        names_.emplace_back(name);
+      }
+  }
+  ~ScopedEnv() {
+    for (const auto& n : names_) qunsetenv(n.constData());
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  std::vector<QByteArray> names_;
+};
+
 void backend_rows() {
   QTest::addColumn<QString>("backend");
   QTest::newRow("cpu") << "cpu";
@@ -313,14 +336,22 @@ class TestErrorControl : public QObject {
   void forkedReferenceIsTheInStepReference_data() {
     QTest::addColumn<QString>("backend");
     QTest::addColumn<double>("path_bound");
+    QTest::addColumn<QByteArray>("shadow_place");  // PALPATION_CUDA_SHADOW (empty: the default)
+    QTest::addColumn<bool>("multigrid");           // the forking backend's preconditioner
     // How far the forking backend's forces may stray from its twin's. The CPU's sums run in
     // one order: bitwise. On CUDA two backends' atomic sums run in their own orders (a
     // step taken again differs by up to 5e-12: rollbackTakesTheSameStepAgain), which 60 steps
     // of loose (1e-3) solves carry on and can grow (1.5e-8 to 3.8e-7 measured on an H200 in
     // three runs). A fork that wrote into the forking backend's state would move its forces
     // by the loose solves' own error, 1e-4 and more.
-    QTest::newRow("cpu") << "cpu" << 1e-12;
-    QTest::newRow("cuda") << "cuda" << 1e-5;
+    QTest::newRow("cpu") << "cpu" << 1e-12 << QByteArray() << false;
+    QTest::newRow("cuda") << "cuda" << 1e-5 << QByteArray() << false;
+    // The shadow on the whole device in slices of 3 CG iterations (where the steps' solve
+    // leaves no multiprocessor): the same reference, the solve going on across launches.
+    QTest::newRow("cuda-sliced") << "cuda" << 1e-5 << QByteArray("sliced") << false;
+    // ... and with the forking backend's multigrid levels, borrowed: the same V-cycles as
+    // its own in-step reference, so the same iterations.
+    QTest::newRow("cuda-sliced-multigrid") << "cuda" << 1e-5 << QByteArray("sliced") << true;
   }
   // The check beside the steps: after a checkpoint and a loose take, fork_reference() puts
   // a shadow backend where rollback_for_reference() puts the backend itself. Two backends
@@ -330,10 +361,17 @@ class TestErrorControl : public QObject {
   void forkedReferenceIsTheInStepReference() {
     QFETCH(QString, backend);
     QFETCH(double, path_bound);
+    QFETCH(QByteArray, shadow_place);
+    QFETCH(bool, multigrid);
     if (!backend_usable(backend.toStdString())) return;
+    const bool sliced = shadow_place == "sliced";
+    const ScopedEnv env{{"PALPATION_CUDA_SHADOW", shadow_place},
+                        {"PALPATION_CUDA_SHADOW_SLICE", sliced ? "3" : ""},
+                        {"PALPATION_CUDA_SHADOW_SLICE_MG", sliced ? "1" : ""}};
     Scenario s = box(backend.toStdString());
     s.params.solver.cg_tolerance = 1e-3;
     s.params.solver.corotation_tolerance = 0;  // the CPU shadow extracts every element each take
+    if (multigrid) s.params.solver.preconditioner = Preconditioner::Multigrid;
     const Model m = build_scenario_model(s, patient_mesh(s));
     auto forking = make_named_backend(backend.toStdString(), m, s.params);
     auto twin = make_named_backend(backend.toStdString(), m, s.params);
@@ -348,7 +386,7 @@ class TestErrorControl : public QObject {
     std::vector<FingerInput> in(1);
     std::vector<FingerOutput> a(1), b(1), forked(1);
     double worst_ref = 0, worst_path = 0;
-    int forks = 0;
+    int forks = 0, iteration_gap = 0;
     for (int k = 1; k <= 60; ++k) {
       in[0] = finger_at(k, s.params.solver.dt);
       if (k % 6 == 0 && a[0].contacts > 0) {
@@ -358,16 +396,21 @@ class TestErrorControl : public QObject {
         twin->step(in, b);
         QVERIFY(forking->fork_reference(*shadow));
         shadow->begin_step(in);
+        // In slices: the first is the element pass and assembly; the solve waits for step_on().
+        if (sliced) QVERIFY(!shadow->step_ready());
+        shadow->step_on();
         forking->rollback_for_reference();
         twin->rollback_for_reference();
         forking->set_params(ref);
         twin->set_params(ref);
         const StepStats st = shadow->finish_step(forked);
-        forking->step(in, a);
+        const StepStats in_step = forking->step(in, a);
         twin->step(in, b);
+        iteration_gap = std::max(iteration_gap, std::abs(st.cg_iterations - in_step.cg_iterations));
         forking->set_params(s.params);
         twin->set_params(s.params);
         QVERIFY(st.finite && st.cg_residual <= 1e-8);
+        if (sliced) QVERIFY2(st.cg_iterations > 3, std::to_string(st.cg_iterations).c_str());  // more than one slice
         worst_ref = std::max(worst_ref, (forked[0].force_raw - a[0].force_raw).norm() / std::max(1e-3, a[0].force_raw.norm()));
         ++forks;
       } else {
@@ -376,9 +419,10 @@ class TestErrorControl : public QObject {
       }
       worst_path = std::max(worst_path, (a[0].force_raw - b[0].force_raw).norm() / std::max(1e-3, b[0].force_raw.norm()));
     }
-    qInfo("%s: %d forks; shadow's reference against the in-step one %.2e, the forking backend against its twin %.2e "
-          "(relative force)",
-          qPrintable(backend), forks, worst_ref, worst_path);
+    qInfo("%s%s%s: %d forks; shadow's reference against the in-step one %.2e, the forking backend against its twin %.2e "
+          "(relative force); CG iterations apart at most %d",
+          qPrintable(backend), sliced ? " (sliced)" : "", multigrid ? " (multigrid)" : "", forks, worst_ref, worst_path,
+          iteration_gap);
     QVERIFY(forks >= 5);
     // The shadow's reference and the forking backend's own in-step one solve one system
     // from one start to a relative residual of 1e-8: they differ by rounding and the
@@ -386,6 +430,14 @@ class TestErrorControl : public QObject {
     QVERIFY2(worst_ref <= 1e-6, std::to_string(worst_ref).c_str());
     // The fork only reads the forking backend's state: its steps are its twin's.
     QVERIFY2(worst_path <= path_bound, std::to_string(worst_path).c_str());
+    // A shadow with the forking backend's multigrid levels runs its V-cycles: one solve
+    // from one start, stopping within an iteration of it (the GPU's sums in another order).
+    // With block-Jacobi instead it would take several times as many.
+    if (multigrid) {
+      const auto counts = forking->multigrid_counts();
+      QVERIFY(counts.builds >= 1 && counts.failures == 0);  // the steps did run the multigrid
+      QVERIFY2(iteration_gap <= 1, std::to_string(iteration_gap).c_str());
+    }
   }
 
   // On CUDA the steps' solve and the shadow's are cooperative launches, which start only
@@ -398,16 +450,21 @@ class TestErrorControl : public QObject {
   // results while the shadow still solves, and they are the steps of a twin backend that
   // forks nothing. (Launched as the steps are, PALPATION_CUDA_SHADOW=full, the shadow was
   // done by the time those steps returned, and this test failed.)
+  void stepsGoOnWhileTheShadowSolves_data() {
+    QTest::addColumn<QByteArray>("shadow_place");
+    QTest::newRow("confined") << QByteArray("confined");
+    QTest::newRow("sliced") << QByteArray("sliced");
+  }
   void stepsGoOnWhileTheShadowSolves() {
+    QFETCH(QByteArray, shadow_place);
     if (!backend_usable("cuda")) return;
-    qputenv("PALPATION_CUDA_GRID", "100000");
-    qputenv("PALPATION_CUDA_SHADOW_SMS", "2");
-    struct Unset {
-      ~Unset() {
-        qunsetenv("PALPATION_CUDA_GRID");
-        qunsetenv("PALPATION_CUDA_SHADOW_SMS");
-      }
-    } unset;
+    const bool sliced = shadow_place == "sliced";
+    // Confined: the steps' solve on as many blocks as the device holds, two multiprocessors
+    // kept for the shadow. Sliced: the shadow on the whole device, 4 CG iterations a slice.
+    const ScopedEnv env{{"PALPATION_CUDA_SHADOW", shadow_place},
+                        {"PALPATION_CUDA_GRID", sliced ? "" : "100000"},
+                        {"PALPATION_CUDA_SHADOW_SMS", sliced ? "" : "2"},
+                        {"PALPATION_CUDA_SHADOW_SLICE", sliced ? "4" : ""}};
     Scenario s = box("cuda");
     s.params.solver.cg_tolerance = 1e-3;
     const Model m = build_scenario_model(s, patient_mesh(s));
@@ -438,6 +495,7 @@ class TestErrorControl : public QObject {
     for (int j = 1; j <= 3; ++j) {
       in[0] = finger_at(k + j, s.params.solver.dt);
       forking->step(in, a);
+      shadow->step_on();  // as Simulation does after each step
       twin->step(in, b);
       worst = std::max(worst, (a[0].force_raw - b[0].force_raw).norm() / std::max(1e-3, b[0].force_raw.norm()));
     }
@@ -447,13 +505,19 @@ class TestErrorControl : public QObject {
           still_solving ? "yes" : "no", st.cg_iterations, worst);
     QVERIFY(still_solving);
     QVERIFY(st.finite && ref[0].force_raw.allFinite());
+    // Three step_on() calls launch three slices at most: finish_step() ran the rest.
+    if (sliced) QVERIFY2(st.cg_iterations > 3 * 4, std::to_string(st.cg_iterations).c_str());
     // The two backends take one path; they differ by the order of the GPU's atomic sums
     // (forkedReferenceIsTheInStepReference's bound).
     QVERIFY2(worst <= 1e-5, std::to_string(worst).c_str());
   }
 
   void shadowFollowsPaintingAndReset_data() {
-    backend_rows();
+    QTest::addColumn<QString>("backend");
+    QTest::addColumn<QByteArray>("shadow_place");
+    QTest::newRow("cpu") << "cpu" << QByteArray();
+    QTest::newRow("cuda") << "cuda" << QByteArray();
+    QTest::newRow("cuda-sliced") << "cuda" << QByteArray("sliced");
   }
   // The checks beside the steps across what changes the body under them: every element
   // painted three times stiffer mid-press (the shadow must take the new materials: a
@@ -462,7 +526,9 @@ class TestErrorControl : public QObject {
   // after each, and every one of them stays within the target.
   void shadowFollowsPaintingAndReset() {
     QFETCH(QString, backend);
+    QFETCH(QByteArray, shadow_place);
     if (!backend_usable(backend.toStdString())) return;
+    const ScopedEnv env{{"PALPATION_CUDA_SHADOW", shadow_place}, {"PALPATION_CUDA_SHADOW_SLICE", shadow_place.isEmpty() ? "" : "3"}};
     Scenario s = box(backend.toStdString());
     s.params.solver.force_error = 0.01;
     s.params.solver.check = CheckPlace::Beside;
@@ -487,8 +553,8 @@ class TestErrorControl : public QObject {
     sim.reset();
     run(1, 120);
     const ErrorControlStats& c = sim.error_control();
-    qInfo("%s: checks %d before the paint, %d before the reset, %d at the end; worst %.2e, %d over the aim",
-          qPrintable(backend), before_paint, before_reset, c.checks, c.worst_error, c.over_target);
+    qInfo("%s%s: checks %d before the paint, %d before the reset, %d at the end; worst %.2e, %d over the aim",
+          qPrintable(backend), shadow_place.isEmpty() ? "" : " (sliced)", before_paint, before_reset, c.checks, c.worst_error, c.over_target);
     QCOMPARE(std::string(sim.check_place()), std::string("beside"));
     QVERIFY(before_paint >= 2);
     QVERIFY(before_reset > before_paint);
