@@ -48,9 +48,8 @@ NodalPressurePattern build_nodal_pressure_pattern(const Model& m) {
       p.t_pair[slot] = k;
     }
   // The block order. Pair (n, j) exists where n and j share an element, as block
-  // (dof n, j) does: for a free n the two patterns are the same.
-  p.pair_block.assign(p.col.size(), -1);
-  p.pair_tblock.assign(p.col.size(), -1);
+  // (dof n, j) does: a free n's pairs are blocks of its row (checked here: the product by
+  // block rows relies on it).
   std::vector<std::vector<std::pair<int, int>>> fixed_of(nf);  // per free j: (n, pair)
   for (int n = 0; n < nn; ++n) {
     const int i = m.dof[n];
@@ -61,10 +60,8 @@ NodalPressurePattern build_nodal_pressure_pattern(const Model& m) {
         continue;
       }
       const int j = p.col[k];
-      p.pair_block[k] = m.block_of(i, j);
-      p.pair_tblock[k] = m.block_of(j, i);
-      if (p.pair_block[k] >= m.row_ptr[i + 1] || m.col[p.pair_block[k]] != j || p.pair_tblock[k] >= m.row_ptr[j + 1] ||
-          m.col[p.pair_tblock[k]] != i)
+      const int blk = m.block_of(i, j), tblk = m.block_of(j, i);
+      if (blk >= m.row_ptr[i + 1] || m.col[blk] != j || tblk >= m.row_ptr[j + 1] || m.col[tblk] != i)
         throw std::logic_error("nodal pressure: a pair of free nodes without its stiffness block");
     }
   }

@@ -35,13 +35,13 @@ struct NodalPressurePattern {
   // Pair of element e's nodes (a, b) at 4 a + b, -1 when node b is fixed.
   std::vector<std::array<int, 4 * 4>> tet_pair;  // (ntet)
   std::vector<double> node_volume;               // (nnode) V_n, m^3
-  // The block matrix's order (Model::col), for a product by block rows (solve_cg.h):
-  // pair (n, j) of a free n is block (dof n, j) and its transpose block (j, dof n); -1
-  // for a fixed n, whose rows stay in the pair order.
-  std::vector<int> pair_block, pair_tblock;  // (npair)
-  std::vector<int> fixed_rows;               // the fixed nodes with pairs
-  std::vector<int> ft_row_ptr;               // (nfree + 1) free node j's pairs (n fixed, j):
-  std::vector<int> ft_node, ft_pair;         // n and the pair
+  // For a product by block rows (solve_cg.h): pair (n, j) of a free n is block (dof n, j)
+  // of the block matrix (Model::col) and its transpose block (j, dof n) (the two patterns
+  // are the same: checked when the pattern is built); the fixed nodes' rows stay in the
+  // pair order.
+  std::vector<int> fixed_rows;        // the fixed nodes with pairs
+  std::vector<int> ft_row_ptr;        // (nfree + 1) free node j's pairs (n fixed, j):
+  std::vector<int> ft_node, ft_pair;  // n and the pair
   int num_pairs() const { return static_cast<int>(col.size()); }
 };
 
@@ -49,14 +49,21 @@ NodalPressurePattern build_nodal_pressure_pattern(const Model& m);
 
 /// The free rows' couplings b (pair order, 3 per pair) in the block order: bb at block
 /// (i, c) b_{n(i) c}, bt at block (i, c) b_{n(c) i} (solve_cg.h's PressureTerm; bb and bt
-/// hold 3 x the model's blocks and are overwritten there).
+/// hold 3 x the model's blocks and are overwritten there). The CPU backend keeps them in
+/// that order as it updates them (through each element's block offsets); this is for
+/// whoever holds them in the pair order (tests).
 template <class T>
-void couplings_to_block_order(const NodalPressurePattern& p, const T* b, T* bb, T* bt) {
-  for (int k = 0; k < p.num_pairs(); ++k) {
-    if (p.pair_block[k] < 0) continue;
-    for (int c = 0; c < 3; ++c) {
-      bb[3 * std::size_t(p.pair_block[k]) + c] = b[3 * std::size_t(k) + c];
-      bt[3 * std::size_t(p.pair_tblock[k]) + c] = b[3 * std::size_t(k) + c];
+void couplings_to_block_order(const Model& m, const NodalPressurePattern& p, const T* b, T* bb, T* bt) {
+  for (int n = 0; n < m.num_nodes(); ++n) {
+    const int i = m.dof[n];
+    if (i < 0) continue;
+    for (int k = p.row_ptr[n]; k < p.row_ptr[n + 1]; ++k) {
+      const int j = p.col[k];
+      const std::size_t blk = std::size_t(m.block_of(i, j)), tblk = std::size_t(m.block_of(j, i));
+      for (int c = 0; c < 3; ++c) {
+        bb[3 * blk + c] = b[3 * std::size_t(k) + c];
+        bt[3 * tblk + c] = b[3 * std::size_t(k) + c];
+      }
     }
   }
 }

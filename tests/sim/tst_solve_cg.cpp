@@ -135,7 +135,7 @@ class TestSolveCg : public QObject {
     for (double& v : w) v = 1.0 + u(rng) * 0.5;
     for (double& v : x) v = u(rng);
     std::vector<double> bb(3 * std::size_t(s.m.num_blocks()) + 1, 0.0), bt(bb.size(), 0.0);
-    couplings_to_block_order(pat, b.data(), bb.data(), bt.data());
+    couplings_to_block_order(s.m, pat, b.data(), bb.data(), bt.data());
     cg::PressureTerm<double> P{nn, pat.row_ptr.data(), pat.col.data(), pat.t_row_ptr.data(), pat.t_node.data(),
                                pat.t_pair.data(), b.data(), w.data(), pi.data()};
     cg::BlockSystem<double> sys{nf, s.m.row_ptr.data(), s.m.col.data(), s.blocks.data()};
