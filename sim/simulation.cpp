@@ -249,11 +249,16 @@ void Simulation::prepare_shadow() {
     shadow_ = backend_->make_shadow(shadow_params());
     if (!shadow_) shadow_failed_ = true;  // this backend cannot: every check in the step
   } catch (const std::exception& e) {
-    // No room for a second backend (device memory on the large meshes): the checks go on
-    // in the step.
-    shadow_failed_ = true;
-    if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
+    // No room for a second backend (device memory on the large meshes).
+    shadow_off(e);
   }
+}
+
+void Simulation::shadow_off(const std::exception& e) {
+  pending_check_.on = false;
+  shadow_.reset();
+  shadow_failed_ = true;
+  if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
 }
 
 bool Simulation::start_check_beside(std::span<const FingerInput> in) {
@@ -265,10 +270,7 @@ bool Simulation::start_check_beside(std::span<const FingerInput> in) {
     if (!backend_->fork_reference(*shadow_)) return false;
     shadow_->begin_step(in);
   } catch (const std::exception& e) {
-    // The backend's own state is untouched by a failed fork; the checks go on in the step.
-    shadow_.reset();
-    shadow_failed_ = true;
-    if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
+    shadow_off(e);  // the backend's own state is untouched by a failed fork
     return false;
   }
   pending_check_.on = true;
@@ -301,11 +303,7 @@ void Simulation::step_check_on() {
   try {
     shadow_->step_on();
   } catch (const std::exception& e) {
-    // As a failed fork: the check is dropped and the checks go on in the step.
-    pending_check_.on = false;
-    shadow_.reset();
-    shadow_failed_ = true;
-    if (log_) log_(std::string("error control: the check beside the steps is off: ") + e.what());
+    shadow_off(e);  // as a failed fork: the check in flight goes with the shadow
   }
 }
 

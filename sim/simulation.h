@@ -3,6 +3,7 @@
 // thread.
 #pragma once
 
+#include <exception>
 #include <memory>
 #include <span>
 #include <string>
@@ -168,6 +169,9 @@ class Simulation {
   void drop_check();
   /// The shadow dropped with its check (another backend): prepare_shadow() makes another.
   void drop_shadow();
+  /// A shadow that failed (made, forked or stepped): dropped with any check in flight, the
+  /// reason logged, and the checks taken in the step from then on.
+  void shadow_off(const std::exception& e);
   Scenario s_;
   Model model_;                          // const after construction
   Materials materials_;

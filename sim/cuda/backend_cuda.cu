@@ -519,16 +519,7 @@ class CudaBackend final : public Backend {
     if (pending_ != Pending::None) throw std::logic_error("cuda backend: a take begun twice");
     begun_fingers_.assign(fingers.begin(), fingers.end());
     if (filtered_.size() != fingers.size()) filtered_.assign(fingers.size(), Eigen::Vector3d::Zero());
-    FingersArg F{};
-    F.n = static_cast<int>(fingers.size());
-    for (int f = 0; f < F.n; ++f) {
-      for (int c = 0; c < 3; ++c) {
-        F.f[f].c[c] = fingers[f].position[c];
-        F.f[f].v[c] = fingers[f].velocity[c];
-      }
-      F.f[f].r = fingers[f].radius;
-      F.f[f].active = fingers[f].active ? 1 : 0;
-    }
+    const FingersArg F = fingers_arg(fingers);
     const StepConsts k = step_consts();
 
     const bool reuse = std::exchange(reuse_pending_, false);  // rollback_for_reference() just before
@@ -557,8 +548,6 @@ class CudaBackend final : public Backend {
     if (nodal()) launch_pressure();
     prof_.mark(2, stream_);
     begun_mg_ = solver_ == Solver::Persistent && (borrowed_mg_ || use_multigrid());
-    begun_F_ = F;
-    begun_k_ = k;
     slices_launched_ = 0;
     if (slice_ > 0) {
       // In slices: this one is the element pass and assembly; step_on() queues the solve's.
@@ -575,24 +564,13 @@ class CudaBackend final : public Backend {
 
   bool step_ready() const override {
     if (pending_ != Pending::Solve) return true;
-    const cudaError_t e = cudaEventQuery(done_);
+    const cudaError_t e = launches_done();
     if (e == cudaErrorNotReady) return false;
-    if (e != cudaSuccess) {
-      (void)cudaGetLastError();  // finish_step's synchronisation reports it
-      return true;
-    }
-    return slice_ == 0 || !slices_remain();
+    return e != cudaSuccess || slice_ == 0 || !slices_remain();  // an error: finish_step reports it
   }
 
   void step_on() override {
-    if (pending_ != Pending::Solve || slice_ == 0) return;
-    const cudaError_t e = cudaEventQuery(done_);
-    if (e == cudaErrorNotReady) return;
-    if (e != cudaSuccess) {
-      (void)cudaGetLastError();  // finish_step's synchronisation reports it
-      return;
-    }
-    if (slices_remain()) launch_slice();
+    if (pending_ == Pending::Solve && slice_ > 0 && launches_done() == cudaSuccess && slices_remain()) launch_slice();
   }
 
   StepStats finish_step(std::span<FingerOutput> out) override {
@@ -997,6 +975,30 @@ class CudaBackend final : public Backend {
     return a;
   }
 
+  // The fingers as the kernels take them.
+  static FingersArg fingers_arg(std::span<const FingerInput> fingers) {
+    FingersArg F{};
+    F.n = static_cast<int>(fingers.size());
+    for (int f = 0; f < F.n; ++f) {
+      for (int c = 0; c < 3; ++c) {
+        F.f[f].c[c] = fingers[f].position[c];
+        F.f[f].v[c] = fingers[f].velocity[c];
+      }
+      F.f[f].r = fingers[f].radius;
+      F.f[f].active = fingers[f].active ? 1 : 0;
+    }
+    return F;
+  }
+
+  // Whether the launches of the take begun have finished (never waits): cudaSuccess,
+  // cudaErrorNotReady, or the error they met (cleared here: the next synchronisation,
+  // finish_step's, reports it).
+  cudaError_t launches_done() const {
+    const cudaError_t e = cudaEventQuery(done_);
+    if (e != cudaSuccess && e != cudaErrorNotReady) (void)cudaGetLastError();
+    return e;
+  }
+
   void launch_pcg(const FingersArg& F, const StepConsts& k, bool multigrid) {
     cuda::launch_pcg(stream_, multigrid ? mg_launch_ : launch_, pcg_args(multigrid), detect_args(), F, k);
   }
@@ -1010,7 +1012,7 @@ class CudaBackend final : public Backend {
     PcgArgs<T> a = pcg_args(begun_mg_);
     a.slice = begun_mg_ ? slice_mg_ : slice_;
     a.resume = slices_launched_ > 0 ? 1 : 0;
-    cuda::launch_pcg(stream_, begun_mg_ ? mg_launch_ : launch_, a, detect_args(), begun_F_, begun_k_);
+    cuda::launch_pcg(stream_, begun_mg_ ? mg_launch_ : launch_, a, detect_args(), fingers_arg(begun_fingers_), step_consts());
     ++slices_launched_;
     CU(cudaEventRecord(done_, stream_));
   }
@@ -1051,8 +1053,6 @@ class CudaBackend final : public Backend {
   enum class Pending { None, Rest, Solve } pending_ = Pending::None;
   std::vector<FingerInput> begun_fingers_;
   bool begun_mg_ = false;
-  FingersArg begun_F_{};  // ... and its launches' arguments, for the slices after the first
-  StepConsts begun_k_{};
   int slice_ = 0;             // a shadow's solve in slices of this many CG iterations (Beside)
   int slice_mg_ = 0;          // ... with borrowed multigrid levels
   bool borrowed_mg_ = false;  // the levels of the backend it was forked from (fork_reference)

@@ -38,7 +38,6 @@ void MultigridDevice::own_vectors(cudaStream_t s) {
     l.d = vec(l.n);
   }
   desc_.upload(&host_, 1, s);
-  levels_ = host_.levels;
 }
 
 void MultigridDevice::borrow(const MultigridDevice& owner, cudaStream_t s) {

@@ -61,7 +61,7 @@ class MultigridDevice {
   void upload(const amg::Hierarchy& h, cudaStream_t s);
   void borrow(const MultigridDevice& owner, cudaStream_t s);
   const MgDev* dev() const { return desc_.size() ? desc_.get() : nullptr; }
-  int levels() const { return levels_; }
+  int levels() const { return host_.levels; }
 
  private:
   struct Matrices {
@@ -76,7 +76,6 @@ class MultigridDevice {
   std::deque<DeviceArray<double>> vecs_;
   MgDev host_{};  // the descriptor as uploaded (its vectors this object's own)
   DeviceArray<MgDev> desc_;
-  int levels_ = 0;
 };
 
 #ifdef __CUDACC__

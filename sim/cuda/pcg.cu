@@ -381,7 +381,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   };
   RowCache<T, B> rc;
   load_row_cache(a, rc);
-  if (tid == 0) a.res->unfinished = 0;
+  if (a.slice > 0 && tid == 0) a.res->unfinished = 0;  // read only for solves in slices
 
   T bnorm = 0, rnorm = 0;
   int it = 0;

@@ -85,26 +85,19 @@ bool backend_usable(const std::string& b) {
 }
 
 // The rows of a test run on each backend: "cpu", and "cuda" (skipped without a GPU).
-// Sets environment variables for a scope: the CUDA tuning knobs (sim/cuda/tuning.h) a
-// backend reads when it is made. Empty values are left unset.
-class ScopedEnv {
- public:
-  ScopedEnv(std::initializer_list<std::pair<const char*, QByteArray>> vars) {
-    for (const auto& [name, value] : vars)
-      if (!value.isEmpty()) {
-        qputenv(name, value);
-        names_.emplace_back(name);
-      }
-  }
-  ~ScopedEnv() {
-    for (const auto& n : names_) qunsetenv(n.constData());
-  }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  std::vector<QByteArray> names_;
-};
+// Sets environment variables (the CUDA tuning knobs, sim/cuda/tuning.h, that a backend
+// reads when it is made); empty values are left unset. The guard unsets them.
+auto scoped_env(std::initializer_list<std::pair<const char*, QByteArray>> vars) {
+  std::vector<QByteArray> names;
+  for (const auto& [name, value] : vars)
+    if (!value.isEmpty()) {
+      qputenv(name, value);
+      names.emplace_back(name);
+    }
+  return qScopeGuard([names] {
+    for (const auto& n : names) qunsetenv(n.constData());
+  });
+}
 
 void backend_rows() {
   QTest::addColumn<QString>("backend");
@@ -365,9 +358,9 @@ class TestErrorControl : public QObject {
     QFETCH(bool, multigrid);
     if (!backend_usable(backend.toStdString())) return;
     const bool sliced = shadow_place == "sliced";
-    const ScopedEnv env{{"PALPATION_CUDA_SHADOW", shadow_place},
-                        {"PALPATION_CUDA_SHADOW_SLICE", sliced ? "3" : ""},
-                        {"PALPATION_CUDA_SHADOW_SLICE_MG", sliced ? "1" : ""}};
+    const auto env = scoped_env({{"PALPATION_CUDA_SHADOW", shadow_place},
+                                 {"PALPATION_CUDA_SHADOW_SLICE", sliced ? "3" : ""},
+                                 {"PALPATION_CUDA_SHADOW_SLICE_MG", sliced ? "1" : ""}});
     Scenario s = box(backend.toStdString());
     s.params.solver.cg_tolerance = 1e-3;
     s.params.solver.corotation_tolerance = 0;  // the CPU shadow extracts every element each take
@@ -461,10 +454,10 @@ class TestErrorControl : public QObject {
     const bool sliced = shadow_place == "sliced";
     // Confined: the steps' solve on as many blocks as the device holds, two multiprocessors
     // kept for the shadow. Sliced: the shadow on the whole device, 4 CG iterations a slice.
-    const ScopedEnv env{{"PALPATION_CUDA_SHADOW", shadow_place},
-                        {"PALPATION_CUDA_GRID", sliced ? "" : "100000"},
-                        {"PALPATION_CUDA_SHADOW_SMS", sliced ? "" : "2"},
-                        {"PALPATION_CUDA_SHADOW_SLICE", sliced ? "4" : ""}};
+    const auto env = scoped_env({{"PALPATION_CUDA_SHADOW", shadow_place},
+                                 {"PALPATION_CUDA_GRID", sliced ? "" : "100000"},
+                                 {"PALPATION_CUDA_SHADOW_SMS", sliced ? "" : "2"},
+                                 {"PALPATION_CUDA_SHADOW_SLICE", sliced ? "4" : ""}});
     Scenario s = box("cuda");
     s.params.solver.cg_tolerance = 1e-3;
     const Model m = build_scenario_model(s, patient_mesh(s));
@@ -528,7 +521,8 @@ class TestErrorControl : public QObject {
     QFETCH(QString, backend);
     QFETCH(QByteArray, shadow_place);
     if (!backend_usable(backend.toStdString())) return;
-    const ScopedEnv env{{"PALPATION_CUDA_SHADOW", shadow_place}, {"PALPATION_CUDA_SHADOW_SLICE", shadow_place.isEmpty() ? "" : "3"}};
+    const auto env = scoped_env(
+        {{"PALPATION_CUDA_SHADOW", shadow_place}, {"PALPATION_CUDA_SHADOW_SLICE", shadow_place.isEmpty() ? "" : "3"}});
     Scenario s = box(backend.toStdString());
     s.params.solver.force_error = 0.01;
     s.params.solver.check = CheckPlace::Beside;
