@@ -7,118 +7,113 @@ namespace palpation::sim::cuda {
 
 namespace {
 
-/// Block row i is one warp: lane l owns block k0 + l (rows longer than 32 blocks take more
-/// passes). The warp stages the records of the elements around node i in shared memory
-/// (up to 32 at a time, all loads issued together, coalesced), then walks them: the lane
-/// whose column node is element node b adds
+/// Threads [0, nb) are blocks: thread k sums, over the element pairs (e, a, b) of block k,
 ///   K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (r_a . r_b) I)     (r_a . r_b = g_a . g_b)
-/// and lanes 0..2 add component c of Q r_a to the right-hand side. Every output is
-/// written once: no atomics, no element colouring.
+/// scales it, adds the mass and contact terms and inverts it where it is its row's diagonal
+/// block; with the nodal-pressure term, the same pairs give its coupling b_nj. Threads [nb, nb + nf) are block rows: the element terms Q r_a of the right-hand
+/// side over the diagonal block's pairs, then gravity, mass damping and contact, and the
+/// warm start. The threads of a warp take neighbouring blocks, mostly of one or two rows,
+/// so they read the records of the same elements (cached). Sums run over the elements by
+/// ascending index, as the row gather this replaced did: the same rounding.
 template <class T>
 __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
-  constexpr int kWarps = kBlock / 32;
-  __shared__ T srec[kWarps][32][kRec];
-  __shared__ int4 stet[kWarps][32];
-  __shared__ int sinc[kWarps][32];
-  const int lane = threadIdx.x & 31, w = threadIdx.x >> 5;
-  const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
-  const int nwarps = (gridDim.x * blockDim.x) >> 5;
-  for (int i = warp; i < a.nf; i += nwarps) {
-    const int k0 = a.row_ptr[i], len = a.row_ptr[i + 1] - k0, len3 = 3 * len;
-    const int node_i = a.free_nodes[i];
-    const int l0 = a.inc_ptr[i], l1 = a.inc_ptr[i + 1];
-    for (int base = 0; base < len; base += 32) {
-      const int kk = base + lane;
-      const int jnode = kk < len ? a.col_node[k0 + kk] : -1;
-      T acc[9];
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < a.nb) {
+    const int k = t, i = __ldg(a.block_row + k);
+    const int k0 = __ldg(a.row_ptr + i), len3 = 3 * (__ldg(a.row_ptr + i + 1) - k0);
+    T acc[9];
 #pragma unroll
-      for (int j = 0; j < 9; ++j) acc[j] = T(0);
-      T rhs = 0;
-      for (int c0 = l0; c0 < l1; c0 += 32) {
-        const int cnt = min(32, l1 - c0);
-        __syncwarp();
-        if (lane < cnt) sinc[w][lane] = __ldg(a.inc + c0 + lane);
-        __syncwarp();
-        if (lane < cnt) stet[w][lane] = __ldg(a.tets + (sinc[w][lane] >> 2));
-        for (int idx = lane; idx < cnt * kRec; idx += 32) {
-          const int j = idx / kRec, comp = idx - j * kRec;
-          srec[w][j][comp] = a.rec[std::size_t(kRec) * (sinc[w][j] >> 2) + comp];
-        }
-        __syncwarp();
-#pragma unroll 2
-        for (int j = 0; j < cnt; ++j) {
-          const int ia = sinc[w][j] & 3;
-          const int4 t = stet[w][j];
-          const T* rec = srec[w][j];
-          const int ib = t.x == jnode ? 0 : t.y == jnode ? 1 : t.z == jnode ? 2 : t.w == jnode ? 3 : -1;
-          const T ra0 = rec[3 * ia], ra1 = rec[3 * ia + 1], ra2 = rec[3 * ia + 2];
-          if (ib >= 0) {
-            const T rb0 = rec[3 * ib], rb1 = rec[3 * ib + 1], rb2 = rec[3 * ib + 2];
-            const T lv = rec[12], mv = rec[13];
-            const T ra[3] = {ra0, ra1, ra2}, rb[3] = {rb0, rb1, rb2};
+    for (int j = 0; j < 9; ++j) acc[j] = T(0);
+    T pb[3] = {T(0), T(0), T(0)};
+    const bool pressure = a.pres_b != nullptr;
+    const int c1 = __ldg(a.pair_ptr + k + 1);
+    for (int c = __ldg(a.pair_ptr + k); c < c1; ++c) {
+      const int code = __ldg(a.pairs + c), e = code >> 4;
+      const T* rec = a.rec + std::size_t(kRec) * e;
+      const int ia = (code >> 2) & 3, ib = code & 3;
+      const T ra[3] = {__ldg(rec + 3 * ia), __ldg(rec + 3 * ia + 1), __ldg(rec + 3 * ia + 2)};
+      const T rb[3] = {__ldg(rec + 3 * ib), __ldg(rec + 3 * ib + 1), __ldg(rec + 3 * ib + 2)};
+      const T lv = __ldg(rec + 12), mv = __ldg(rec + 13);
 #pragma unroll
-            for (int r = 0; r < 3; ++r)
+      for (int r = 0; r < 3; ++r)
 #pragma unroll
-              for (int c = 0; c < 3; ++c) acc[3 * r + c] += lv * ra[r] * rb[c] + mv * rb[r] * ra[c];
-            const T d = mv * (ra0 * rb0 + ra1 * rb1 + ra2 * rb2);
-            acc[0] += d;
-            acc[4] += d;
-            acc[8] += d;
-          }
-          if (base == 0 && lane < 3) {
-            // Q row `lane` (symmetric, stored xx xy xz yy yz zz) times r_a.
-            const int q0 = lane == 0 ? 14 : (lane == 1 ? 15 : 16);
-            const int q1 = lane == 0 ? 15 : (lane == 1 ? 17 : 18);
-            const int q2 = lane == 0 ? 16 : (lane == 1 ? 18 : 19);
-            rhs += rec[q0] * ra0 + rec[q1] * ra1 + rec[q2] * ra2;
-          }
-        }
-      }
-      if (kk < len) {
+        for (int cc = 0; cc < 3; ++cc) acc[3 * r + cc] += lv * ra[r] * rb[cc] + mv * rb[r] * ra[cc];
+      const T d = mv * (ra[0] * rb[0] + ra[1] * rb[1] + ra[2] * rb[2]);
+      acc[0] += d;
+      acc[4] += d;
+      acc[8] += d;
+      if (pressure) {
+        const T q = T(0.25) * __ldg(a.vol + e);
 #pragma unroll
-        for (int j = 0; j < 9; ++j) acc[j] *= a.kscale;
-        if (jnode == node_i) {
-          const T mm = a.mscale * a.mass[node_i];
-          acc[0] += mm;
-          acc[4] += mm;
-          acc[8] += mm;
-          const int s = a.free_surf[i];
-          if (s >= 0) {
-            const double* c = a.cA + 6 * s;
-            acc[0] += T(c[0]);
-            acc[1] += T(c[1]);
-            acc[2] += T(c[2]);
-            acc[3] += T(c[1]);
-            acc[4] += T(c[3]);
-            acc[5] += T(c[4]);
-            acc[6] += T(c[2]);
-            acc[7] += T(c[4]);
-            acc[8] += T(c[5]);
-          }
-          T inv[9];
-          invert3(acc, inv);
-#pragma unroll
-          for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
-        }
-        T* dst = a.vals + 9 * std::size_t(k0) + 3 * kk;
-#pragma unroll
-        for (int r = 0; r < 3; ++r)
-#pragma unroll
-          for (int c = 0; c < 3; ++c) dst[r * len3 + c] = acc[3 * r + c];
-      }
-      if (base == 0 && lane < 3) {
-        // b = h (f + m g - alpha M v - (beta + h) K v) + contact; the element terms are in rhs.
-        const T m = a.mass[node_i];
-        const T gc = lane == 0 ? a.g0 : (lane == 1 ? a.g1 : a.g2);
-        T bc = rhs + a.h * (m * gc - a.alpha * m * a.v[3 * node_i + lane]);
-        const int s = a.free_surf[i];
-        if (s >= 0) bc += T(a.cb[3 * s + lane]);
-        a.b[3 * i + lane] = bc;
-        const T cur = a.dv[3 * i + lane];
-        if (a.extrapolate) a.dv[3 * i + lane] = T(2) * cur - a.dv_prev[3 * i + lane];
-        a.dv_prev[3 * i + lane] = cur;
+        for (int cc = 0; cc < 3; ++cc) pb[cc] += q * rb[cc];
       }
     }
+    if (pressure) {
+      T* dst = a.pres_b + 3 * std::size_t(__ldg(a.pres_pair + k));
+#pragma unroll
+      for (int cc = 0; cc < 3; ++cc) dst[cc] = pb[cc];
+    }
+#pragma unroll
+    for (int j = 0; j < 9; ++j) acc[j] *= a.kscale;
+    if (k == __ldg(a.diag_block + i)) {
+      const T mm = a.mscale * a.mass[a.free_nodes[i]];
+      acc[0] += mm;
+      acc[4] += mm;
+      acc[8] += mm;
+      const int s = a.free_surf[i];
+      if (s >= 0) {
+        const double* cA = a.cA + 6 * s;
+        acc[0] += T(cA[0]);
+        acc[1] += T(cA[1]);
+        acc[2] += T(cA[2]);
+        acc[3] += T(cA[1]);
+        acc[4] += T(cA[3]);
+        acc[5] += T(cA[4]);
+        acc[6] += T(cA[2]);
+        acc[7] += T(cA[4]);
+        acc[8] += T(cA[5]);
+      }
+      T inv[9];
+      invert3(acc, inv);
+#pragma unroll
+      for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
+    }
+    T* dst = a.vals + 9 * std::size_t(k0) + 3 * (k - k0);
+#pragma unroll
+    for (int r = 0; r < 3; ++r)
+#pragma unroll
+      for (int cc = 0; cc < 3; ++cc) dst[r * len3 + cc] = acc[3 * r + cc];
+    return;
+  }
+  const int i = t - a.nb;
+  if (i >= a.nf) return;
+  // Q (symmetric, stored xx xy xz yy yz zz) times r_a over the elements around node i.
+  T rhs[3] = {T(0), T(0), T(0)};
+  const int kd = __ldg(a.diag_block + i), c1 = __ldg(a.pair_ptr + kd + 1);
+  for (int c = __ldg(a.pair_ptr + kd); c < c1; ++c) {
+    const int code = __ldg(a.pairs + c);
+    const T* rec = a.rec + std::size_t(kRec) * (code >> 4);
+    const int ia = (code >> 2) & 3;
+    const T ra0 = __ldg(rec + 3 * ia), ra1 = __ldg(rec + 3 * ia + 1), ra2 = __ldg(rec + 3 * ia + 2);
+    const T qxx = __ldg(rec + 14), qxy = __ldg(rec + 15), qxz = __ldg(rec + 16), qyy = __ldg(rec + 17),
+            qyz = __ldg(rec + 18), qzz = __ldg(rec + 19);
+    rhs[0] += qxx * ra0 + qxy * ra1 + qxz * ra2;
+    rhs[1] += qxy * ra0 + qyy * ra1 + qyz * ra2;
+    rhs[2] += qxz * ra0 + qyz * ra1 + qzz * ra2;
+  }
+  // b = h (f + m g - alpha M v - (beta + h) K v) + contact; the element terms are in rhs.
+  const int node_i = a.free_nodes[i];
+  const T m = a.mass[node_i];
+  const T g[3] = {a.g0, a.g1, a.g2};
+  const int s = a.free_surf[i];
+#pragma unroll
+  for (int c = 0; c < 3; ++c) {
+    T bc = rhs[c] + a.h * (m * g[c] - a.alpha * m * a.v[3 * node_i + c]);
+    if (s >= 0) bc += T(a.cb[3 * s + c]);
+    a.b[3 * i + c] = bc;
+    const T cur = a.dv[3 * i + c];
+    if (a.extrapolate) a.dv[3 * i + c] = T(2) * cur - a.dv_prev[3 * i + c];
+    a.dv_prev[3 * i + c] = cur;
   }
 }
 
@@ -199,8 +194,8 @@ template void launch_skin<double>(cudaStream_t, const SkinArgs<double>&, bool);
 
 template <class T>
 void launch_assemble(cudaStream_t s, const AssembleArgs<T>& a) {
-  const int warps_per_block = kBlock / 32;
-  k_assemble<T><<<(a.nf + warps_per_block - 1) / warps_per_block, kBlock, 0, s>>>(a);
+  const int threads = a.nb + a.nf;
+  k_assemble<T><<<(threads + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);
   CU_LAUNCHED(k_assemble);
 }
 

@@ -1,6 +1,8 @@
 // Assembly stage of the CUDA backends: the 3x3-block system matrix, its block-Jacobi
-// inverse and the right-hand side, gathered from the element records (element.cuh) by one
-// warp per block row: no atomics, every output written once.
+// inverse and the right-hand side, gathered from the element records (element.cuh): one
+// thread per block, over the element pairs that add to it (listed once, when the backend
+// is made), and one thread per block row for its right-hand side. No atomics, every
+// output written once.
 //
 // Matrix layout: the blocks of block-row i (k0 = row_ptr[i], len blocks) are stored so
 // that the whole matrix is also a valid scalar CSR matrix (rows 3i..3i+2, columns sorted):
@@ -15,13 +17,22 @@ namespace palpation::sim::cuda {
 
 template <class T>
 struct AssembleArgs {
-  int nf;
-  const int* row_ptr;   // (nf + 1)
-  const int* col_node;  // (nb) node of each block's column
-  const int* inc_ptr;   // (nf + 1) incidences of each free node
-  const int* inc;       // e << 2 | a
-  const int4* tets;
+  int nf, nb;
+  const int* row_ptr;     // (nf + 1)
+  const int* block_row;   // (nb) block row of each block
+  const int* diag_block;  // (nf) the diagonal block of each block row
+  // The element pairs that add to each block (pair_ptr: nb + 1), e << 4 | a << 2 | b for
+  // the block of element e's nodes a (row) and b (column), by ascending e. The diagonal
+  // block's are (e, a, a) for every element around its node: the right-hand side's too.
+  const int* pair_ptr;
+  const int* pairs;
   const T* rec;
+  // The nodal-pressure term's couplings of the free nodes' pressure rows (pressure.cuh),
+  // summed here over the same element pairs: block k = (dof n, j) writes b_nj, pair
+  // pres_pair[k], as sum (V_e / 4) r_{e,j}. Off when pres_b is null.
+  T* pres_b;
+  const int* pres_pair;  // (nb)
+  const T* vol;          // (ne)
   const int* free_nodes;
   const int* free_surf;  // (nf) surface index or -1
   const T* mass;         // (nnode)
@@ -41,7 +52,7 @@ struct AssembleArgs {
   T g0, g1, g2;
 };
 
-/// Launches k_assemble in stream s: one warp per block row, kBlock threads per block.
+/// Launches k_assemble in stream s: nb + nf threads, kBlock a block.
 template <class T>
 void launch_assemble(cudaStream_t s, const AssembleArgs<T>& a);
 

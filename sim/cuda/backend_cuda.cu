@@ -9,18 +9,18 @@
 //               and the element's right-hand-side matrix Q (elastic force and K v folded
 //               in), one compact record per element; extra blocks do the contact detection
 //               at start-of-step positions against the end-of-step fingers (contact.cuh).
-//   k_assemble  (assembly.cu) one warp per block row: stages the records of the elements
-//               around the node in shared memory and gathers its 3x3 blocks, the
-//               block-Jacobi inverse of its diagonal and its right-hand side (no atomics,
-//               every output written once).
+//   k_assemble  (assembly.cu) one thread per 3x3 block, summing over the element pairs
+//               listed for it when the backend is made (the diagonal's thread also inverts
+//               it for block-Jacobi), and one per block row for its right-hand side (no
+//               atomics, every output written once).
 //   k_pcg       (pcg.cu) one persistent cooperative kernel: the PCG of solve_cg.h (warm
 //               start, restart and stopping rules), two grid barriers per iteration (the
 //               search direction is formed inside the SpMV), rows held in registers when
 //               they fit; then v += dv, x += h v, the rest rule, and the finger outputs at
 //               the end state.
-//   With the nodal-pressure element (tissue.element) three small kernels between
-//   k_assemble and k_pcg form its volumetric term, and k_pcg applies it in each product
-//   (pressure.cuh).
+//   With the nodal-pressure element (tissue.element) k_assemble also forms the free
+//   nodes' couplings of its volumetric term, up to three small kernels between k_assemble
+//   and k_pcg form the rest of it, and k_pcg applies it in each product (pressure.cuh).
 //   The kernels write the small result (finger sums, statistics) into mapped pinned memory:
 //   no copy is queued; the host synchronises once.
 // At rest with no contact only k_detect (contact.cu) runs (GPU detection, the result read
@@ -113,7 +113,7 @@ template <class T>
 struct HostLayout {
   std::vector<int4> tets;
   std::vector<T> grad, vol;
-  std::vector<int> col_node, inc_ptr, inc, free_surf;
+  std::vector<int> block_row, pair_ptr, pairs, free_surf;
   std::vector<T> mass;
 
   explicit HostLayout(const Model& m) {
@@ -127,23 +127,21 @@ struct HostLayout {
         for (int c = 0; c < 3; ++c) grad[12 * std::size_t(e) + 3 * a + c] = T(m.grad[e][a][c]);
       vol[e] = T(m.volume[e]);
     }
-    // Node of each block's column (what the assembly warp matches element nodes with).
-    col_node.resize(nb);
-    for (int k = 0; k < nb; ++k) col_node[k] = m.free_nodes[m.col[k]];
-    // Incidences of each free node.
-    inc_ptr.assign(nf + 1, 0);
+    block_row.resize(nb);
+    for (int i = 0; i < nf; ++i)
+      for (int k = m.row_ptr[i]; k < m.row_ptr[i + 1]; ++k) block_row[k] = i;
+    // The element pairs of each block (AssembleArgs::pairs), by ascending element.
+    pair_ptr.assign(nb + 1, 0);
     for (int e = 0; e < ne; ++e)
-      for (int a = 0; a < 4; ++a)
-        if (m.dof[m.tets[e][a]] >= 0) ++inc_ptr[m.dof[m.tets[e][a]] + 1];
-    for (int i = 0; i < nf; ++i) inc_ptr[i + 1] += inc_ptr[i];
-    inc.resize(inc_ptr[nf]);
+      for (int ab = 0; ab < 16; ++ab)
+        if (const int k = m.tet_block[e][ab]; k >= 0) ++pair_ptr[k + 1];
+    for (int k = 0; k < nb; ++k) pair_ptr[k + 1] += pair_ptr[k];
+    pairs.resize(pair_ptr[nb]);
     {
-      std::vector<int> fill(inc_ptr.begin(), inc_ptr.end() - 1);
+      std::vector<int> fill(pair_ptr.begin(), pair_ptr.end() - 1);
       for (int e = 0; e < ne; ++e)
-        for (int a = 0; a < 4; ++a) {
-          const int i = m.dof[m.tets[e][a]];
-          if (i >= 0) inc[fill[i]++] = (e << 2) | a;
-        }
+        for (int ab = 0; ab < 16; ++ab)
+          if (const int k = m.tet_block[e][ab]; k >= 0) pairs[fill[k]++] = (e << 4) | ab;  // ab = a << 2 | b
     }
     const int ns = static_cast<int>(m.surface_nodes.size());
     free_surf.assign(nf, -1);
@@ -241,9 +239,10 @@ class CudaBackend final : public Backend {
     tets_.upload(L.tets, stream_);
     grad_.upload(L.grad, stream_);
     vol_.upload(L.vol, stream_);
-    col_node_.upload(L.col_node, stream_);
-    inc_ptr_.upload(L.inc_ptr, stream_);
-    inc_.upload(L.inc, stream_);
+    block_row_.upload(L.block_row, stream_);
+    pair_ptr_.upload(L.pair_ptr, stream_);
+    pairs_.upload(L.pairs, stream_);
+    upload_diag_block();
     free_surf_.upload(L.free_surf, stream_);
     {
       std::vector<int> tri(3 * std::size_t(nt_)), node_surf(nn_, -1);
@@ -673,6 +672,25 @@ class CudaBackend final : public Backend {
         ptr, list);
     np_pinc_ptr_.upload(ptr, stream_);
     np_pinc_.upload(list, stream_);
+    // The free nodes' pairs are formed by the assembly, block by block: the pair of each
+    // block (n = its row's node, j = its column); the fixed nodes' by k_pressure_pairs.
+    {
+      std::vector<int> block_pair(nb_), fixed;
+      for (int i = 0; i < nf_; ++i) {
+        const int n = m_.free_nodes[i];
+        const auto first = np_->col.begin() + np_->row_ptr[n], last = np_->col.begin() + np_->row_ptr[n + 1];
+        for (int k = m_.row_ptr[i]; k < m_.row_ptr[i + 1]; ++k) {
+          const auto at = std::lower_bound(first, last, m_.col[k]);
+          if (at == last || *at != m_.col[k]) throw std::logic_error("cuda backend: a block without its nodal-pressure pair");
+          block_pair[k] = int(at - np_->col.begin());
+        }
+      }
+      for (int n : np_->fixed_rows)
+        for (int k = np_->row_ptr[n]; k < np_->row_ptr[n + 1]; ++k) fixed.push_back(k);
+      np_block_pair_.upload(block_pair, stream_);
+      np_fixed_pairs_.upload(fixed, stream_);
+      np_nfixed_ = int(fixed.size());
+    }
     incidences(
         nn_,
         [&](auto add) {
@@ -791,7 +809,8 @@ class CudaBackend final : public Backend {
     a.P = pressure_dev();
     a.nnode = nn_;
     a.nf = nf_;
-    a.npair = np_->num_pairs();
+    a.nfixed = np_nfixed_;
+    a.fixed_pairs = np_fixed_pairs_.get();
     a.pinc_ptr = np_pinc_ptr_.get();
     a.pinc = np_pinc_.get();
     a.ninc_ptr = np_inc_ptr_.get();
@@ -844,12 +863,18 @@ class CudaBackend final : public Backend {
   void launch_assemble(const StepConsts& k, bool extrapolate) {
     AssembleArgs<T> a{};
     a.nf = nf_;
+    a.nb = nb_;
     a.row_ptr = row_ptr_.get();
-    a.col_node = col_node_.get();
-    a.inc_ptr = inc_ptr_.get();
-    a.inc = inc_.get();
-    a.tets = tets_.get();
+    a.block_row = block_row_.get();
+    a.diag_block = diag_block_.get();
+    a.pair_ptr = pair_ptr_.get();
+    a.pairs = pairs_.get();
     a.rec = rec_.get();
+    if (nodal()) {
+      a.pres_b = npb_.get();
+      a.pres_pair = np_block_pair_.get();
+      a.vol = vol_.get();
+    }
     a.free_nodes = free_nodes_.get();
     a.free_surf = free_surf_.get();
     a.mass = mass_.get();
@@ -1041,7 +1066,7 @@ class CudaBackend final : public Backend {
   cudaStream_t stream_ = nullptr;
   DeviceArray<int4> tets_;
   DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_;
-  DeviceArray<int> col_node_, inc_ptr_, inc_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
+  DeviceArray<int> block_row_, pair_ptr_, pairs_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
   DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, dv_prev_, r_, z_, p0_, p1_, q_, ext_[5];
   bool last_converged_ = false;  // the last solve reached the tolerance: extrapolate the warm start
   DeviceArray<T> kept_x_, kept_v_, kept_quat_, kept_dv_, kept_dv_prev_;  // checkpoint()
@@ -1075,7 +1100,9 @@ class CudaBackend final : public Backend {
   std::shared_ptr<const NodalPressurePattern> np_;  // none until an element needs it
   std::vector<double> npw_host_;  // its weights W (what the multigrid levels are built from)
   DeviceArray<int> np_row_ptr_, np_col_, np_t_row_ptr_, np_t_node_, np_t_pair_, np_pinc_ptr_, np_pinc_, np_inc_ptr_, np_inc_,
+      np_block_pair_, np_fixed_pairs_,
       diag_block_;
+  int np_nfixed_ = 0;  // fixed nodes' pairs (np_fixed_pairs_)
   DeviceArray<T> npb_, npw_, npi_, np_rest_part_;
   // The skin membrane (fem_membrane.h, assembly.cuh's skin stage); nskin_ 0: none.
   int nskin_ = 0;

@@ -10,8 +10,9 @@ namespace {
 
 template <class T>
 __global__ void __launch_bounds__(kBlock) k_pressure_pairs(PressureArgs<T> a) {
-  const int k = blockIdx.x * blockDim.x + threadIdx.x;
-  if (k >= a.npair) return;
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= a.nfixed) return;
+  const int k = a.fixed_pairs[t];
   T b0 = 0, b1 = 0, b2 = 0;
   for (int l = a.pinc_ptr[k]; l < a.pinc_ptr[k + 1]; ++l) {
     const int e = __ldg(a.pinc + l) >> 2, ib = __ldg(a.pinc + l) & 3;
@@ -104,8 +105,10 @@ __global__ void __launch_bounds__(kBlock) k_pressure_free(PressureArgs<T> a) {
 
 template <class T>
 void launch_pressure(cudaStream_t s, const PressureArgs<T>& a) {
-  k_pressure_pairs<T><<<(a.npair + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);
-  CU_LAUNCHED(k_pressure_pairs);
+  if (a.nfixed > 0) {
+    k_pressure_pairs<T><<<(a.nfixed + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);
+    CU_LAUNCHED(k_pressure_pairs);
+  }
   k_pressure_nodes<T><<<(a.nnode * kNodeLanes + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);
   CU_LAUNCHED(k_pressure_nodes);
   k_pressure_free<T><<<(a.nf * kFreeLanes + kBlock - 1) / kBlock, kBlock, 0, s>>>(a);

@@ -4,9 +4,11 @@
 //
 // Per step, after k_assemble (whose element records carry no lambda: the element's
 // volumetric part lives here):
-//   k_pressure_pairs one thread per pair (n, j): its coupling b_nj = sum over the elements
-//                    holding both of (V_e / 4) r_{e,j}, afresh from the element records (the
-//                    GPU re-rotates every element every step, so nothing is kept).
+//   k_pressure_pairs one thread per pair (n, j) of a fixed node n: its coupling b_nj = sum
+//                    over the elements holding both of (V_e / 4) r_{e,j}, afresh from the
+//                    element records (the GPU re-rotates every element every step, so
+//                    nothing is kept). The free nodes' pairs are blocks of the system: the
+//                    assembly forms them from the same element pairs (assembly.cuh).
 //   k_pressure_nodes a group of lanes per node n (every node: the chest wall's pressures act on
 //                    their free neighbours): the rest part c_n = sum over its elements of
 //                    (V_e / 4) (tr R_e - 3) and its pressure
@@ -42,7 +44,8 @@ template <class T>
 struct PressureArgs {
   PressureDev<T> P;
   int nnode, nf;
-  int npair;
+  int nfixed;            // the pairs (n, j) of fixed nodes n, which the assembly does not form
+  const int* fixed_pairs;  // (nfixed)
   const int* pinc_ptr;   // (npair + 1) the elements holding each pair (n, j)
   const int* pinc;       // e << 2 | b, b the local index of j
   const int* ninc_ptr;   // (nnode + 1) the elements at every node
@@ -63,7 +66,8 @@ struct PressureArgs {
   T* precond;            // (nf x 9) block-Jacobi inverse
 };
 
-/// Launches k_pressure_pairs, k_pressure_nodes and k_pressure_free in stream s.
+/// Launches k_pressure_pairs (where fixed nodes have pairs), k_pressure_nodes and
+/// k_pressure_free in stream s, after the assembly (which forms the free rows' pairs).
 template <class T>
 void launch_pressure(cudaStream_t s, const PressureArgs<T>& a);
 
