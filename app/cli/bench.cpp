@@ -127,6 +127,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     sref.params.solver.corotation_tolerance = 0;  // every element's rotation every step
     sref.params.solver.preconditioner = sim::Preconditioner::BlockJacobi;  // any converges to 1e-10; one cached reference
     sref.params.solver.force_error = 0;
+    sref.params.solver.check = sim::CheckPlace::Auto;  // no controller, no check: one cached reference whatever --check says
     std::ostringstream key;
     sim::TetMesh keymesh;
     keymesh.nodes = model.rest;
