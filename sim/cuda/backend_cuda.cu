@@ -34,6 +34,7 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -156,13 +157,17 @@ struct HostLayout {
 
 enum class Solver { Persistent, Csr, Bsr };
 
-/// Stage timing with events (CudaTuning::profile): printed when the backend dies.
+/// Stage timing with events (CudaTuning::profile): printed when the backend dies. Beside
+/// the stages, the host's time from one solved step's end (its result read) to the next
+/// one's first launch: what the caller (Simulation, the bench) spends between steps.
 struct Profiler {
   bool on = false;
   static constexpr int kStages = 4;
   const char* names[kStages] = {"element+detect", "assemble", "solve+finish", "wait"};
   cudaEvent_t ev[kStages + 1]{};
   std::vector<float> ms[kStages];
+  std::vector<float> between;  // ms, host
+  std::chrono::steady_clock::time_point left{};
   int steps = 0;
   void init(bool enable) {
     on = enable;
@@ -170,7 +175,10 @@ struct Profiler {
       for (auto& e : ev) CU(cudaEventCreate(&e));
   }
   void mark(int i, cudaStream_t s) {
-    if (on) CU(cudaEventRecord(ev[i], s));
+    if (!on) return;
+    if (i == 0 && left != std::chrono::steady_clock::time_point{})
+      between.push_back(std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - left).count());
+    CU(cudaEventRecord(ev[i], s));
   }
   void collect() {
     if (!on) return;
@@ -180,20 +188,58 @@ struct Profiler {
       ms[i].push_back(t);
     }
     ++steps;
+    left = std::chrono::steady_clock::now();
   }
   void report(const std::string& who) {
     if (!on || steps == 0) return;
-    std::fprintf(stderr, "cuda profile (%s, %d solved steps), median / p99 us per stage:", who.c_str(), steps);
-    for (int i = 0; i < kStages; ++i) {
-      auto v = ms[i];
+    auto quote = [](const char* name, std::vector<float> v) {
+      if (v.empty()) return;
       std::sort(v.begin(), v.end());
-      std::fprintf(stderr, " %s %.1f / %.1f", names[i], 1000.0 * v[v.size() / 2], 1000.0 * v[(v.size() - 1) * 99 / 100]);
-    }
+      std::fprintf(stderr, " %s %.1f / %.1f", name, 1000.0 * v[v.size() / 2], 1000.0 * v[(v.size() - 1) * 99 / 100]);
+    };
+    std::fprintf(stderr, "cuda profile (%s, %d solved steps), median / p99 us per stage:", who.c_str(), steps);
+    for (int i = 0; i < kStages; ++i) quote(names[i], ms[i]);
+    quote("between-steps(host)", between);
     std::fprintf(stderr, "\n");
   }
   ~Profiler() {
     for (auto& e : ev)
       if (e) cudaEventDestroy(e);
+  }
+};
+
+/// The persistent kernel's phases (CudaTuning::phases, pcg.cu's PhaseClock): printed when
+/// the backend dies, each phase's time in all, how often it ended, and its mean.
+struct PhaseTimes {
+  DeviceArray<unsigned long long> acc;  // PcgArgs::phase
+  void init(bool enable, cudaStream_t s) {
+    if (!enable) return;
+    acc.alloc(2 * kPhases + 2);
+    acc.zero(s);
+  }
+  void report(const std::string& who, cudaStream_t s) const {
+    if (!acc.get()) return;
+    std::vector<unsigned long long> v(acc.size());
+    CU(cudaMemcpyAsync(v.data(), acc.get(), v.size() * sizeof(v[0]), cudaMemcpyDeviceToHost, s));
+    CU(cudaStreamSynchronize(s));
+    const double cycles = double(v[2 * kPhases + 1]);
+    if (cycles <= 0) return;
+    const double us_per_cycle = 1e-3 * double(v[2 * kPhases]) / cycles;
+    static const char* names[kPhLevel] = {"start",     "cg-pressure", "cg-product", "cg-update",
+                                          "mg-jacobi", "mg-pressure", "mg-product", "mg-restrict",
+                                          "mg-prolong", "mg-coarsest", "mg-dot",    "finish"};
+    static const char* level_names[4] = {"jacobi", "product", "restrict", "prolong"};
+    std::fprintf(stderr, "cuda phases (%s): %.1f ms in launches; phase: total ms, times, mean us\n", who.c_str(),
+                 1e-6 * double(v[2 * kPhases]));
+    for (int id = 0; id < kPhases; ++id) {
+      if (v[std::size_t(kPhases + id)] == 0) continue;
+      const std::string name = id < kPhLevel ? names[id]
+                                             : "level" + std::to_string((id - kPhLevel) / 4 + 1) + "-" +
+                                                   level_names[(id - kPhLevel) % 4];
+      const double ms = 1e-3 * us_per_cycle * double(v[std::size_t(id)]);
+      const double n = double(v[std::size_t(kPhases + id)]);
+      std::fprintf(stderr, "  %-16s %10.2f %10.0f %8.2f\n", name.c_str(), ms, n, 1e3 * ms / n);
+    }
   }
 };
 
@@ -297,12 +343,18 @@ class CudaBackend final : public Backend {
 #endif
     }
     prof_.init(tuning.profile);
+    phases_.init(tuning.phases, stream_);
     set_materials(m_.materials);
     reset();
   }
 
   ~CudaBackend() override {
     prof_.report(name() + (std::is_same_v<T, double> ? " double" : " float"));
+    try {
+      if (stream_) phases_.report(name() + (std::is_same_v<T, double> ? " double" : " float"), stream_);
+    } catch (const std::exception& e) {  // a destructor does not throw; the report is a measurement's only
+      std::fprintf(stderr, "cuda phases: %s\n", e.what());
+    }
     baseline_.reset();  // its cuSPARSE/cuBLAS handles work in stream_: gone before the stream
     if (stream_) cudaStreamSynchronize(stream_);  // a take begun and never finished
     if (host_res_) cudaFreeHost(host_res_);
@@ -937,7 +989,8 @@ class CudaBackend final : public Backend {
   // The levels' copy on the device. A CUDA error here is the device's, not the levels': it
   // goes to the caller.
   void upload_levels(const amg::Hierarchy& levels) {
-    mg_levels_.upload(levels, stream_);
+    if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
+    mg_levels_.upload(levels, stream_, long(mg_launch_.grid) * mg_launch_.block, tuning_.mg_lanes);
     prepare_mg_solve();
   }
   // The multigrid solve's launch and its finest level's scratch, once.
@@ -992,6 +1045,7 @@ class CudaBackend final : public Backend {
       for (int e = 0; e < 5; ++e) a.ext[e] = ext_[e].get();
     a.scr = scratch_.get();
     a.res = dev_res_;
+    a.phase = phases_.acc.get();
     if (multigrid) {
       a.mg = mg_levels_.dev();
       a.mg_r = mg_r_.get();
@@ -1094,6 +1148,7 @@ class CudaBackend final : public Backend {
   std::vector<Eigen::Vector3d> filtered_;
   bool rested_ = true;
   Profiler prof_;
+  PhaseTimes phases_;
   std::unique_ptr<BaselineSolver<T>> baseline_;  // the library baselines' solver
   Materials mat_;                        // the materials set last (an element change rebuilds from them)
   // The nodal-pressure element only (pressure.cuh): its pattern, on the host and the device.

@@ -90,6 +90,28 @@ constexpr int kBlock = 256;  // threads per block everywhere but the persistent 
 constexpr int kPcgMaxBlock = 512;  // the persistent kernel: one fat block per SM by default
 constexpr int kGroup = 8;    // lanes per block row in the SpMV
 
+/// The phases of the persistent PCG kernel that CudaTuning::phases times (pcg.cu,
+/// PhaseClock): the wall time from one grid barrier to the next, summed by the phase that
+/// the later barrier ends. The coarse levels' phases follow kPhLevel, four per level k >= 1
+/// at kPhLevel + 4 (k - 1): its block-Jacobi passes, its products, the restriction to
+/// level k + 1 and the prolongation from it.
+enum PcgPhase : int {
+  kPhStart,       // r = b - A x of the warm start, and the first preconditioning's reduction
+  kPhCgPressure,  // the CG product's nodal pressures
+  kPhCgProduct,   // the CG product (with p . q)
+  kPhCgUpdate,    // x, r (and z under block-Jacobi) with their reductions
+  kPhMgJacobi,    // the finest level's block-Jacobi passes
+  kPhMgPressure,  // the finest level's smoothing products: their nodal pressures
+  kPhMgProduct,   // ... the products
+  kPhMgRestrict,  // the restriction to level 1
+  kPhMgProlong,   // the prolongation from level 1
+  kPhMgCoarsest,  // the coarsest level's inverse
+  kPhMgDot,       // the V-cycle's last pass with r . z
+  kPhFinish,      // the state update, rest rule and finger outputs (or a slice's end)
+  kPhLevel,
+  kPhases = kPhLevel + 4 * 7,  // multigrid.cuh's kMgMaxLevels - 1 coarse levels
+};
+
 struct FingerDev {
   double c[3];
   double v[3];

@@ -7,7 +7,14 @@
 
 namespace palpation::sim::cuda {
 
-CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s) {
+int csr_lanes(long rows, long nonzeros, long threads) {
+  if (rows <= 0) return kGroup;
+  const double mean = double(nonzeros) / double(rows);
+  if (mean >= 128 && rows <= 4096) return kBlockPerRow;
+  return mean < 12 && rows * kGroup > threads ? 2 : kGroup;
+}
+
+CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s, long threads, int lanes) {
   CsrDev d;
   d.rows = int(M.rows());
   auto& ptr = mats_->ints.emplace_back();
@@ -19,6 +26,7 @@ CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s) {
   d.ptr = ptr.get();
   d.col = col.get();
   d.val = val.get();
+  d.lanes = lanes >= 0 ? lanes : csr_lanes(M.rows(), M.nonZeros(), threads);
   return d;
 }
 
@@ -49,7 +57,7 @@ void MultigridDevice::borrow(const MultigridDevice& owner, cudaStream_t s) {
   own_vectors(s);
 }
 
-void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
+void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s, long threads, int lanes) {
   const auto& levels = h.levels();
   const int L = int(levels.size());
   if (L < 2 || L > kMgMaxLevels)
@@ -67,11 +75,11 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
     const auto& src = levels[std::size_t(k)];
     MgLevelDev& dst = m.lv[k];
     dst.n = k == 0 ? int(src.P.rows()) : int(src.A.rows());
-    if (k > 0) dst.A = csr(src.A, s);
+    if (k > 0) dst.A = csr(src.A, s, threads, lanes);
     if (k + 1 < L) {
-      if (k > 0) dst.Dinv = csr(src.Dinv, s);
-      dst.P = csr(src.P, s);
-      dst.R = csr(src.R, s);
+      if (k > 0) dst.Dinv = csr(src.Dinv, s, threads, lanes);
+      dst.P = csr(src.P, s, threads, lanes);
+      dst.R = csr(src.R, s, threads, lanes);
       dst.steps = src.smoothing.steps();
       for (int j = 0; j < dst.steps; ++j) {
         dst.a[j] = src.smoothing.a[std::size_t(j)];
@@ -88,7 +96,7 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s) {
   amg::SpMat dense(inv.rows(), inv.cols());
   dense.setFromTriplets(t.begin(), t.end());
   dense.makeCompressed();
-  m.coarsest_inverse = csr(dense, s);
+  m.coarsest_inverse = csr(dense, s, threads, lanes);
   host_ = m;
   own_vectors(s);
 }

@@ -6,8 +6,8 @@
 // step: the finest level smoothed on the kernel's own operator with its block-Jacobi, the
 // coarse levels in double on their stored operators, the coarsest solved by its inverse
 // (dense, applied as one more matrix: the Cholesky solve's result to rounding). Every
-// matrix is scalar CSR, read by groups of kGroup lanes per row; a barrier follows each
-// product whose result another thread reads.
+// matrix is scalar CSR, each row read by as many lanes as its length wants (CsrDev::lanes);
+// a barrier follows each product whose result another thread reads.
 #pragma once
 
 #include <deque>
@@ -20,6 +20,10 @@ namespace palpation::sim::cuda {
 
 constexpr int kMgMaxLevels = 8;  // amg::Options::max_levels
 constexpr int kMgMaxSteps = 4;   // the smoothing's degree
+static_assert(kPhases == kPhLevel + 4 * (kMgMaxLevels - 1), "a timed phase for each coarse level's passes");
+
+/// Lanes per row of a CSR product (CsrDev::lanes): a whole block's threads per row.
+constexpr int kBlockPerRow = 0;
 
 /// A scalar CSR matrix on the device.
 struct CsrDev {
@@ -27,7 +31,19 @@ struct CsrDev {
   const int* ptr = nullptr;
   const int* col = nullptr;
   const double* val = nullptr;
+  // Lanes that read a row together, 2 or 8, or kBlockPerRow: set by MultigridDevice from
+  // the rows' number and mean length (csr_lanes).
+  int lanes = kGroup;
 };
+
+/// CsrDev::lanes for a matrix of `rows` rows and `nonzeros` entries read by `threads`
+/// threads (the launch's). Measured on the xfine breast's levels (H200, the PCG's phases,
+/// docs/gpu-notes.md): a block per row where rows are long (128 entries and more) and few
+/// (the restriction to the coarsest level and its inverse: 192 rows of hundreds of entries,
+/// 27 -> 5 and 9 -> 5 us a pass against 8 lanes); 2 lanes where short rows outnumber the
+/// groups of 8 (the finest prolongation, 244k rows: 25 -> 13 us); 8 elsewhere (2 or 32
+/// lanes on the first coarse level's 16.5k rows were 7-70 % slower).
+int csr_lanes(long rows, long nonzeros, long threads);
 
 /// One level: its operator and inverse diagonal blocks (levels >= 1), its prolongation
 /// from the next level and restriction to it (all but the coarsest), its smoothing
@@ -58,7 +74,9 @@ struct MgDev {
 /// next) with vectors of its own, so that the two solves never share scratch.
 class MultigridDevice {
  public:
-  void upload(const amg::Hierarchy& h, cudaStream_t s);
+  /// `threads`: the solve's launch (CsrDev::lanes); `lanes` >= 0: every matrix's lanes
+  /// (CudaTuning::mg_lanes), else csr_lanes's.
+  void upload(const amg::Hierarchy& h, cudaStream_t s, long threads, int lanes = -1);
   void borrow(const MultigridDevice& owner, cudaStream_t s);
   const MgDev* dev() const { return desc_.size() ? desc_.get() : nullptr; }
   int levels() const { return host_.levels; }
@@ -68,7 +86,7 @@ class MultigridDevice {
     std::deque<DeviceArray<int>> ints;
     std::deque<DeviceArray<double>> dbls;
   };
-  CsrDev csr(const amg::SpMat& M, cudaStream_t s);
+  CsrDev csr(const amg::SpMat& M, cudaStream_t s, long threads, int lanes);
   double* vec(int n);
   /// The level vectors of host_ allocated here, and the descriptor uploaded.
   void own_vectors(cudaStream_t s);
@@ -81,11 +99,10 @@ class MultigridDevice {
 #ifdef __CUDACC__
 
 /// y_row = sum_k M_row,k x(col_k) for every row, then emit(row, y_row) on one lane. Groups
-/// of kGroup lanes per row; warp-uniform loop bounds (every lane takes part in every
-/// shuffle).
-template <class Fetch, class Emit>
+/// of G lanes per row; warp-uniform loop bounds (every lane takes part in every shuffle).
+template <int G, class Fetch, class Emit>
 __device__ __forceinline__ void csr_groups(const CsrDev& M, Fetch fetch, Emit emit) {
-  constexpr int G = kGroup, RPW = 32 / G;
+  constexpr int RPW = 32 / G;
   const int lane = threadIdx.x & 31, gl = lane % G, gw = lane / G;
   const int warp = (blockIdx.x * blockDim.x + threadIdx.x) >> 5;
   const int nwarps = (gridDim.x * blockDim.x) >> 5;
@@ -99,42 +116,74 @@ __device__ __forceinline__ void csr_groups(const CsrDev& M, Fetch fetch, Emit em
   }
 }
 
+/// The same with a block per row: its threads' sums over warps, then through shared
+/// memory; block-uniform loop bounds (every thread of the block takes part).
+template <class Fetch, class Emit>
+__device__ __forceinline__ void csr_blocks(const CsrDev& M, Fetch fetch, Emit emit) {
+  __shared__ double part[32];
+  const int lane = threadIdx.x & 31, warp = threadIdx.x >> 5, nw = (blockDim.x + 31) >> 5;
+  for (int row = blockIdx.x; row < M.rows; row += gridDim.x) {
+    double y = 0;
+    for (int k = M.ptr[row] + threadIdx.x; k < M.ptr[row + 1]; k += blockDim.x) y += M.val[k] * double(fetch(M.col[k]));
+    y = warp_sum(y);
+    if (lane == 0) part[warp] = y;
+    __syncthreads();
+    if (threadIdx.x == 0) {
+      double t = 0;
+      for (int w = 0; w < nw; ++w) t += part[w];
+      emit(row, t);
+    }
+    __syncthreads();
+  }
+}
+
+/// y = M x row by row, emit(row, y_row), with M.lanes lanes a row.
+template <class Fetch, class Emit>
+__device__ __forceinline__ void csr_rows(const CsrDev& M, Fetch fetch, Emit emit) {
+  switch (M.lanes) {
+    case kBlockPerRow: csr_blocks(M, fetch, emit); break;
+    case 2: csr_groups<2>(M, fetch, emit); break;
+    default: csr_groups<8>(M, fetch, emit); break;
+  }
+}
+
 /// One coarse level's smoothing (amg::smooth) of L.b into L.x, with a barrier after each
 /// product that another row reads. from_zero: L.x is taken as zero; residual: L.r holds
-/// L.b - A L.x on return. Ends on a barrier.
+/// L.b - A L.x on return. Ends on a barrier. bar(ph) follows its block-Jacobi passes,
+/// bar(ph + 1) its products (PcgPhase).
 template <class Bar>
-__device__ void mg_smooth(const MgLevelDev& L, bool from_zero, bool residual, Bar bar) {
+__device__ void mg_smooth(const MgLevelDev& L, bool from_zero, bool residual, Bar bar, int ph) {
   if (from_zero) {
     // r = b; d = c0 D^-1 b; x = d (D^-1 reads its own node's rows of b, complete).
     const double c0 = L.c[0];
-    csr_groups(L.Dinv, [&](int j) { return L.b[j]; }, [&](int i, double t) {
+    csr_rows(L.Dinv, [&](int j) { return L.b[j]; }, [&](int i, double t) {
       L.r[i] = L.b[i];
       L.d[i] = c0 * t;
       L.x[i] = c0 * t;
     });
   } else {
-    csr_groups(L.A, [&](int j) { return L.x[j]; }, [&](int i, double y) { L.r[i] = L.b[i] - y; });
-    bar();
+    csr_rows(L.A, [&](int j) { return L.x[j]; }, [&](int i, double y) { L.r[i] = L.b[i] - y; });
+    bar(ph + 1);
     const double c0 = L.c[0];
-    csr_groups(L.Dinv, [&](int j) { return L.r[j]; }, [&](int i, double t) {
+    csr_rows(L.Dinv, [&](int j) { return L.r[j]; }, [&](int i, double t) {
       L.d[i] = c0 * t;
       L.x[i] += c0 * t;
     });
   }
-  bar();
+  bar(ph);
   for (int k = 1; k < L.steps; ++k) {
-    csr_groups(L.A, [&](int j) { return L.d[j]; }, [&](int i, double y) { L.r[i] -= y; });
-    bar();
+    csr_rows(L.A, [&](int j) { return L.d[j]; }, [&](int i, double y) { L.r[i] -= y; });
+    bar(ph + 1);
     const double ak = L.a[k], ck = L.c[k];
-    csr_groups(L.Dinv, [&](int j) { return L.r[j]; }, [&](int i, double t) {
+    csr_rows(L.Dinv, [&](int j) { return L.r[j]; }, [&](int i, double t) {
       L.d[i] = ak * L.d[i] + ck * t;
       L.x[i] += L.d[i];
     });
-    bar();
+    bar(ph);
   }
   if (residual) {
-    csr_groups(L.A, [&](int j) { return L.d[j]; }, [&](int i, double y) { L.r[i] -= y; });
-    bar();
+    csr_rows(L.A, [&](int j) { return L.d[j]; }, [&](int i, double y) { L.r[i] -= y; });
+    bar(ph + 1);
   }
 }
 
@@ -145,20 +194,22 @@ __device__ void mg_coarse_cycle(const MgDev& M, Bar bar) {
   const int L = M.levels;
   for (int k = 1; k + 1 < L; ++k) {
     const MgLevelDev& lv = M.lv[k];
-    mg_smooth(lv, true, true, bar);
+    const int ph = kPhLevel + 4 * (k - 1);
+    mg_smooth(lv, true, true, bar, ph);
     const MgLevelDev& next = M.lv[k + 1];
-    csr_groups(lv.R, [&](int j) { return lv.r[j]; }, [&](int i, double y) { next.b[i] = y; });
-    bar();
+    csr_rows(lv.R, [&](int j) { return lv.r[j]; }, [&](int i, double y) { next.b[i] = y; });
+    bar(ph + 2);
   }
   const MgLevelDev& last = M.lv[L - 1];
-  csr_groups(M.coarsest_inverse, [&](int j) { return last.b[j]; }, [&](int i, double y) { last.x[i] = y; });
-  bar();
+  csr_rows(M.coarsest_inverse, [&](int j) { return last.b[j]; }, [&](int i, double y) { last.x[i] = y; });
+  bar(kPhMgCoarsest);
   for (int k = L - 2; k >= 1; --k) {
     const MgLevelDev& lv = M.lv[k];
     const MgLevelDev& next = M.lv[k + 1];
-    csr_groups(lv.P, [&](int j) { return next.x[j]; }, [&](int i, double y) { lv.x[i] += y; });
-    bar();
-    mg_smooth(lv, false, false, bar);
+    const int ph = kPhLevel + 4 * (k - 1);
+    csr_rows(lv.P, [&](int j) { return next.x[j]; }, [&](int i, double y) { lv.x[i] += y; });
+    bar(ph + 3);
+    mg_smooth(lv, false, false, bar, ph);
   }
 }
 

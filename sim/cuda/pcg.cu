@@ -159,6 +159,48 @@ struct Ring {
   }
 };
 
+/// The persistent kernel's phases timed on one thread (CudaTuning::phases, a measurement
+/// switch): block 0's thread 0 reads its multiprocessor's cycle counter after each grid
+/// barrier and adds the cycles since the last one to the phase that barrier ends
+/// (PcgPhase); the launch's globaltimer span beside its cycles converts them to time.
+/// Every block leaves a barrier about together, so a phase's figure is its slowest block's
+/// work plus the barrier. Its state is in shared memory and its switch the kernel's
+/// argument, so that it holds no register across the solve; off (`acc` null): one untaken
+/// branch per barrier.
+struct PhaseClock {
+  unsigned long long* const& acc;  // PcgArgs::phase
+  __device__ static unsigned long long globaltimer() {
+    unsigned long long t;
+    asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
+    return t;
+  }
+  __device__ static long long* state() {
+    __shared__ long long s[3];  // last mark's cycles, the launch's first cycles and ns
+    return s;
+  }
+  __device__ bool on() const { return acc && blockIdx.x == 0 && threadIdx.x == 0; }
+  __device__ void start() const {
+    if (!on()) return;
+    long long* s = state();
+    s[0] = s[1] = clock64();
+    s[2] = static_cast<long long>(globaltimer());
+  }
+  __device__ void mark(int id) const {
+    if (!on()) return;
+    long long* s = state();
+    const long long t = clock64();
+    acc[id] += static_cast<unsigned long long>(t - s[0]);
+    acc[kPhases + id] += 1;
+    s[0] = t;
+  }
+  __device__ void stop() const {
+    if (!on()) return;
+    const long long* s = state();
+    acc[2 * kPhases] += globaltimer() - static_cast<unsigned long long>(s[2]);
+    acc[2 * kPhases + 1] += static_cast<unsigned long long>(clock64() - s[1]);
+  }
+};
+
 /// y = A u on the finest level: the kernel's own operator, the nodal-pressure term's
 /// pressures of u formed first (one barrier more); emit(i, c, y) as spmv_groups.
 template <class T, int B, class Fetch, class Emit, class Bar>
@@ -166,9 +208,23 @@ __device__ __forceinline__ void fine_product(const PcgArgs<T>& a, const RowCache
                                              int tid, int nthreads) {
   if (a.pres.b) {
     pressure_rows<T, kGroup>(a.pres, a.nnode, fetch, tid, nthreads);
-    bar();
+    bar(kPhMgPressure);
   }
   spmv_groups<T, B>(a, rc, fetch, emit);
+}
+
+/// z += P A_1^{-1} R res: the V-cycle's coarse correction (restrict, cycle the coarse levels,
+/// prolong and add), ending on a barrier. Inlined: as a call (its products' several row
+/// widths kept out of the kernel's registers) the xfine step was 19 % slower (H200).
+template <class T, class Bar>
+__device__ __forceinline__ void mg_coarse_correction(const MgDev& M, const T* res, T* z, Bar bar) {
+  const MgLevelDev& F = M.lv[0];
+  const MgLevelDev& L1 = M.lv[1];
+  csr_rows(F.R, [&](int j) { return res[j]; }, [&](int i, double y) { L1.b[i] = y; });
+  bar(kPhMgRestrict);
+  mg_coarse_cycle(M, bar);
+  csr_rows(F.P, [&](int j) { return L1.x[j]; }, [&](int i, double y) { z[i] += T(y); });
+  bar(kPhMgProlong);
 }
 
 /// z = M r for the multigrid preconditioner: solve_cg.h's multigrid_cycle (the finest
@@ -200,10 +256,10 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
       }
     }
   }
-  bar();
+  bar(kPhMgJacobi);
   for (int k = 1; k < steps; ++k) {
     fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
-    bar();
+    bar(kPhMgProduct);
     const T ak = T(F.a[k]), ck = T(F.c[k]);
     for (int i = tid; i < a.n; i += nthreads) {
       T t[3];
@@ -215,25 +271,19 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
         z[3 * i + c] += dn;
       }
     }
-    bar();
+    bar(kPhMgJacobi);
   }
   fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
-  bar();
-  // The coarse correction: restrict, cycle, prolong and add.
-  const MgLevelDev& L1 = M.lv[1];
-  csr_groups(F.R, [&](int j) { return res[j]; }, [&](int i, double y) { L1.b[i] = y; });
-  bar();
-  mg_coarse_cycle(M, bar);
-  csr_groups(F.P, [&](int j) { return L1.x[j]; }, [&](int i, double y) { z[i] += T(y); });
-  bar();
+  bar(kPhMgProduct);
+  mg_coarse_correction(M, res, z, bar);
   // Post-smoothing from z, and r . z over the rows this thread wrote last.
   fine_product(a, rc, of(z), [&](int i, int c, T y) { res[3 * i + c] = r[3 * i + c] - y; }, bar, tid, nthreads);
-  bar();
+  bar(kPhMgProduct);
   double rz = 0;
   for (int k = 0; k < steps; ++k) {
     if (k > 0) {
       fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
-      bar();
+      bar(kPhMgProduct);
     }
     const T ak = T(F.a[k]), ck = T(F.c[k]);
     const bool last = k + 1 == steps;
@@ -249,7 +299,7 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
         if (last) rz += double(r[3 * i + c]) * double(zn);
       }
     }
-    if (!last) bar();
+    if (!last) bar(kPhMgJacobi);
   }
   return rz;
 }
@@ -269,7 +319,7 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
 /// only). Returns the iterations taken; rnorm is the last residual's norm.
 template <class T, int B>
 __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, coop::grid_group& grid, Ring& ring,
-                                bool restart, T bnorm, T& rnorm, int tid, int nthreads) {
+                                const PhaseClock& clk, bool restart, T bnorm, T& rnorm, int tid, int nthreads) {
   const T* __restrict P = a.P;
   T* ub[2] = {a.z, a.ext[0]};
   T* pwb[2] = {a.q, a.ext[1]};
@@ -288,6 +338,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       pressure_rows<T, kGroup>(a.pres, a.nnode, u0, tid, nthreads);
       grid.sync();
       ring.skip(a.scr);
+      clk.mark(kPhCgPressure);
     }
     double acc[2] = {0, 0};
     spmv_groups3<T, B>(a, rc, u0, [&](int i, int c, T y0, T y1, T y2) {
@@ -303,6 +354,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       acc[1] += double(u) * double(y);
     });
     ring.sum(grid, a.scr, acc);
+    clk.mark(kPhStart);
     gamma = T(acc[0]);
     delta = T(acc[1]);
   }
@@ -326,6 +378,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       pressure_rows<T, kGroup>(a.pres, a.nnode, u_next, tid, nthreads);
       grid.sync();
       ring.skip(a.scr);
+      clk.mark(kPhCgPressure);
     }
     double acc[3] = {0, 0, 0};
     spmv_groups3<T, B>(a, rc, u_next, [&](int i, int c, T y0, T y1, T y2) {
@@ -348,6 +401,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       acc[2] += double(rnew) * double(rnew);
     });
     ring.sum(grid, a.scr, acc);
+    clk.mark(kPhCgProduct);
     ++it;
     rnorm = sqrt(T(acc[2]));
     const T gamma_new = T(acc[0]);
@@ -375,9 +429,12 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
   coop::grid_group grid = coop::this_grid();
   const int tid = blockIdx.x * blockDim.x + threadIdx.x, nthreads = gridDim.x * blockDim.x;
   Ring ring;
-  auto bar = [&] {
+  const PhaseClock clk{a.phase};
+  clk.start();
+  auto bar = [&](int phase) {
     grid.sync();
     ring.skip(a.scr);
+    clk.mark(phase);
   };
   RowCache<T, B> rc;
   load_row_cache(a, rc);
@@ -396,8 +453,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     // The nodal pressures of x (pressure.cuh) for its product below.
     if (a.pres.b) {
       pressure_rows<T, kGroup>(a.pres, a.nnode, [&](int j, int c) { return a.x[3 * j + c]; }, tid, nthreads);
-      grid.sync();
-      ring.skip(a.scr);
+      bar(kPhStart);
     }
     // r = b - A x (warm start), ||b||^2, ||r||^2.
     double br[2] = {0, 0};
@@ -411,6 +467,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
           br[1] += double(ri) * double(ri);
         });
     ring.sum(grid, a.scr, br);
+    clk.mark(kPhStart);
     bnorm = sqrt(T(br[0]));
     rnorm = sqrt(T(br[1]));
     // A warm start far worse than zero (or not finite) restarts from x = 0, r = b.
@@ -418,7 +475,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     if (restart) rnorm = bnorm;
   }
   if (bnorm > T(0) && !MG && a.form == kOneReduction) {
-    it = cg_one_reduction<T, B>(a, rc, grid, ring, restart, bnorm, rnorm, tid, nthreads);
+    it = cg_one_reduction<T, B>(a, rc, grid, ring, clk, restart, bnorm, rnorm, tid, nthreads);
   } else if (bnorm > T(0)) {
     T rz = 0;
     T beta = 0;
@@ -448,6 +505,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       }
       if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads);
       ring.sum(grid, a.scr, rz1);
+      clk.mark(MG ? kPhMgDot : kPhStart);
       rz = T(rz1[0]);
     }
     const int stop = a.slice > 0 ? it + a.slice : INT_MAX;
@@ -455,8 +513,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       // Search direction p = z + beta p (first: p = z) and q = A p.
       if (a.form == kThreeBarriers) {
         for (int j = tid; j < 3 * a.n; j += nthreads) pnew[j] = first ? a.z[j] : a.z[j] + beta * pold[j];
-        grid.sync();
-        ring.skip(a.scr);
+        bar(kPhCgUpdate);
       }
       double acc[1] = {0};
       if (a.form != kThreeBarriers) {
@@ -468,8 +525,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         auto pfly = [=](int j, int c) { return fst ? z[3 * j + c] : fma(bt, po[3 * j + c], z[3 * j + c]); };
         if (a.pres.b) {  // the pressures of p, from z and the previous p as the SpMV forms it
           pressure_rows<T, kGroup>(a.pres, a.nnode, pfly, tid, nthreads);
-          grid.sync();
-          ring.skip(a.scr);
+          bar(kPhCgPressure);
         }
         spmv_groups<T, B>(a, rc, pfly, [&](int i, int c, T y) {
           const T pi = pfly(i, c);
@@ -481,8 +537,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         const T* pn = pnew;
         if (a.pres.b) {
           pressure_rows<T, kGroup>(a.pres, a.nnode, [=](int j, int c) { return pn[3 * j + c]; }, tid, nthreads);
-          grid.sync();
-          ring.skip(a.scr);
+          bar(kPhCgPressure);
         }
         spmv_groups<T, B>(
             a, rc, [=](int j, int c) { return pn[3 * j + c]; },
@@ -492,6 +547,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
             });
       }
       ring.sum(grid, a.scr, acc);
+      clk.mark(kPhCgProduct);
       const T pq = T(acc[0]);
       if (!(pq > T(0))) break;
       const T alpha = rz / pq;
@@ -509,6 +565,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         }
       }
       ring.sum(grid, a.scr, rr2);
+      clk.mark(kPhCgUpdate);
       T rz_new = T(rr2[0]);
       rnorm = sqrt(T(rr2[1]));
       if constexpr (MG) {
@@ -516,6 +573,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         if (pcg_goes_on(a, it + 1, rnorm, bnorm)) {
           double rz1[1] = {mg_precondition(a, rc, bar, tid, nthreads)};
           ring.sum(grid, a.scr, rz1);
+          clk.mark(kPhMgDot);
           rz_new = T(rz1[0]);
         }
       }
@@ -546,12 +604,13 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         a.res->cg_residual = double(rnorm / bnorm);
         a.res->unfinished = 1;
       }
+      clk.mark(kPhFinish);
+      clk.stop();
       return;
     }
   } else {
     for (int j = tid; j < 3 * a.n; j += nthreads) a.x[j] = T(0);
-    grid.sync();
-    ring.skip(a.scr);
+    bar(kPhFinish);
   }
   if (tid == 0) {
     a.res->cg_iterations = it;
@@ -572,6 +631,8 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     if (sacc[t] != 0.0) atomicAdd(&a.scr->facc[0][0] + t, sacc[t]);
   grid.sync();
   if (blockIdx.x == 0) finalize_result(a.scr, a.res, true);
+  clk.mark(kPhFinish);
+  clk.stop();
 }
 
 template <class T, bool MG>

@@ -64,6 +64,9 @@ struct PcgArgs {
   T* mg_d;
   DevScratch* scr;
   DevResult* res;
+  // CudaTuning::phases: per PcgPhase the clock64 cycles summed, then (at kPhases + id) how
+  // often it ended, then the launches' globaltimer ns and clock64 cycles; null: off.
+  unsigned long long* phase;
 };
 
 /// Entry c of P_i v for the three entries v0, v1, v2 of row i of a vector.

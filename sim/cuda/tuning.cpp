@@ -40,7 +40,10 @@ CudaTuning CudaTuning::from_environment() {
                                        : CudaTuning::ShadowPlace::Confined;
   t.shadow_slice = std::max(1, env_int("PALPATION_CUDA_SHADOW_SLICE", 8));
   t.shadow_slice_mg = std::max(1, env_int("PALPATION_CUDA_SHADOW_SLICE_MG", 2));
+  const std::string lanes = env_str("PALPATION_CUDA_MG_LANES", "auto");
+  t.mg_lanes = lanes == "2" ? 2 : lanes == "8" ? 8 : lanes == "block" ? 0 : -1;
   t.profile = env_int("PALPATION_CUDA_PROFILE", 0) != 0;
+  t.phases = env_int("PALPATION_CUDA_PHASES", 0) != 0;
   return t;
 }
 

@@ -53,9 +53,18 @@ struct CudaTuning {
   /// multigrid levels (a V-cycle costs several block-Jacobi iterations). Default 2; at
   /// least 1.
   int shadow_slice_mg = 2;
+  /// PALPATION_CUDA_MG_LANES: the lanes that read a row of the multigrid's coarse-level and
+  /// transfer products (multigrid.cuh, CsrDev::lanes): "2", "8" or "block" (a block per
+  /// row) for every matrix; anything else (default "auto"): by each matrix's rows
+  /// (csr_lanes). -1 stands for auto, 0 for a block per row.
+  int mg_lanes = -1;
   /// PALPATION_CUDA_PROFILE: non-zero times the stages of each solved step with events and
   /// prints their medians on stderr when the backend is destroyed. Default 0 (off).
   bool profile = false;
+  /// PALPATION_CUDA_PHASES: non-zero times the persistent PCG kernel's phases (PcgPhase,
+  /// common.cuh) on one thread between its grid barriers and prints their sums on stderr
+  /// when the backend is destroyed. Default 0 (off).
+  bool phases = false;
 
   /// Reads every knob above from the environment (unset or empty: the default).
   static CudaTuning from_environment();

@@ -51,6 +51,16 @@ Trace run(const Scenario& s, const Model& m, const std::string& backend, int ste
   return t;
 }
 
+// Sets a knob of sim/cuda/tuning.h given as "NAME=value" (empty: none) for the backends
+// made until the returned guard goes; CudaTuning::from_environment reads it when a backend
+// is made.
+auto set_tuning(const QString& tuning) {
+  const QString name = tuning.section('=', 0, 0);
+  if (!tuning.isEmpty()) qputenv(name.toUtf8().constData(), tuning.section('=', 1).toUtf8());
+  return qScopeGuard([name] {
+    if (!name.isEmpty()) qunsetenv(name.toUtf8().constData());
+  });
+}
 
 // Hertz indentation on the coarse box: no contact for 500 steps (the rest path), then
 // pressing: 700 steps cover both.
@@ -222,7 +232,7 @@ class TestBackendAgreement : public QObject {
     QTest::addColumn<QString>("resolution");
     QTest::addColumn<int>("steps");
     QTest::addColumn<bool>("skin");
-    QTest::addColumn<QString>("form");  // PALPATION_CUDA_CG (empty: the default)
+    QTest::addColumn<QString>("tuning");  // a knob of sim/cuda/tuning.h, "NAME=value" (empty: the defaults)
     QTest::newRow("cuda") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "";
     QTest::newRow("cuda-csr") << "cuda-csr" << false << "block-jacobi" << "coarse" << 700 << false << "";
     QTest::newRow("cuda-bsr") << "cuda-bsr" << false << "block-jacobi" << "coarse" << 700 << false << "";
@@ -230,10 +240,10 @@ class TestBackendAgreement : public QObject {
     // The persistent kernel's forms of the same PCG (PALPATION_CUDA_CG; by default the
     // one-reduction form on the linear element, the two-barrier one with the nodal-pressure
     // term): the same iterates in other recurrences and summation orders.
-    QTest::newRow("cuda, two-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "fused";
-    QTest::newRow("cuda nodal-pressure, one-reduction form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "1sync";
-    QTest::newRow("cuda, three-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "3sync";
-    QTest::newRow("cuda nodal-pressure, three-barrier form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "3sync";
+    QTest::newRow("cuda, two-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CG=fused";
+    QTest::newRow("cuda nodal-pressure, one-reduction form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CG=1sync";
+    QTest::newRow("cuda, three-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CG=3sync";
+    QTest::newRow("cuda nodal-pressure, three-barrier form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CG=3sync";
     QTest::newRow("cuda nodal-pressure, paper box") << "cuda" << true << "block-jacobi" << "paper" << 700 << false << "";
     // The multigrid's levels built on the host from the system the GPU assembled, its
     // V-cycle run inside the persistent kernel: the CPU's preconditioner, so the same
@@ -244,6 +254,14 @@ class TestBackendAgreement : public QObject {
     QTest::newRow("cuda multigrid nodal-pressure") << "cuda" << true << "multigrid" << "coarse" << 700 << false << "";
     QTest::newRow("cuda multigrid-chebyshev nodal-pressure") << "cuda" << true << "multigrid-chebyshev" << "coarse" << 700 << false << "";
     QTest::newRow("cuda multigrid nodal-pressure, paper box") << "cuda" << true << "multigrid" << "paper" << 700 << false << "";
+    // Every coarse-level and transfer product read at each of its row widths (multigrid.cuh,
+    // CsrDev::lanes: the boxes' levels are too small for `auto` to take 2 lanes, and take a
+    // block per row only for the coarsest's inverse): the same products in other summation
+    // orders.
+    QTest::newRow("cuda multigrid nodal-pressure, paper box, 2 lanes a row")
+        << "cuda" << true << "multigrid" << "paper" << 700 << false << "PALPATION_CUDA_MG_LANES=2";
+    QTest::newRow("cuda multigrid nodal-pressure, paper box, a block a row")
+        << "cuda" << true << "multigrid" << "paper" << 700 << false << "PALPATION_CUDA_MG_LANES=block";
     // The skin membrane (fem_membrane.h): the CPU's serial pass against the GPU's atomic
     // adds and its re-inverted diagonal, on both elements, a library baseline and the
     // multigrid (whose levels then include the membrane's blocks).
@@ -259,12 +277,10 @@ class TestBackendAgreement : public QObject {
     QFETCH(QString, resolution);
     QFETCH(int, steps);
     QFETCH(bool, skin);
-    QFETCH(QString, form);
+    QFETCH(QString, tuning);
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): GPU/CPU agreement not checked").c_str());
-    // Read when the backend is made (CudaTuning::from_environment), restored after.
-    if (!form.isEmpty()) qputenv("PALPATION_CUDA_CG", form.toUtf8());
-    const auto restore = qScopeGuard([] { qunsetenv("PALPATION_CUDA_CG"); });
+    const auto restore = set_tuning(tuning);
     Scenario s = hertz_coarse();
     if (skin) s.skin = SkinSpec{0.0015, 56000};
     s.patient.resolution = resolution.toStdString();
@@ -312,18 +328,17 @@ class TestBackendAgreement : public QObject {
   // cap, not at the chunk's end.
   void cappedAgreesWithCpu_data() {
     QTest::addColumn<QString>("backend");
-    QTest::addColumn<QString>("form");  // PALPATION_CUDA_CG (empty: the default)
+    QTest::addColumn<QString>("tuning");  // "NAME=value", as doubleAgreesWithCpu's
     QTest::newRow("cuda") << "cuda" << "";
-    QTest::newRow("cuda, two-barrier form") << "cuda" << "fused";
+    QTest::newRow("cuda, two-barrier form") << "cuda" << "PALPATION_CUDA_CG=fused";
     QTest::newRow("cuda-bsr") << "cuda-bsr" << "";
   }
   void cappedAgreesWithCpu() {
     QFETCH(QString, backend);
-    QFETCH(QString, form);
+    QFETCH(QString, tuning);
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): GPU/CPU agreement not checked").c_str());
-    if (!form.isEmpty()) qputenv("PALPATION_CUDA_CG", form.toUtf8());
-    const auto restore = qScopeGuard([] { qunsetenv("PALPATION_CUDA_CG"); });
+    const auto restore = set_tuning(tuning);
     Scenario s = hertz_coarse();
     s.params.element = Element::Linear;
     s.params.solver.cg_tolerance = 1e-3;
