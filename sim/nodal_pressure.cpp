@@ -5,6 +5,12 @@
 
 namespace palpation::sim {
 
+int NodalPressurePattern::pair_of(int n, int j) const {
+  const auto first = col.begin() + row_ptr[std::size_t(n)], last = col.begin() + row_ptr[std::size_t(n) + 1];
+  const auto at = std::lower_bound(first, last, j);
+  return at == last || *at != j ? -1 : static_cast<int>(at - col.begin());
+}
+
 NodalPressurePattern build_nodal_pressure_pattern(const Model& m) {
   const int nn = m.num_nodes(), nf = m.num_free(), ne = m.num_tets();
   NodalPressurePattern p;
@@ -23,16 +29,12 @@ NodalPressurePattern build_nodal_pressure_pattern(const Model& m) {
   }
   p.col.reserve(p.row_ptr[nn]);
   for (const auto& r : adj) p.col.insert(p.col.end(), r.begin(), r.end());
-  auto pair_of = [&](int n, int j) {
-    const auto first = p.col.begin() + p.row_ptr[n], last = p.col.begin() + p.row_ptr[n + 1];
-    return static_cast<int>(std::lower_bound(first, last, j) - p.col.begin());
-  };
   p.tet_pair.resize(ne);
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b) {
         const int j = m.dof[m.tets[e][b]];
-        p.tet_pair[e][4 * a + b] = j < 0 ? -1 : pair_of(m.tets[e][a], j);
+        p.tet_pair[e][4 * a + b] = j < 0 ? -1 : p.pair_of(m.tets[e][a], j);
       }
   // Transpose: by free node j, its pressure nodes n in increasing order.
   p.t_row_ptr.assign(nf + 1, 0);

@@ -43,6 +43,8 @@ struct NodalPressurePattern {
   std::vector<int> ft_row_ptr;        // (nfree + 1) free node j's pairs (n fixed, j):
   std::vector<int> ft_node, ft_pair;  // n and the pair
   int num_pairs() const { return static_cast<int>(col.size()); }
+  /// The index of pair (n, j) (j a free index), -1 when n and j share no element.
+  int pair_of(int n, int j) const;
 };
 
 NodalPressurePattern build_nodal_pressure_pattern(const Model& m);

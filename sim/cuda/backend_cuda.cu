@@ -712,37 +712,38 @@ class CudaBackend final : public Backend {
       std::vector<int> fill(ptr.begin(), ptr.end() - 1);
       each([&](int row, int v) { list[fill[row]++] = v; });
     };
+    // The free nodes' pairs are formed by the assembly, block by block: the pair of each
+    // block (n = its row's node, j = its column). The fixed nodes' pairs (the chest wall's
+    // rows, in the pair order) by k_pressure_pairs, over the elements holding each.
+    std::vector<int> block_pair(nb_), fixed;
+    for (int i = 0; i < nf_; ++i)
+      for (int k = m_.row_ptr[i]; k < m_.row_ptr[i + 1]; ++k) {
+        block_pair[k] = np_->pair_of(m_.free_nodes[i], m_.col[k]);
+        if (block_pair[k] < 0) throw std::logic_error("cuda backend: a block without its nodal-pressure pair");
+      }
+    std::vector<int> fixed_slot(std::size_t(np_->num_pairs()), -1);
+    for (int n : np_->fixed_rows)
+      for (int k = np_->row_ptr[n]; k < np_->row_ptr[n + 1]; ++k) {
+        fixed_slot[std::size_t(k)] = int(fixed.size());
+        fixed.push_back(k);
+      }
+    np_block_pair_.upload(block_pair, stream_);
+    np_fixed_pairs_.upload(fixed, stream_);
+    np_nfixed_ = int(fixed.size());
+    // The elements holding each fixed pair (n, j), by its slot in `fixed`: e << 2 | b, j
+    // element e's node b.
     std::vector<int> ptr, list;
-    // The elements holding each pair (n, j): e << 2 | b, j element e's node b.
     incidences(
-        np_->num_pairs(),
+        np_nfixed_,
         [&](auto add) {
           for (int e = 0; e < ne_; ++e)
             for (int k = 0; k < 16; ++k)
-              if (np_->tet_pair[e][k] >= 0) add(np_->tet_pair[e][k], (e << 2) | (k & 3));
+              if (const int pair = np_->tet_pair[e][k]; pair >= 0 && fixed_slot[std::size_t(pair)] >= 0)
+                add(fixed_slot[std::size_t(pair)], (e << 2) | (k & 3));
         },
         ptr, list);
     np_pinc_ptr_.upload(ptr, stream_);
     np_pinc_.upload(list, stream_);
-    // The free nodes' pairs are formed by the assembly, block by block: the pair of each
-    // block (n = its row's node, j = its column); the fixed nodes' by k_pressure_pairs.
-    {
-      std::vector<int> block_pair(nb_), fixed;
-      for (int i = 0; i < nf_; ++i) {
-        const int n = m_.free_nodes[i];
-        const auto first = np_->col.begin() + np_->row_ptr[n], last = np_->col.begin() + np_->row_ptr[n + 1];
-        for (int k = m_.row_ptr[i]; k < m_.row_ptr[i + 1]; ++k) {
-          const auto at = std::lower_bound(first, last, m_.col[k]);
-          if (at == last || *at != m_.col[k]) throw std::logic_error("cuda backend: a block without its nodal-pressure pair");
-          block_pair[k] = int(at - np_->col.begin());
-        }
-      }
-      for (int n : np_->fixed_rows)
-        for (int k = np_->row_ptr[n]; k < np_->row_ptr[n + 1]; ++k) fixed.push_back(k);
-      np_block_pair_.upload(block_pair, stream_);
-      np_fixed_pairs_.upload(fixed, stream_);
-      np_nfixed_ = int(fixed.size());
-    }
     incidences(
         nn_,
         [&](auto add) {

@@ -14,7 +14,7 @@ __global__ void __launch_bounds__(kBlock) k_pressure_pairs(PressureArgs<T> a) {
   if (t >= a.nfixed) return;
   const int k = a.fixed_pairs[t];
   T b0 = 0, b1 = 0, b2 = 0;
-  for (int l = a.pinc_ptr[k]; l < a.pinc_ptr[k + 1]; ++l) {
+  for (int l = a.pinc_ptr[t]; l < a.pinc_ptr[t + 1]; ++l) {
     const int e = __ldg(a.pinc + l) >> 2, ib = __ldg(a.pinc + l) & 3;
     const T q = T(0.25) * __ldg(a.vol + e);
     const T* r = a.rec + std::size_t(kRec) * e + 3 * ib;

@@ -46,7 +46,7 @@ struct PressureArgs {
   int nnode, nf;
   int nfixed;            // the pairs (n, j) of fixed nodes n, which the assembly does not form
   const int* fixed_pairs;  // (nfixed)
-  const int* pinc_ptr;   // (npair + 1) the elements holding each pair (n, j)
+  const int* pinc_ptr;   // (nfixed + 1) the elements holding each fixed pair, by its slot
   const int* pinc;       // e << 2 | b, b the local index of j
   const int* ninc_ptr;   // (nnode + 1) the elements at every node
   const int* ninc;       // e
