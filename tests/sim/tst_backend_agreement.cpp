@@ -7,6 +7,7 @@
 
 #include "box_scenario.h"
 #include "relative_error.h"
+#include "scoped_env.h"
 
 #include <execinfo.h>
 #include <signal.h>
@@ -51,15 +52,10 @@ Trace run(const Scenario& s, const Model& m, const std::string& backend, int ste
   return t;
 }
 
-// Sets a knob of sim/cuda/tuning.h given as "NAME=value" (empty: none) for the backends
-// made until the returned guard goes; CudaTuning::from_environment reads it when a backend
-// is made.
+// A knob of sim/cuda/tuning.h given as "NAME=value" (empty: none), set until the guard goes.
 auto set_tuning(const QString& tuning) {
-  const QString name = tuning.section('=', 0, 0);
-  if (!tuning.isEmpty()) qputenv(name.toUtf8().constData(), tuning.section('=', 1).toUtf8());
-  return qScopeGuard([name] {
-    if (!name.isEmpty()) qunsetenv(name.toUtf8().constData());
-  });
+  const QByteArray name = tuning.section('=', 0, 0).toUtf8();
+  return scoped_env({{name.constData(), tuning.section('=', 1).toUtf8()}});
 }
 
 // Hertz indentation on the coarse box: no contact for 500 steps (the rest path), then

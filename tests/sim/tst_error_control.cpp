@@ -15,6 +15,7 @@
 #include "backend.h"
 #include "box_scenario.h"
 #include "relative_error.h"
+#include "scoped_env.h"
 #include "error_control.h"
 #include "scenario.h"
 #include "simulation.h"
@@ -85,20 +86,6 @@ bool backend_usable(const std::string& b) {
 }
 
 // The rows of a test run on each backend: "cpu", and "cuda" (skipped without a GPU).
-// Sets environment variables (the CUDA tuning knobs, sim/cuda/tuning.h, that a backend
-// reads when it is made); empty values are left unset. The guard unsets them.
-auto scoped_env(std::initializer_list<std::pair<const char*, QByteArray>> vars) {
-  std::vector<QByteArray> names;
-  for (const auto& [name, value] : vars)
-    if (!value.isEmpty()) {
-      qputenv(name, value);
-      names.emplace_back(name);
-    }
-  return qScopeGuard([names] {
-    for (const auto& n : names) qunsetenv(n.constData());
-  });
-}
-
 void backend_rows() {
   QTest::addColumn<QString>("backend");
   QTest::newRow("cpu") << "cpu";
