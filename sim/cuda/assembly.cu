@@ -10,7 +10,7 @@ namespace {
 /// Threads [0, nb) are blocks: thread k sums, over the element pairs (e, a, b) of block k,
 ///   K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (r_a . r_b) I)     (r_a . r_b = g_a . g_b)
 /// scales it, adds the mass and contact terms and inverts it where it is its row's diagonal
-/// block; with the nodal-pressure term, the same pairs give its coupling b_nj. Threads
+/// block (unless a later stage does: AssembleArgs::invert); with the nodal-pressure term, the same pairs give its coupling b_nj. Threads
 /// [nb, nb + nf) are block rows: the element terms Q r_a of the right-hand side over the
 /// diagonal block's pairs, then gravity, mass damping and contact, and the warm start. The threads of a warp take neighbouring blocks, mostly of one or two rows,
 /// so they read the records of the same elements (cached). Sums run over the elements by
@@ -73,10 +73,12 @@ __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
         acc[7] += T(cA[4]);
         acc[8] += T(cA[5]);
       }
-      T inv[9];
-      invert3(acc, inv);
+      if (a.invert) {
+        T inv[9];
+        invert3(acc, inv);
 #pragma unroll
-      for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
+        for (int j = 0; j < 9; ++j) a.precond[9 * i + j] = inv[j];
+      }
     }
     T* dst = a.vals + 9 * std::size_t(k0) + 3 * (k - k0);
 #pragma unroll

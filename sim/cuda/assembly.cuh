@@ -40,7 +40,10 @@ struct AssembleArgs {
   const double* cA;
   const double* cb;
   T* vals;               // (9 nb) system matrix, CSR-compatible layout
+  // The diagonal blocks' inverses for block-Jacobi; written only when `invert`: the
+  // nodal-pressure stage (pressure.cuh) forms every one again with its own term.
   T* precond;            // (nf x 9)
+  int invert;
   T* b;                  // (nf x 3)
   // The PCG's warm start (backend_cpu.cpp's rule): after a converged solve the last two
   // solutions extrapolated, dv = 2 dv - dv_prev; else dv as it is. dv_prev takes the

@@ -936,6 +936,7 @@ class CudaBackend final : public Backend {
     a.cb = cb_.get();
     a.vals = vals_.get();
     a.precond = precond_.get();
+    a.invert = nodal() ? 0 : 1;  // k_pressure_free inverts every block with its term
     a.b = b_.get();
     a.dv = dv_.get();
     a.dv_prev = dv_prev_.get();
@@ -990,9 +991,8 @@ class CudaBackend final : public Backend {
   // The levels' copy on the device. A CUDA error here is the device's, not the levels': it
   // goes to the caller.
   void upload_levels(const amg::Hierarchy& levels) {
-    if (!mg_launch_.fn) mg_launch_ = cuda::pcg_launch<T>(nf_, tuning_, true);
+    prepare_mg_solve();  // the launch, whose threads choose the products' lanes
     mg_levels_.upload(levels, stream_, long(mg_launch_.grid) * mg_launch_.block, tuning_.mg_lanes);
-    prepare_mg_solve();
   }
   // The multigrid solve's launch and its finest level's scratch, once.
   void prepare_mg_solve() {

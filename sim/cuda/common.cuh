@@ -99,8 +99,8 @@ enum PcgPhase : int {
   kPhStart,       // r = b - A x of the warm start, and the first preconditioning's reduction
   kPhCgPressure,  // the CG product's nodal pressures
   kPhCgProduct,   // the CG product (with p . q)
-  kPhCgUpdate,    // x, r (and z under block-Jacobi) with their reductions
-  kPhMgJacobi,    // the finest level's block-Jacobi passes
+  kPhCgUpdate,    // x, r (and z under block-Jacobi, the V-cycle's first pass under the multigrid) with their reductions
+  kPhMgJacobi,    // the finest level's block-Jacobi passes (each V-cycle's first in kPhCgUpdate, but the start's)
   kPhMgPressure,  // the finest level's smoothing products: their nodal pressures
   kPhMgProduct,   // ... the products
   kPhMgRestrict,  // the restriction to level 1

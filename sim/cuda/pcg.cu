@@ -227,13 +227,31 @@ __device__ __forceinline__ void mg_coarse_correction(const MgDev& M, const T* re
   bar(kPhMgProlong);
 }
 
+/// The finest level's pre-smoothing from zero at block row i (amg::smooth's first pass):
+/// the residual copy res = r and d = z = c0 D^-1 r, from row i of r alone. The CG's update
+/// calls it on each row it has just updated, so that the V-cycle does not need a pass and
+/// a barrier of its own for it.
+template <class T>
+__device__ __forceinline__ void mg_presmooth_row(const PcgArgs<T>& a, T c0, int i) {
+  T t[3];
+  block_jacobi_row(a.P, a.r, i, t);
+#pragma unroll
+  for (int c = 0; c < 3; ++c) {
+    a.mg_r[3 * i + c] = a.r[3 * i + c];
+    a.mg_d[3 * i + c] = c0 * t[c];
+    a.z[3 * i + c] = c0 * t[c];
+  }
+}
+
 /// z = M r for the multigrid preconditioner: solve_cg.h's multigrid_cycle (the finest
 /// level's smoothing on this operator with its block-Jacobi before and after the coarse
 /// correction of multigrid.cuh). r's rows of this thread (block rows tid, tid + nthreads,
-/// ...) complete on entry, every other row after a barrier. Returns this thread's share of
+/// ...) complete on entry, every other row after a barrier; `presmoothed`: every row's
+/// mg_presmooth_row is done and a barrier passed since. Returns this thread's share of
 /// r . z, summed over the rows it wrote last (no barrier at the end).
 template <class T, int B, class Bar>
-__device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc, Bar bar, int tid, int nthreads) {
+__device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc, Bar bar, int tid, int nthreads,
+                                  bool presmoothed) {
   const MgDev& M = *a.mg;
   const MgLevelDev& F = M.lv[0];
   const T* __restrict r = a.r;
@@ -243,20 +261,11 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
   const int steps = F.steps;
   auto of = [](const T* v) { return [v](int j, int c) { return v[3 * j + c]; }; };
   // Pre-smoothing from zero, the residual after it (amg::smooth).
-  {
+  if (!presmoothed) {
     const T c0 = T(F.c[0]);
-    for (int i = tid; i < a.n; i += nthreads) {
-      T t[3];
-      block_jacobi_row(a.P, r, i, t);
-#pragma unroll
-      for (int c = 0; c < 3; ++c) {
-        res[3 * i + c] = r[3 * i + c];
-        d[3 * i + c] = c0 * t[c];
-        z[3 * i + c] = c0 * t[c];
-      }
-    }
+    for (int i = tid; i < a.n; i += nthreads) mg_presmooth_row(a, c0, i);
+    bar(kPhMgJacobi);
   }
-  bar(kPhMgJacobi);
   for (int k = 1; k < steps; ++k) {
     fine_product(a, rc, of(d), [&](int i, int c, T y) { res[3 * i + c] -= y; }, bar, tid, nthreads);
     bar(kPhMgProduct);
@@ -338,7 +347,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       pressure_rows<T, kGroup>(a.pres, a.nnode, u0, tid, nthreads);
       grid.sync();
       ring.skip(a.scr);
-      clk.mark(kPhCgPressure);
+      clk.mark(kPhStart);
     }
     double acc[2] = {0, 0};
     spmv_groups3<T, B>(a, rc, u0, [&](int i, int c, T y0, T y1, T y2) {
@@ -503,7 +512,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
           for (int c = 0; c < 3; ++c) rz1[0] += double(a.r[3 * i + c]) * double(a.z[3 * i + c]);
         }
       }
-      if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads);
+      if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads, false);
       ring.sum(grid, a.scr, rz1);
       clk.mark(MG ? kPhMgDot : kPhStart);
       rz = T(rz1[0]);
@@ -552,11 +561,15 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       if (!(pq > T(0))) break;
       const T alpha = rz / pq;
       double rr2[2] = {0, 0};
+      // With the multigrid, its pre-smoothing's pass here, on the rows just updated (wasted
+      // on the last iteration only).
+      const T c0 = MG ? T(a.mg->lv[0].c[0]) : T(0);
       for (int i = tid; i < a.n; i += nthreads) {
         for (int c = 0; c < 3; ++c) {
           a.x[3 * i + c] += alpha * pnew[3 * i + c];
           a.r[3 * i + c] -= alpha * a.q[3 * i + c];
         }
+        if constexpr (MG) mg_presmooth_row(a, c0, i);
         if constexpr (!MG) precondition_row(a.P, a.r, a.z, i);
         for (int c = 0; c < 3; ++c) {
           const double rr = double(a.r[3 * i + c]);
@@ -571,7 +584,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
       if constexpr (MG) {
         // The V-cycle only where the loop goes on (its z would not be used).
         if (pcg_goes_on(a, it + 1, rnorm, bnorm)) {
-          double rz1[1] = {mg_precondition(a, rc, bar, tid, nthreads)};
+          double rz1[1] = {mg_precondition(a, rc, bar, tid, nthreads, true)};
           ring.sum(grid, a.scr, rz1);
           clk.mark(kPhMgDot);
           rz_new = T(rz1[0]);
