@@ -326,6 +326,7 @@ class CudaBackend final : public Backend {
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
       launch_ = shadow.sms > 0 ? cuda::pcg_launch_confined<T>(shadow.sms, tuning) : cuda::pcg_launch<T>(nf_, tuning);
+      confined_ = shadow.sms > 0;
       slice_ = shadow.sms > 0 ? 0 : std::max(shadow.slice, 0);
       slice_mg_ = slice_ > 0 ? std::max(shadow.slice_mg, 1) : 0;
       cg_form_ = tuning.cg_form;
@@ -1003,12 +1004,18 @@ class CudaBackend final : public Backend {
     }
   }
 
-  // The PCG's form (tuning.h, CgForm): three barriers when asked; the one-reduction form
-  // (block-Jacobi only) when asked, or under `auto` where it was measured quicker: no
-  // nodal-pressure term and every row in registers; two barriers otherwise.
+  // The PCG's form (tuning.h, CgForm): three barriers when asked, or under `auto` with the
+  // nodal-pressure term where the rows stream from memory because they are many (the large
+  // meshes, not a confined shadow's few multiprocessors): p in a pass of its own costs less
+  // than the pressures and the product reading z and the previous p at every neighbour.
+  // The one-reduction form (block-Jacobi only) when asked, or under `auto` where it was
+  // measured quicker: no nodal-pressure term and every row in registers. Two barriers
+  // otherwise.
   PcgForm pcg_form(bool multigrid, bool nodal_pressure) const {
     using Form = CudaTuning::CgForm;
-    if (cg_form_ == Form::ThreeBarriers) return kThreeBarriers;
+    const bool streamed = !confined_ && !(multigrid ? mg_launch_ : launch_).cached;
+    if (cg_form_ == Form::ThreeBarriers || (cg_form_ == Form::Auto && nodal_pressure && streamed))
+      return kThreeBarriers;
     if (slice_ > 0) return kTwoBarriers;  // the one-reduction form does not stop in slices
     const bool quicker = launch_.cached && !nodal_pressure;
     if (!multigrid && (cg_form_ == Form::OneReduction || (cg_form_ == Form::Auto && quicker))) return kOneReduction;
@@ -1116,6 +1123,7 @@ class CudaBackend final : public Backend {
   Solver solver_;
   int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0, nt_ = 0;
   PcgLaunch launch_;
+  bool confined_ = false;  // a shadow's solve on the multiprocessors the steps' leave (launch_)
   int detect_grid_ = 1;
   CudaTuning::CgForm cg_form_ = CudaTuning::CgForm::Auto;
   cudaStream_t stream_ = nullptr;

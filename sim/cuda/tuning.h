@@ -29,9 +29,11 @@ struct CudaTuning {
   /// iterates in exact arithmetic, both reductions in one barrier, three vectors read per
   /// neighbour where "fused" reads two. "1sync" is block-Jacobi's only: the multigrid runs
   /// "fused" under it. Anything else (default "auto"): "1sync" for the linear element with
-  /// every row held in registers, "fused" otherwise (measured, docs/benchmarks.md: 1sync is
-  /// 13-15 % quicker there, 2-7 % slower with the nodal-pressure term, 33 % slower
-  /// streaming the rows).
+  /// every row held in registers; "3sync" for the nodal-pressure term with the rows
+  /// streamed; "fused" otherwise (measured, docs/benchmarks.md: 1sync is 13-15 % quicker
+  /// there, 2-7 % slower with the nodal-pressure term, 33 % slower streaming the rows;
+  /// 3sync a CG iteration 14 % quicker than fused with block-Jacobi on the xfine breast,
+  /// 2.6-4.7 % less solve time with the multigrid on xfine and 800k).
   enum class CgForm { Auto, ThreeBarriers, Fused, OneReduction };
   CgForm cg_form = CgForm::Auto;
   /// PALPATION_CUDA_SHADOW_SMS: multiprocessors the steps' persistent solve leaves free for

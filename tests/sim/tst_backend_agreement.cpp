@@ -241,6 +241,9 @@ class TestBackendAgreement : public QObject {
     QTest::newRow("cuda, three-barrier form") << "cuda" << false << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CG=3sync";
     QTest::newRow("cuda nodal-pressure, three-barrier form") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CG=3sync";
     QTest::newRow("cuda nodal-pressure, paper box") << "cuda" << true << "block-jacobi" << "paper" << 700 << false << "";
+    // `auto` takes the three-barrier form with the nodal-pressure term where the rows stream
+    // from memory (the large meshes; the boxes' rows fit in registers).
+    QTest::newRow("cuda nodal-pressure, rows streamed") << "cuda" << true << "block-jacobi" << "coarse" << 700 << false << "PALPATION_CUDA_CACHE=0";
     // The multigrid's levels built on the host from the system the GPU assembled, its
     // V-cycle run inside the persistent kernel: the CPU's preconditioner, so the same
     // iterations and forces.
@@ -250,6 +253,11 @@ class TestBackendAgreement : public QObject {
     QTest::newRow("cuda multigrid nodal-pressure") << "cuda" << true << "multigrid" << "coarse" << 700 << false << "";
     QTest::newRow("cuda multigrid-chebyshev nodal-pressure") << "cuda" << true << "multigrid-chebyshev" << "coarse" << 700 << false << "";
     QTest::newRow("cuda multigrid nodal-pressure, paper box") << "cuda" << true << "multigrid" << "paper" << 700 << false << "";
+    // Its PCG in three barriers: forced, and as `auto` takes it where the rows stream.
+    QTest::newRow("cuda multigrid nodal-pressure, three-barrier form")
+        << "cuda" << true << "multigrid" << "coarse" << 700 << false << "PALPATION_CUDA_CG=3sync";
+    QTest::newRow("cuda multigrid nodal-pressure, paper box, rows streamed")
+        << "cuda" << true << "multigrid" << "paper" << 700 << false << "PALPATION_CUDA_CACHE=0";
     // Every coarse-level and transfer product read at each of its row widths (multigrid.cuh,
     // CsrDev::lanes: the boxes' levels are too small for `auto` to take 2 lanes, and take a
     // block per row only for the coarsest's inverse): the same products in other summation
