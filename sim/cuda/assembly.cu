@@ -10,11 +10,13 @@ namespace {
 /// Threads [0, nb) are blocks: thread k sums, over the element pairs (e, a, b) of block k,
 ///   K_ab = V (lambda r_a r_b^T + mu r_b r_a^T + mu (r_a . r_b) I)     (r_a . r_b = g_a . g_b)
 /// scales it, adds the mass and contact terms and inverts it where it is its row's diagonal
-/// block (unless a later stage does: AssembleArgs::invert); with the nodal-pressure term, the same pairs give its coupling b_nj. Threads
-/// [nb, nb + nf) are block rows: the element terms Q r_a of the right-hand side over the
-/// diagonal block's pairs, then gravity, mass damping and contact, and the warm start. The threads of a warp take neighbouring blocks, mostly of one or two rows,
-/// so they read the records of the same elements (cached). Sums run over the elements by
-/// ascending index, as the row gather this replaced did: the same rounding.
+/// block (unless a later stage does: AssembleArgs::invert); with the nodal-pressure term,
+/// the same pairs give its coupling b_nj. Threads [nb, nb + nf) are block rows: the element
+/// terms Q r_a of the right-hand side over the diagonal block's pairs, then gravity, mass
+/// damping and contact, and the warm start. The threads of a warp take neighbouring blocks,
+/// mostly of one or two rows, so they read the records of the same elements (cached). Sums
+/// run over the elements by ascending index, as the row gather this replaced did: the same
+/// rounding.
 template <class T>
 __global__ void __launch_bounds__(kBlock) k_assemble(AssembleArgs<T> a) {
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
