@@ -69,6 +69,8 @@ void HandHiroEmulator::tick(std::int64_t now_ns) {
     t0_ns_ = now_ns;
   }
   t_ = started_ ? double(now_ns - t0_ns_) * 1e-9 : 0.0;
+  const double period = robot_.script().duration();
+  if (o_.looped && period > 0) t_ = std::fmod(t_, period);
 
   // 4. The controller's own force limit, then the robot.
   std::array<Vec3, kMaxFingers> force{};

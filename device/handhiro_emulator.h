@@ -4,7 +4,8 @@
 // robot_watchdog seconds -> forces ramp to zero over robot_ramp and the state says so),
 // clamps forces to the robot's own limit, steps the robot and sends the state to the PC
 // (the sender of the newest valid command). The operator's script starts at the first
-// valid command. No allocation after open().
+// valid command and, with `looped`, starts over at its end (an operator who palpates
+// until stopped). No allocation after open().
 #pragma once
 
 #include <array>
@@ -22,6 +23,7 @@ struct EmulatorOptions {
   std::uint16_t port = 0;      // 0: any free port (see port())
   bool rigid_hand = false;
   std::uint32_t session = 0;   // 0: derived from the clock at open()
+  bool looped = false;         // the script starts over at its end
 };
 
 struct EmulatorCounters {

@@ -5,6 +5,7 @@
 //
 //   handhiro-emulator --scenario paper-sweep [--port 47001] [--config handhiro.json]
 //   handhiro-emulator --recording out/fingers.csv --rigid-hand
+//   handhiro-emulator --scenario paper-sweep --loop      # palpates until stopped
 //   handhiro-emulator --print-config > resources/handhiro.json
 #include <atomic>
 #include <chrono>
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
   std::string scenario, recording, config, bind = "127.0.0.1";
   int port = -1, priority = 0;
   double duration = 0, idle_exit = 0;
-  bool rigid = false, quiet = false, print_config = false;
+  bool rigid = false, looped = false, quiet = false, print_config = false;
   auto* src = cli.add_option_group("hand", "What drives the operator's hand");
   src->add_option("--scenario", scenario, "Scenario JSON file or built-in name: its finger paths");
   src->add_option("--recording", recording, "A recorded session's fingers.csv");
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   cli.add_option("--port", port, "UDP port to listen on (default: link.robot_port of the configuration)")->check(CLI::Range(0, 65535));
   cli.add_option("--bind", bind, "Address to listen on");
   cli.add_flag("--rigid-hand", rigid, "Fingertips follow the path exactly (default: compliant operator fingers)");
+  cli.add_flag("--loop", looped, "The hand starts its path over at its end (default: it rests at the last point)");
   cli.add_option("--duration", duration, "Stop after this many seconds (default: run until SIGINT/SIGTERM)");
   cli.add_option("--exit-after-idle", idle_exit, "Stop when no command arrived for this many seconds after the first");
   cli.add_option("--priority", priority, "SCHED_FIFO priority of the 1 kHz thread (0: normal)")->check(CLI::Range(0, 99));
@@ -89,6 +91,7 @@ int main(int argc, char** argv) {
     eo.bind_address = bind;
     eo.port = std::uint16_t(port >= 0 ? port : cfg.link.robot_port);
     eo.rigid_hand = rigid;
+    eo.looped = looped;
     dv::HandHiroEmulator emu(cfg.hand, std::move(script), eo);
     std::string err;
     if (!emu.open(&err)) {

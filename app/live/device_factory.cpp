@@ -110,6 +110,7 @@ DeviceWiring open_device(DeviceRequest r) {
       eo.bind_address = "127.0.0.1";
       eo.port = 0;
       eo.rigid_hand = r.rigid_hand;
+      eo.looped = r.looped;
       w.emulator = std::make_unique<dv::HandHiroEmulator>(r.config.hand, std::move(r.script), eo);
       if (!w.emulator->open(&err)) throw std::runtime_error("emulator: " + err);
       lc.robot_port = w.emulator->port();
@@ -121,6 +122,7 @@ DeviceWiring open_device(DeviceRequest r) {
       probe.close();
       std::vector<std::string> args{r.emulator_command[0], "--port", std::to_string(lc.robot_port)};
       args.insert(args.end(), r.emulator_command.begin() + 1, r.emulator_command.end());
+      if (r.looped) args.push_back("--loop");
       w.child.spawn(args);
       w.description = "HandHIRO emulator (child process, UDP loopback)";
     }

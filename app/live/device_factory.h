@@ -44,6 +44,7 @@ struct DeviceRequest {
   device::HandScript script;           // the operator's hand (device frame)
   std::string recording;               // replay: fingers.csv (world frame)
   bool rigid_hand = false;             // emulator: fingertips follow the script exactly
+  bool looped = false;                 // emulator: the script starts over at its end
   std::string robot_address;           // handhiro: empty for the configuration's
   int robot_port = 0;                  // handhiro: 0 for the configuration's
   /// emulator: non-empty runs `emulator_command[0] --port P emulator_command[1..]` as a

@@ -110,6 +110,7 @@ Workstation::Workstation(WorkstationOptions opt) : opt_(std::move(opt)) {
   req.kind = opt_.device;
   req.config = opt_.config;
   req.script = default_hand_script(opt_.config);
+  req.looped = true;  // the emulated operator palpates until stopped, as the simulated hand does
   req.robot_address = opt_.robot_address;
   req.robot_port = opt_.robot_port;
   wiring_ = std::make_unique<DeviceWiring>(open_device(std::move(req)));

@@ -161,7 +161,16 @@ class TstWorkstation : public QObject {
       if (s.finger == 1) max_fz = std::max(max_fz, s.force.z());
     });
     ws.start();
-    QTRY_VERIFY_WITH_TIMEOUT((ws.poll(), max_fz > 0.05), 120000);
+    // Where the chain stopped, if it does: the model, the link, the magnet joint.
+    auto chain = [&] {
+      const auto& st = ws.stats();
+      return QString("no force in 120 s: simulation %1 (%2, %3 steps/s), link %4, index finger %5, %6 attached ticks")
+          .arg(app::live::sim_state_name(st.state), QString::fromStdString(st.backend))
+          .arg(st.step_rate_hz)
+          .arg(st.connected ? "connected" : "not connected", st.attached[1] ? "attached" : "released")
+          .arg(attached);
+    };
+    QTRY_VERIFY2_WITH_TIMEOUT((ws.poll(), max_fz > 0.05), qPrintable(chain()), 120000);
     QVERIFY(attached > 0);
     QVERIFY(ws.stats().connected);
     ws.stop();

@@ -217,6 +217,38 @@ class TestHandHiroLink : public QObject {
     QCOMPARE(p.header.echo_sequence, 1u);  // echoes the newest state it accepted
   }
 
+  // The operator's script from the first command: it rests at its last point, or with
+  // `looped` starts over (the workstation's operator palpates until stopped). Rigid hand:
+  // the robot's fingertip is where the script is, 10 mm down over 100 ms.
+  void scriptRestsOrLoops() {
+    HandHiroParams params = default_handhiro_params();
+    HandHiroKinematics k(params);
+    const Vec3 top = k.fingertip(k.neutral(), kIndex), down = top + Vec3{0, 0, -0.01};
+    for (const bool looped : {false, true}) {
+      HandScript script;
+      script.set_path(kIndex, {{0.0, top}, {0.1, down}});
+      EmulatorOptions o{"127.0.0.1", 0, true, 3};
+      o.looped = looped;
+      HandHiroEmulator emu(params, std::move(script), o);
+      QVERIFY(emu.open());
+      Injector pc;
+      std::int64_t t = 0;
+      for (std::uint32_t s = 1; s <= 150; ++s) {  // 150 ms of commands (no force)
+        pc.send_command(emu.port(), s, {0, 0, 0});
+        emu.wait_readable(kWaitMs);
+        t += kTick;
+        emu.tick(t);
+      }
+      QVERIFY(emu.started());
+      // The script began at the first command's tick: 149 ms of it have run.
+      const double want_t = looped ? 0.049 : 0.149;
+      QVERIFY2(std::fabs(emu.script_time() - want_t) < 1e-9, qPrintable(QString::number(emu.script_time())));
+      const Vec3 want_tip = looped ? top + (down - top) * (0.049 / 0.1) : down;
+      QVERIFY2(norm(emu.robot().finger(kIndex).tip - want_tip) < 1e-4,  // IK tolerance: 0.1 mm
+               qPrintable(QString("looped %1: tip %2 mm from the script").arg(looped).arg(norm(emu.robot().finger(kIndex).tip - want_tip) * 1e3)));
+    }
+  }
+
   // Commands arriving lost, late, twice, damaged, non-finite or above the limit: the
   // robot applies only the newest valid one, never a NaN, never more than its limit.
   void robotSurvivesBadCommands() {
