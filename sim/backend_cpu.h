@@ -19,6 +19,7 @@ struct CpuWorkCounters {
   long steps = 0;
   long skipped_at_rest = 0;
   long full_assemblies = 0;
+  long parallel_steps = 0;  // solved steps whose passes ran on OpenMP's threads
 };
 
 /// The counters of a CPU backend; zeros for any other backend.
