@@ -512,7 +512,7 @@ class CpuBackend final : public Backend {
 
   // threads: 1 = serial, >= 2 = always parallel (OpenMP's team), 0 = where it pays; and
   // never with a team of one (OMP_NUM_THREADS=1): the parallel passes would run on it in
-  // colour order, which scatters the element arrays (paper breast: 1.24x a step).
+  // colour order, which scatters the element arrays (paper breast: 1.23x a step).
   bool parallel() const {
     if (threads_ < 2) return false;
     return p_.solver.threads >= 2 || (p_.solver.threads == 0 && m_.num_free() >= kParallelMinFree && cores_ >= kParallelMinCores);

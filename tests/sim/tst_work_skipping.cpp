@@ -1,8 +1,9 @@
 // The backends' work skipping and the state it keeps: a body resting untouched is not
 // solved, a parameter change wakes it (gravity above all), switching the CPU backend's
-// corotation tolerance at run time keeps the rotation term of the elastic force, and the
-// kept stiffness is assembled afresh every kCpuReassembleSteps steps. The CUDA case skips
-// with a visible reason where no GPU is usable.
+// corotation tolerance at run time keeps the rotation term of the elastic force, the kept
+// stiffness is assembled afresh every kCpuReassembleSteps steps, and a team of one OpenMP
+// thread runs the serial passes. The CUDA case skips with a visible reason where no GPU
+// is usable.
 #include <QtTest>
 
 #include "relative_error.h"
@@ -217,13 +218,6 @@ class TestWorkSkipping : public QObject {
     QCOMPARE(cpu_work_counters(*b).full_assemblies, full0 + 1);
   }
 
-  // The periodic full re-assembly: with a finger held in the body (never at rest) K and
-  // b0 are assembled in full at the first step and again after kCpuReassembleSteps
-  // assembling steps, and the force carries on through it. Not to rounding: the full
-  // assembly re-extracts every element's rotation, where the kept K had those that moved
-  // less than the tolerance; that changes the force by at most C x tolerance, C <= 5
-  // (tst_backend_agreement), so 5e-3 relative at 1e-3 (measured 1e-5). A re-assembly
-  // that lost or doubled K would move it by the whole force.
   // The passes run on OpenMP's threads only where it has two or more: with one
   // (OMP_NUM_THREADS=1, as tools/run-trainer.sh sets) the element pass takes the
   // elements in storage order, not colour by colour on a team of one (paper breast, one
@@ -249,6 +243,13 @@ class TestWorkSkipping : public QObject {
 #endif
   }
 
+  // The periodic full re-assembly: with a finger held in the body (never at rest) K and
+  // b0 are assembled in full at the first step and again after kCpuReassembleSteps
+  // assembling steps, and the force carries on through it. Not to rounding: the full
+  // assembly re-extracts every element's rotation, where the kept K had those that moved
+  // less than the tolerance; that changes the force by at most C x tolerance, C <= 5
+  // (tst_backend_agreement), so 5e-3 relative at 1e-3 (measured 1e-5). A re-assembly
+  // that lost or doubled K would move it by the whole force.
   void periodicReassemblyRuns() {
     Scenario s = box(0.02);  // 18 nodes, 9 of them free: 65,537 steps in a few seconds
     s.params.solver.corotation_tolerance = 1e-3;
