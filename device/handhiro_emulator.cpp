@@ -7,7 +7,10 @@
 namespace palpation::device {
 
 HandHiroEmulator::HandHiroEmulator(const HandHiroParams& params, HandScript script, const EmulatorOptions& options)
-    : p_(params), o_(options), robot_(params, std::move(script), options.rigid_hand) {}
+    : p_(params),
+      o_(options),
+      robot_(params, std::move(script), options.rigid_hand),
+      period_(options.looped ? robot_.script().duration() : 0.0) {}
 
 bool HandHiroEmulator::open(std::string* error) {
   session_ = o_.session;
@@ -69,8 +72,7 @@ void HandHiroEmulator::tick(std::int64_t now_ns) {
     t0_ns_ = now_ns;
   }
   t_ = started_ ? double(now_ns - t0_ns_) * 1e-9 : 0.0;
-  const double period = robot_.script().duration();
-  if (o_.looped && period > 0) t_ = std::fmod(t_, period);
+  if (period_ > 0) t_ = std::fmod(t_, period_);
 
   // 4. The controller's own force limit, then the robot.
   std::array<Vec3, kMaxFingers> force{};

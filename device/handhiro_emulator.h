@@ -69,6 +69,7 @@ class HandHiroEmulator {
   bool have_cmd_ = false, watchdog_ = true, started_ = false;
   std::int64_t last_cmd_ns_ = 0, last_tick_ns_ = 0, t0_ns_ = 0;
   double gain_ = 0, t_ = 0;
+  double period_ = 0;  // the script's duration where it loops (EmulatorOptions::looped), else 0
   std::uint32_t session_ = 0, seq_ = 0;
 };
 
