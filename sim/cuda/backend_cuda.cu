@@ -993,7 +993,7 @@ class CudaBackend final : public Backend {
   // goes to the caller.
   void upload_levels(const amg::Hierarchy& levels) {
     prepare_mg_solve();  // the launch, whose threads choose the products' lanes
-    mg_levels_.upload(levels, stream_, long(mg_launch_.grid) * mg_launch_.block, tuning_.mg_lanes);
+    mg_levels_.upload(levels, stream_, long(mg_launch_.grid) * mg_launch_.block, tuning_.mg_lanes, std::is_same_v<T, float>);
   }
   // The multigrid solve's launch and its finest level's scratch, once.
   void prepare_mg_solve() {

@@ -14,18 +14,24 @@ int csr_lanes(long rows, long nonzeros, long threads) {
   return mean < 12 && rows * kGroup > threads ? 2 : kGroup;
 }
 
-CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s, long threads, int lanes) {
+CsrDev MultigridDevice::csr(const amg::SpMat& M, cudaStream_t s, long threads, int lanes, bool single) {
   CsrDev d;
   d.rows = int(M.rows());
   auto& ptr = mats_->ints.emplace_back();
   ptr.upload(M.outerIndexPtr(), std::size_t(M.rows()) + 1, s);
   auto& col = mats_->ints.emplace_back();
   col.upload(M.innerIndexPtr(), std::size_t(M.nonZeros()), s);
-  auto& val = mats_->dbls.emplace_back();
-  val.upload(M.valuePtr(), std::size_t(M.nonZeros()), s);
   d.ptr = ptr.get();
   d.col = col.get();
-  d.val = val.get();
+  if (single) {
+    auto& val = mats_->flts.emplace_back();
+    val.upload(std::vector<float>(M.valuePtr(), M.valuePtr() + M.nonZeros()), s);  // waits for the copy
+    d.val32 = val.get();
+  } else {
+    auto& val = mats_->dbls.emplace_back();
+    val.upload(M.valuePtr(), std::size_t(M.nonZeros()), s);
+    d.val = val.get();
+  }
   d.lanes = lanes >= 0 ? lanes : csr_lanes(M.rows(), M.nonZeros(), threads);
   return d;
 }
@@ -57,7 +63,7 @@ void MultigridDevice::borrow(const MultigridDevice& owner, cudaStream_t s) {
   own_vectors(s);
 }
 
-void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s, long threads, int lanes) {
+void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s, long threads, int lanes, bool single) {
   const auto& levels = h.levels();
   const int L = int(levels.size());
   if (L < 2 || L > kMgMaxLevels)
@@ -75,11 +81,11 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s, long threa
     const auto& src = levels[std::size_t(k)];
     MgLevelDev& dst = m.lv[k];
     dst.n = k == 0 ? int(src.P.rows()) : int(src.A.rows());
-    if (k > 0) dst.A = csr(src.A, s, threads, lanes);
+    if (k > 0) dst.A = csr(src.A, s, threads, lanes, single);
     if (k + 1 < L) {
-      if (k > 0) dst.Dinv = csr(src.Dinv, s, threads, lanes);
-      dst.P = csr(src.P, s, threads, lanes);
-      dst.R = csr(src.R, s, threads, lanes);
+      if (k > 0) dst.Dinv = csr(src.Dinv, s, threads, lanes, single);
+      dst.P = csr(src.P, s, threads, lanes, single);
+      dst.R = csr(src.R, s, threads, lanes, single);
       dst.steps = src.smoothing.steps();
       for (int j = 0; j < dst.steps; ++j) {
         dst.a[j] = src.smoothing.a[std::size_t(j)];
@@ -96,7 +102,7 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s, long threa
   amg::SpMat dense(inv.rows(), inv.cols());
   dense.setFromTriplets(t.begin(), t.end());
   dense.makeCompressed();
-  m.coarsest_inverse = csr(dense, s, threads, lanes);
+  m.coarsest_inverse = csr(dense, s, threads, lanes, single);
   host_ = m;
   own_vectors(s);
 }

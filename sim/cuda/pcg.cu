@@ -220,10 +220,10 @@ template <class T, class Bar>
 __device__ __forceinline__ void mg_coarse_correction(const MgDev& M, const T* res, T* z, Bar bar) {
   const MgLevelDev& F = M.lv[0];
   const MgLevelDev& L1 = M.lv[1];
-  csr_rows(F.R, [&](int j) { return res[j]; }, [&](int i, double y) { L1.b[i] = y; });
+  csr_rows<T>(F.R, [&](int j) { return res[j]; }, [&](int i, double y) { L1.b[i] = y; });
   bar(kPhMgRestrict);
-  mg_coarse_cycle(M, bar);
-  csr_rows(F.P, [&](int j) { return L1.x[j]; }, [&](int i, double y) { z[i] += T(y); });
+  mg_coarse_cycle<T>(M, bar);
+  csr_rows<T>(F.P, [&](int j) { return L1.x[j]; }, [&](int i, double y) { z[i] += T(y); });
   bar(kPhMgProlong);
 }
 

@@ -387,10 +387,20 @@ class TestBackendAgreement : public QObject {
 
   // Float on the GPU against double on the CPU: 2e-2 (float arithmetic itself, on the CPU
   // too, is 1.3e-2 off where a first touch decides contacts: docs/gpu-notes.md, section 4).
+  // With the multigrid, whose coarse levels' matrices a float solve reads in float
+  // (multigrid.cuh): the same bound, and the rounded levels still precondition (far fewer
+  // iterations than block-Jacobi's, as doubleAgreesWithCpu asks in double).
+  void floatAgreesWithinTolerance_data() {
+    QTest::addColumn<QString>("preconditioner");
+    QTest::newRow("block-jacobi") << "block-jacobi";
+    QTest::newRow("multigrid") << "multigrid";
+  }
   void floatAgreesWithinTolerance() {
+    QFETCH(QString, preconditioner);
     std::string why;
     if (!cuda_available(&why)) QSKIP(("no usable GPU (" + why + "): float agreement not checked").c_str());
-    const Scenario s = hertz_coarse();
+    Scenario s = hertz_coarse();
+    s.params.solver.preconditioner = parse_preconditioner(preconditioner.toStdString());
     const Model m = build_scenario_model(s, patient_mesh(s));
     Scenario sf = s;
     sf.params.solver.precision = Precision::Float;
@@ -399,9 +409,19 @@ class TestBackendAgreement : public QObject {
     const Trace cpu = run(s, m, "cpu", 700);
     const Trace gpu = run(sf, m, "cuda", 700);
     const double ef = relative_error(gpu.force, cpu.force), ex = relative_error(gpu.x, cpu.x);
-    qInfo("cuda float against cpu double (Hertz, coarse box, 700 steps): force error %.2e, position error %.2e", ef, ex);
+    qInfo("cuda float against cpu double (Hertz, coarse box, 700 steps, %s): force error %.2e, position error %.2e",
+          qPrintable(preconditioner), ef, ex);
     QVERIFY2(ef <= 2e-2, qPrintable(QString("force error %1").arg(ef)));
     QVERIFY2(ex <= 2e-2, qPrintable(QString("position error %1").arg(ex)));
+    if (is_multigrid(s.params.solver.preconditioner)) {
+      Scenario bj = sf;
+      bj.params.solver.preconditioner = Preconditioner::BlockJacobi;
+      const long bj_iterations = run(bj, m, "cuda", 700).iterations;
+      qInfo("CG iterations in float: multigrid %ld, block-Jacobi %ld", gpu.iterations, bj_iterations);
+      QVERIFY(gpu.multigrid.builds >= 1);
+      QCOMPARE(gpu.multigrid.failures, 0L);
+      QVERIFY2(2 * gpu.iterations < bj_iterations, qPrintable(QString("%1 against %2").arg(gpu.iterations).arg(bj_iterations)));
+    }
   }
 };
 
