@@ -326,7 +326,6 @@ class CudaBackend final : public Backend {
     detect_grid_ = cuda::detect_grid(nt_, d.sms);
     if (solver_ == Solver::Persistent) {
       launch_ = shadow.sms > 0 ? cuda::pcg_launch_confined<T>(shadow.sms, tuning) : cuda::pcg_launch<T>(nf_, tuning);
-      confined_ = shadow.sms > 0;
       slice_ = shadow.sms > 0 ? 0 : std::max(shadow.slice, 0);
       slice_mg_ = slice_ > 0 ? std::max(shadow.slice_mg, 1) : 0;
       cg_form_ = tuning.cg_form;
@@ -1013,7 +1012,7 @@ class CudaBackend final : public Backend {
   // otherwise.
   PcgForm pcg_form(bool multigrid, bool nodal_pressure) const {
     using Form = CudaTuning::CgForm;
-    const bool streamed = !confined_ && !(multigrid ? mg_launch_ : launch_).cached;
+    const bool streamed = !launch_.confined && !(multigrid ? mg_launch_ : launch_).cached;
     if (cg_form_ == Form::ThreeBarriers || (cg_form_ == Form::Auto && nodal_pressure && streamed))
       return kThreeBarriers;
     if (slice_ > 0) return kTwoBarriers;  // the one-reduction form does not stop in slices
@@ -1123,7 +1122,6 @@ class CudaBackend final : public Backend {
   Solver solver_;
   int nn_ = 0, ne_ = 0, nf_ = 0, nb_ = 0, ns_ = 0, nt_ = 0;
   PcgLaunch launch_;
-  bool confined_ = false;  // a shadow's solve on the multiprocessors the steps' leave (launch_)
   int detect_grid_ = 1;
   CudaTuning::CgForm cg_form_ = CudaTuning::CgForm::Auto;
   cudaStream_t stream_ = nullptr;

@@ -326,9 +326,9 @@ __device__ double mg_precondition(const PcgArgs<T>& a, const RowCache<T, B>& rc,
 /// neighbour's new u is formed on the fly from its u, P w and m, which stay untouched until
 /// the barrier (the three are double-buffered; x, r, p, s and w are read by their own rows
 /// only). Returns the iterations taken; rnorm is the last residual's norm.
-template <class T, int B>
-__device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, coop::grid_group& grid, Ring& ring,
-                                const PhaseClock& clk, bool restart, T bnorm, T& rnorm, int tid, int nthreads) {
+template <class T, int B, class Bar, class Sum>
+__device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, Bar bar, Sum sum, bool restart, T bnorm,
+                                T& rnorm, int tid, int nthreads) {
   const T* __restrict P = a.P;
   T* ub[2] = {a.z, a.ext[0]};
   T* pwb[2] = {a.q, a.ext[1]};
@@ -345,9 +345,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
     auto u0 = [=](int j, int c) { return prow(j, c, r0[3 * j], r0[3 * j + 1], r0[3 * j + 2]); };
     if (a.pres.b) {
       pressure_rows<T, kGroup>(a.pres, a.nnode, u0, tid, nthreads);
-      grid.sync();
-      ring.skip(a.scr);
-      clk.mark(kPhStart);
+      bar(kPhStart);
     }
     double acc[2] = {0, 0};
     spmv_groups3<T, B>(a, rc, u0, [&](int i, int c, T y0, T y1, T y2) {
@@ -362,8 +360,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       acc[0] += double(r0[3 * i + c]) * double(u);
       acc[1] += double(u) * double(y);
     });
-    ring.sum(grid, a.scr, acc);
-    clk.mark(kPhStart);
+    sum(acc, kPhStart);
     gamma = T(acc[0]);
     delta = T(acc[1]);
   }
@@ -385,9 +382,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
     auto u_next = [=](int j, int c) { return fma(-al, m_of(j, c), uo[3 * j + c]); };
     if (a.pres.b) {
       pressure_rows<T, kGroup>(a.pres, a.nnode, u_next, tid, nthreads);
-      grid.sync();
-      ring.skip(a.scr);
-      clk.mark(kPhCgPressure);
+      bar(kPhCgPressure);
     }
     double acc[3] = {0, 0, 0};
     spmv_groups3<T, B>(a, rc, u_next, [&](int i, int c, T y0, T y1, T y2) {
@@ -409,8 +404,7 @@ __device__ int cg_one_reduction(const PcgArgs<T>& a, const RowCache<T, B>& rc, c
       acc[1] += double(unew) * double(y);
       acc[2] += double(rnew) * double(rnew);
     });
-    ring.sum(grid, a.scr, acc);
-    clk.mark(kPhCgProduct);
+    sum(acc, kPhCgProduct);
     ++it;
     rnorm = sqrt(T(acc[2]));
     const T gamma_new = T(acc[0]);
@@ -445,6 +439,11 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     ring.skip(a.scr);
     clk.mark(phase);
   };
+  // The grid's sums of this thread's shares acc[] (a barrier of its own), then the phase.
+  auto sum = [&](auto& acc, int phase) {
+    ring.sum(grid, a.scr, acc);
+    clk.mark(phase);
+  };
   RowCache<T, B> rc;
   load_row_cache(a, rc);
   if (a.slice > 0 && tid == 0) a.res->unfinished = 0;  // read only for solves in slices
@@ -475,8 +474,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
           br[0] += double(bi) * double(bi);
           br[1] += double(ri) * double(ri);
         });
-    ring.sum(grid, a.scr, br);
-    clk.mark(kPhStart);
+    sum(br, kPhStart);
     bnorm = sqrt(T(br[0]));
     rnorm = sqrt(T(br[1]));
     // A warm start far worse than zero (or not finite) restarts from x = 0, r = b.
@@ -484,7 +482,7 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
     if (restart) rnorm = bnorm;
   }
   if (bnorm > T(0) && !MG && a.form == kOneReduction) {
-    it = cg_one_reduction<T, B>(a, rc, grid, ring, clk, restart, bnorm, rnorm, tid, nthreads);
+    it = cg_one_reduction<T, B>(a, rc, bar, sum, restart, bnorm, rnorm, tid, nthreads);
   } else if (bnorm > T(0)) {
     T rz = 0;
     T beta = 0;
@@ -513,11 +511,11 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
         }
       }
       if constexpr (MG) rz1[0] = mg_precondition(a, rc, bar, tid, nthreads, false);
-      ring.sum(grid, a.scr, rz1);
-      clk.mark(MG ? kPhMgDot : kPhStart);
+      sum(rz1, MG ? kPhMgDot : kPhStart);
       rz = T(rz1[0]);
     }
     const int stop = a.slice > 0 ? it + a.slice : INT_MAX;
+    const T c0 = MG ? T(a.mg->lv[0].c[0]) : T(0);  // the finest smoothing's first coefficient
     while (it < stop && pcg_goes_on(a, it, rnorm, bnorm)) {
       // Search direction p = z + beta p (first: p = z) and q = A p.
       if (a.form == kThreeBarriers) {
@@ -555,15 +553,13 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
               acc[0] += double(pn[3 * i + c]) * double(y);
             });
       }
-      ring.sum(grid, a.scr, acc);
-      clk.mark(kPhCgProduct);
+      sum(acc, kPhCgProduct);
       const T pq = T(acc[0]);
       if (!(pq > T(0))) break;
       const T alpha = rz / pq;
       double rr2[2] = {0, 0};
       // With the multigrid, its pre-smoothing's pass here, on the rows just updated (wasted
       // on the last iteration only).
-      const T c0 = MG ? T(a.mg->lv[0].c[0]) : T(0);
       for (int i = tid; i < a.n; i += nthreads) {
         for (int c = 0; c < 3; ++c) {
           a.x[3 * i + c] += alpha * pnew[3 * i + c];
@@ -577,16 +573,14 @@ __global__ void __launch_bounds__(kPcgMaxBlock, B > 0 ? 1 : 2) k_pcg(PcgArgs<T> 
           rr2[1] += rr * rr;
         }
       }
-      ring.sum(grid, a.scr, rr2);
-      clk.mark(kPhCgUpdate);
+      sum(rr2, kPhCgUpdate);
       T rz_new = T(rr2[0]);
       rnorm = sqrt(T(rr2[1]));
       if constexpr (MG) {
         // The V-cycle only where the loop goes on (its z would not be used).
         if (pcg_goes_on(a, it + 1, rnorm, bnorm)) {
           double rz1[1] = {mg_precondition(a, rc, bar, tid, nthreads, true)};
-          ring.sum(grid, a.scr, rz1);
-          clk.mark(kPhMgDot);
+          sum(rz1, kPhMgDot);
           rz_new = T(rz1[0]);
         }
       }
@@ -692,6 +686,7 @@ PcgLaunch pcg_launch_confined_of(int sms, const CudaTuning& tuning) {
   L.block = tuning.pcg_block;
   L.fn = reinterpret_cast<const void*>(&k_pcg<T, 0, MG>);
   L.grid = L.sms = std::clamp(sms, 1, device_info().sms);
+  L.confined = true;
   return L;
 }
 

@@ -161,8 +161,9 @@ struct PcgLaunch {
   const void* fn = nullptr;
   int grid = 1;
   int block = kPcgMaxBlock;
-  bool cached = false;  // every row's matrix held in registers
-  int sms = 1;          // multiprocessors its blocks occupy at most
+  bool cached = false;    // every row's matrix held in registers
+  int sms = 1;            // multiprocessors its blocks occupy at most
+  bool confined = false;  // a shadow's solve on the multiprocessors the steps' solve leaves
 };
 
 /// The launch configuration of k_pcg for n block rows on this device, with the knobs of
