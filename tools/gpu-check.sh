@@ -54,6 +54,16 @@
 #          per pass and the tumour/no-tumour ratio (sweep.txt)
 #   tests  the sim/ and device/ QtTest suites, packed here beforehand (below; tests.log,
 #          tests-summary.txt). Not a default stage; needs no build stage.
+#   ab     this tree against an older one on the same machine: the older tree's files,
+#          packed here beforehand by `tools/gpu-check.sh ab-pack REV` (below), are laid
+#          over a copy of this one; both are built side by side, then `palpation bench`
+#          runs each point of AB_RUNS (default "xfine:1000:float 0.00201:400:float",
+#          mesh:steps:precision[:preconditioner]) AB_REPEAT times (default 2), new and old
+#          alternated, held at 1 % (AB_BENCH_ARGS, default "--force-error 0.01"), with
+#          AB_ENV (e.g. PALPATION_CUDA_PHASES=1) in the environment: ab.txt (every run's
+#          median / p99 / iterations / force error, and per point the median of each
+#          side's medians and their ratio), ab-runs.tar (each run's output). Not a default
+#          stage; it builds both trees itself.
 # Results go to $OUT (at most 8 files come back from the device tool): run.log, check.json,
 # micro.txt, ncu.txt, bench.csv, bench.png (matplotlib where present), idle.csv.
 #
@@ -76,8 +86,40 @@
 #       time, passed/failed/skipped). Exit 1 on a failure or crash, or when a CUDA case of
 #       tst_backend_agreement skipped (the GPU was not used). TESTS_ONLY="tst_a tst_b" runs
 #       those suites alone.
+#
+# An A/B of two commits on one GPU machine (machines of one kind differ by several per cent,
+# so a before and an after are compared only within one run): two steps, neither a default
+# stage.
+#   tools/gpu-check.sh ab-pack REV   here: writes the files of the build's trees (CMakeLists.txt,
+#       app, device, sim, ui, tests, tools, resources, translations) that differ between REV
+#       and this working tree, as REV has them, to .gpu-carry/ab/old/, the paths REV lacks to
+#       .gpu-carry/ab/removed.txt and REV's short hash to .gpu-carry/ab/rev.txt.
+#   run(command="bash tools/gpu-check.sh ab", carry=[".gpu-carry"])   on the GPU machine (the
+#       stage above).
 set -uo pipefail
 ROOT=$(pwd)
+# The trees a build reads (ab-pack and ab, below).
+AB_TREES="CMakeLists.txt app device sim ui tests tools resources translations"
+if [[ ${1:-} == ab-pack ]]; then
+  # The older tree of an A/B, as the files that differ from this working tree (above).
+  set -e
+  REV=${2:?usage: tools/gpu-check.sh ab-pack REV}
+  AB=$ROOT/.gpu-carry/ab
+  rm -rf "$AB" && mkdir -p "$AB/old"
+  git -C "$ROOT" rev-parse --short "$REV" >"$AB/rev.txt"
+  : >"$AB/removed.txt"
+  # shellcheck disable=SC2086  # the trees are words
+  git -C "$ROOT" diff --name-only "$REV" -- $AB_TREES | while read -r f; do
+    if git -C "$ROOT" cat-file -e "$REV:$f" 2>/dev/null; then
+      mkdir -p "$AB/old/$(dirname "$f")"
+      git -C "$ROOT" show "$REV:$f" >"$AB/old/$f"
+    else
+      echo "$f" >>"$AB/removed.txt"
+    fi
+  done
+  echo "ab-pack: $(find "$AB/old" -type f | wc -l) files as $(cat "$AB/rev.txt") has them, $(wc -l <"$AB/removed.txt") it lacks, in $AB"
+  exit 0
+fi
 if [[ ${1:-} == tests-pack ]]; then
   # Here, not on the GPU machine (see above).
   set -e
@@ -138,16 +180,22 @@ nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.sm,clocks.max.sm,
   --format=csv || true
 
 P=$BUILD/app/palpation
+# The Qt-free CUDA configuration of source tree $1 built in $2 (palpation only) on $3 jobs
+# (default all cores); logs beside $2. Non-zero, with the errors printed, on a failure.
+build_tree() {
+  cmake -S "$1" -B "$2" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPALPATION_WITH_QT=OFF -DPALPATION_WITH_GMSH=OFF \
+    -DPALPATION_WITH_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc \
+    >"$2.cmake.log" 2>&1 || { tail -40 "$2.cmake.log"; say "configure of $1 FAILED"; return 2; }
+  grep -E "palpation:" "$2.cmake.log"
+  ninja -C "$2" -j"${3:-$(nproc)}" palpation >"$2.ninja.log" 2>&1 ||
+    { grep -E "error|FAILED" -A3 "$2.ninja.log" | head -60; say "build of $1 FAILED"; return 2; }
+}
 if has build; then
   say "configure + build"
-  cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPALPATION_WITH_QT=OFF -DPALPATION_WITH_GMSH=OFF \
-    -DPALPATION_WITH_CUDA=ON -DCMAKE_CUDA_ARCHITECTURES=90 -DCMAKE_CUDA_COMPILER=/usr/local/cuda/bin/nvcc \
-    >"$BUILD.cmake.log" 2>&1 || { tail -40 "$BUILD.cmake.log"; say "configure FAILED"; exit 2; }
-  grep -E "palpation:" "$BUILD.cmake.log"
-  ninja -C "$BUILD" -j"$(nproc)" palpation >"$BUILD.ninja.log" 2>&1 || { grep -E "error|FAILED" -A3 "$BUILD.ninja.log" | head -60; say "build FAILED"; exit 2; }
+  build_tree "$ROOT" "$BUILD" || exit 2
   say "built $P"
 fi
-if [[ " $STAGES " != " tests " ]]; then
+if [[ " $STAGES " != " tests " && " $STAGES " != " ab " ]]; then
   [[ -x $P ]] || { say "no $P"; exit 2; }
 fi
 
@@ -204,6 +252,73 @@ if len(cuda) < 10 or not all(l.startswith("PASS") for l in cuda):
     sys.exit(1)
 EOF
   [[ ${PIPESTATUS[0]} -ne 0 ]] && status=1
+fi
+
+if has ab; then
+  # This tree against the older one that ab-pack laid out in .gpu-carry/ab (above).
+  AB=$ROOT/.gpu-carry/ab
+  [[ -f $AB/rev.txt ]] || { say "no .gpu-carry/ab/rev.txt: run tools/gpu-check.sh ab-pack REV here, carry .gpu-carry"; exit 2; }
+  OLD_SRC=/tmp/palpation-ab-old
+  OLD_BUILD=/tmp/palpation-ab-old-build
+  rm -rf "$OLD_SRC" && mkdir -p "$OLD_SRC"
+  for d in $AB_TREES; do [[ -e $ROOT/$d ]] && cp -r "$ROOT/$d" "$OLD_SRC/"; done
+  cp -r "$AB/old/." "$OLD_SRC/"
+  while read -r f; do [[ -n $f ]] && rm -f "$OLD_SRC/$f"; done <"$AB/removed.txt"
+  find "$OLD_SRC" -type d -empty -delete
+  ln -s "$ROOT/.gpu-carry" "$OLD_SRC/.gpu-carry"  # the carried headers and libraries
+  say "ab: building this tree and $(cat "$AB/rev.txt")'s side by side"
+  half=$(( ($(nproc) + 1) / 2 ))
+  build_tree "$ROOT" "$BUILD" "$half" &
+  new_pid=$!
+  build_tree "$OLD_SRC" "$OLD_BUILD" "$half" || exit 2
+  wait "$new_pid" || exit 2
+  AB_RUNS=${AB_RUNS:-xfine:1000:float 0.00201:400:float}
+  AB_REPEAT=${AB_REPEAT:-2}
+  AB_BENCH_ARGS=${AB_BENCH_ARGS:---force-error 0.01}
+  AB_ENV=${AB_ENV:-}
+  RUNS=/tmp/palpation-ab-runs
+  rm -rf "$RUNS" && mkdir -p "$RUNS"
+  for point in $AB_RUNS; do
+    IFS=: read -r mesh steps prec pc <<<"$point"
+    for ((k = 1; k <= AB_REPEAT; ++k)); do
+      for side in new old; do
+        exe=$P
+        [[ $side == old ]] && exe=$OLD_BUILD/app/palpation
+        d=$RUNS/$mesh-$prec${pc:+-$pc}-$k-$side
+        mkdir -p "$d"
+        # shellcheck disable=SC2086  # AB_ENV and AB_BENCH_ARGS are words
+        env $AB_ENV timeout "$BENCH_TIMEOUT" "$exe" bench --backends cuda --meshes "$mesh" --precisions "$prec" \
+          ${pc:+--preconditioner "$pc"} --steps "$steps" $AB_BENCH_ARGS --out "$d" >"$d/stdout.txt" 2>"$d/stderr.txt"
+        say "ab $point run $k $side: exit $?"
+      done
+    done
+  done
+  python3 - "$RUNS" "$(cat "$AB/rev.txt")" "$OUT/ab.txt" <<'EOF'
+import csv, pathlib, statistics, sys
+runs, old_rev, out = pathlib.Path(sys.argv[1]), sys.argv[2], sys.argv[3]
+points = {}
+lines = [f"A/B: this tree (new) against {old_rev} (old), built side by side, runs in the order taken; "
+         "median / p99 ms, CG iterations median / max, force error"]
+for d in sorted(runs.iterdir(), key=lambda p: p.stat().st_mtime):
+    point, side = d.name.rsplit("-", 2)[0], d.name.rsplit("-", 1)[1]
+    f = d / "bench.csv"
+    if not f.exists():
+        lines.append(f"{d.name:40s} no result (stderr: {(d / 'stderr.txt').read_text()[-200:]!r})")
+        continue
+    r = next(csv.DictReader(f.open()))
+    med = float(r["step_ms_median"])
+    points.setdefault(point, {}).setdefault(side, []).append(med)
+    lines.append(f"{d.name:40s} {med:8.4f} / {float(r['step_ms_p99']):8.4f}  {float(r['cg_iterations_median']):4.1f} / "
+                 f"{r['cg_iterations_max']:>4s}  {float(r['force_error']):.2e}")
+lines.append("per point, the median of each side's medians:")
+for point, sides in points.items():
+    if "new" in sides and "old" in sides:
+        n, o = statistics.median(sides["new"]), statistics.median(sides["old"])
+        lines.append(f"{point:40s} new {n:8.4f}  old {o:8.4f}  new/old {n / o:.3f}")
+pathlib.Path(out).write_text("\n".join(lines) + "\n")
+print("\n".join(lines))
+EOF
+  tar -C "$RUNS" -cf "$OUT/ab-runs.tar" .
 fi
 
 if has check; then
