@@ -27,6 +27,12 @@ struct TetMesh {
   std::string validate() const;
   /// Boundary triangles (faces that belong to exactly one tetrahedron), outward facing.
   std::vector<std::array<int, 3>> boundary_faces() const;
+  /// Renumbers the nodes by reverse Cuthill-McKee over the tetrahedra's edges and sorts
+  /// the tetrahedra by their lowest node (stable; each keeps its own node order, so its
+  /// orientation). The same geometry in an order whose neighbours are near in memory:
+  /// a node's matrix row, its elements and their nodes then share cache lines, where the
+  /// mesher's order scatters them over the whole mesh. Deterministic for a given mesh.
+  void order_for_locality();
   /// Axis-aligned bounds.
   void bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const;
   /// 64-bit FNV-1a hash of the content (used by the cache and by recordings).

@@ -27,6 +27,7 @@ int Model::block_of(int ia, int ib) const {
 Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed) {
   if (std::string why = mesh.validate(); !why.empty()) throw std::invalid_argument(why);
   mesh.orient();
+  mesh.order_for_locality();
   Model m;
   m.tissue = tissue;
   m.density = tissue.density;
