@@ -546,7 +546,7 @@ class CudaBackend final : public Backend {
     // block-Jacobi: their few multiprocessors would make a V-cycle's many barriers dear.
     s->borrowed_mg_ = s->slice_ > 0 && begun_mg_ && mg_levels_.dev();
     if (s->borrowed_mg_) {
-      s->mg_levels_.borrow(mg_levels_, s->stream_);
+      s->mg_levels_.borrow(mg_levels_, s->stream_, std::is_same_v<T, float>);
       s->prepare_mg_solve();
     }
     s->filtered_ = kept_filtered_;

@@ -54,12 +54,16 @@ void MultigridDevice::own_vectors(cudaStream_t s) {
   desc_.upload(&host_, 1, s);
 }
 
-void MultigridDevice::borrow(const MultigridDevice& owner, cudaStream_t s) {
+void MultigridDevice::borrow(const MultigridDevice& owner, cudaStream_t s, bool single) {
   if (!owner.mats_) throw std::logic_error("cuda multigrid: no levels to borrow");
+  if (owner.single_ != single)
+    throw std::logic_error(std::string("cuda multigrid: levels uploaded in ") + (owner.single_ ? "float" : "double") +
+                           " borrowed by a solve in " + (single ? "float" : "double"));
   if (mats_ == owner.mats_) return;  // these levels already, with vectors of this one's own
   CU(cudaStreamSynchronize(s));      // this one's earlier solves may still read its old vectors
   mats_ = owner.mats_;
   host_ = owner.host_;
+  single_ = owner.single_;
   own_vectors(s);
 }
 
@@ -104,6 +108,7 @@ void MultigridDevice::upload(const amg::Hierarchy& h, cudaStream_t s, long threa
   dense.makeCompressed();
   m.coarsest_inverse = csr(dense, s, threads, lanes, single);
   host_ = m;
+  single_ = single;
   own_vectors(s);
 }
 

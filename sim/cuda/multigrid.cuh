@@ -78,14 +78,16 @@ struct MgDev {
 ///
 /// borrow() gives another backend's solve the same levels without a copy: their matrices
 /// (read only, kept alive here for as long as this borrows them, whatever the owner uploads
-/// next) with vectors of its own, so that the two solves never share scratch.
+/// next) with vectors of its own, so that the two solves never share scratch. The borrower
+/// names its precision (`single` as upload's): a solve reads the values of its own
+/// precision only, so levels of the other one are refused (std::logic_error).
 class MultigridDevice {
  public:
   /// `threads`: the solve's launch (CsrDev::lanes); `lanes` >= 0: every matrix's lanes
   /// (CudaTuning::mg_lanes), else csr_lanes's.
   /// `single`: the matrices' values in float (a float solve's), else in double.
   void upload(const amg::Hierarchy& h, cudaStream_t s, long threads, int lanes, bool single);
-  void borrow(const MultigridDevice& owner, cudaStream_t s);
+  void borrow(const MultigridDevice& owner, cudaStream_t s, bool single);
   const MgDev* dev() const { return desc_.size() ? desc_.get() : nullptr; }
   int levels() const { return host_.levels; }
 
@@ -102,6 +104,7 @@ class MultigridDevice {
   std::shared_ptr<Matrices> mats_;
   std::deque<DeviceArray<double>> vecs_;
   MgDev host_{};  // the descriptor as uploaded (its vectors this object's own)
+  bool single_ = false;  // the matrices' values in float (upload's `single`)
   DeviceArray<MgDev> desc_;
 };
 
