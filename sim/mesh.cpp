@@ -106,9 +106,11 @@ void TetMesh::bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
 // Written here rather than taken from a library: Gmsh 4.8 has no renumbering (and boxes
 // and imported meshes never pass through it), Eigen's orderings reduce fill, not
 // bandwidth, and the search itself is a breadth-first walk.
-void TetMesh::order_for_locality() {
+std::vector<int> TetMesh::order_for_locality() {
   const int n = num_nodes();
-  if (n == 0) return;
+  std::vector<int> by(tets.size());
+  std::iota(by.begin(), by.end(), 0);
+  if (n == 0) return by;
   const auto N = static_cast<std::size_t>(n);
   // Node adjacency over the tetrahedra's edges, CSR, each list sorted and unique.
   std::vector<int> ptr(N + 1, 0), adj;
@@ -197,8 +199,7 @@ void TetMesh::order_for_locality() {
   nodes = std::move(moved);
   for (auto& t : tets)
     for (int& v : t) v = renum[std::size_t(v)];
-  std::vector<int> by(tets.size()), low(tets.size());
-  std::iota(by.begin(), by.end(), 0);
+  std::vector<int> low(tets.size());
   for (std::size_t e = 0; e < tets.size(); ++e) low[e] = *std::min_element(tets[e].begin(), tets[e].end());
   std::stable_sort(by.begin(), by.end(), [&](int a, int b) { return low[std::size_t(a)] < low[std::size_t(b)]; });
   std::vector<std::array<int, 4>> sorted(tets.size());
@@ -209,6 +210,7 @@ void TetMesh::order_for_locality() {
   }
   tets = std::move(sorted);
   region = std::move(sorted_region);
+  return by;
 }
 
 std::uint64_t TetMesh::hash() const {

@@ -32,7 +32,8 @@ struct TetMesh {
   /// orientation). The same geometry in an order whose neighbours are near in memory:
   /// a node's matrix row, its elements and their nodes then share cache lines, where the
   /// mesher's order scatters them over the whole mesh. Deterministic for a given mesh.
-  void order_for_locality();
+  /// Returns, for each tetrahedron in the new order, its index before.
+  std::vector<int> order_for_locality();
   /// Axis-aligned bounds.
   void bounds(Eigen::Vector3d& lo, Eigen::Vector3d& hi) const;
   /// 64-bit FNV-1a hash of the content (used by the cache and by recordings).

@@ -80,6 +80,10 @@ struct Model {
   std::vector<Eigen::Vector3d> rest;        // (nnode) rest positions, m
   std::vector<std::array<int, 4>> tets;     // (ntet) positively oriented
   std::vector<int> region;                  // (ntet) region tag from the mesh
+  /// (ntet) each element's index in the mesh the model was built from (its file's or
+  /// Gmsh's order: build_model renumbers for locality, TetMesh::order_for_locality). A
+  /// workstation recording made before the renumbering names elements by this index.
+  std::vector<int> mesh_tet;
   std::vector<std::array<int, 3>> surface;  // (nsurf) boundary triangles, outward
   std::vector<int> surface_nodes;           // (nsurfnode) nodes on the boundary
   // Elements ------------------------------------------------------------------

@@ -78,12 +78,14 @@ sim::Scenario replay_scenario(const Recording& rec) {
 
 std::vector<RecordedCommand> recorded_commands(const store::RecordingInfo& rec) {
   std::vector<RecordedCommand> v;
+  const bool mesh_order = store::young_in_mesh_order(rec);
   for (const json& e : rec.events) {
     if (!e.is_object() || e.value("kind", "") != "parameter" || !e.contains("index") || !e["index"].is_number_unsigned())
       continue;
     RecordedCommand c;
     c.index = e["index"].get<std::uint64_t>();
     c.kind = e.value("command", "");
+    c.young_in_mesh_order = mesh_order;
     if (c.kind == "young" && e.contains("changes") && e["changes"].is_array()) {
       for (const auto& p : e["changes"])
         if (p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number())
@@ -95,6 +97,10 @@ std::vector<RecordedCommand> recorded_commands(const store::RecordingInfo& rec) 
   }
   std::stable_sort(v.begin(), v.end(), [](const RecordedCommand& a, const RecordedCommand& b) { return a.index < b.index; });
   return v;
+}
+
+void apply_recorded_young(sim::Simulation& s, const RecordedCommand& c) {
+  live::apply_element_young(s, store::young_in_model_order(s.model(), c.young, c.young_in_mesh_order));
 }
 
 namespace {
@@ -215,7 +221,7 @@ ReplayResult replay_steps(const Recording& rec, const ReplayOptions& opt) {
     const json* swap = nullptr;
     while (ci < commands.size() && commands[ci].index < st.commands_applied) {
       const RecordedCommand& c = commands[ci++];
-      if (c.kind == "young") live::apply_element_young(*simulation, c.young);
+      if (c.kind == "young") apply_recorded_young(*simulation, c);
       else if (c.kind == "params") live::apply_params(*simulation, store::parse_recorded_scenario(c.scenario, rec.path + ": params change").params);
       else if (c.kind == "patient") swap = &c.scenario;
     }

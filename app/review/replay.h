@@ -93,9 +93,17 @@ struct RecordedCommand {
   std::string kind;                           // "young", "params", "patient"
   std::vector<std::pair<int, double>> young;  // element, Pa
   nlohmann::json scenario;                    // params / patient
+  // The elements of `young` are numbered in the order of the patient's mesh, not the
+  // model's: a recording whose header's session names no "element_numbering" (made before
+  // build_model renumbered meshes for locality).
+  bool young_in_mesh_order = false;
 };
 /// The recording's commands in queue order.
 std::vector<RecordedCommand> recorded_commands(const store::RecordingInfo& rec);
+/// Applies a "young" command to the simulation's current patient, its elements taken to
+/// the model's numbering where the recording names them in the mesh's (Model::mesh_tet).
+/// An index outside the mesh stays outside it (Simulation::set_element_young skips it).
+void apply_recorded_young(sim::Simulation& s, const RecordedCommand& c);
 
 /// Re-simulates and compares. Throws sim::ScenarioError / std::runtime_error.
 ReplayResult replay_recording(const Recording& rec, const ReplayOptions& opt);

@@ -19,7 +19,6 @@ namespace dv = palpation::device;
 
 using live::PatientGeometry;
 using live::RenderSnapshot;
-using live::apply_element_young;
 using live::apply_params;
 using live::configure_realtime_threads;
 using live::make_patient_geometry;
@@ -280,7 +279,7 @@ void ReviewSession::run_steps(const std::string& backend) {
     const json* swap = nullptr;
     while (ci < commands_.size() && commands_[ci].index < st.commands_applied) {
       const RecordedCommand& c = commands_[ci++];
-      if (c.kind == "young") apply_element_young(*simulation, c.young);
+      if (c.kind == "young") apply_recorded_young(*simulation, c);
       else if (c.kind == "params") apply_params(*simulation, store::parse_recorded_scenario(c.scenario, rec_.path + ": params change").params);
       else if (c.kind == "patient") swap = &c.scenario;
     }

@@ -51,6 +51,9 @@ WorkstationRecorder::WorkstationRecorder(Workstation& ws, const std::string& pat
                        {"coupling", cfg.loop.virtual_coupling ? "virtual" : "direct"},
                        {"backend", o.scenario.backend},
                        {"steps_recorded", true},
+                       // Element indices in "young" changes are the model's (sim::Model);
+                       // recordings without this name the mesh's own order (Model::mesh_tet).
+                       {"element_numbering", "model"},
                        {"program", std::string("palpation-trainer ") + PALPATION_VERSION + " (" + PALPATION_GIT_COMMIT + ")"}};
   header["settings"] = settings.is_object() ? settings : json::object();
   writer_ = std::make_unique<RecordingWriter>(path, std::move(header), kFingers);

@@ -21,4 +21,22 @@ void recorded_inputs(const RecordedStep& step, std::span<sim::FingerInput> in) {
   }
 }
 
+bool young_in_mesh_order(const RecordingInfo& rec) {
+  if (!rec.header.is_object() || !rec.header.contains("session")) return true;
+  const nlohmann::json& session = rec.header["session"];
+  return !(session.is_object() && session.value("element_numbering", "") == "model");
+}
+
+std::vector<std::pair<int, double>> young_in_model_order(const sim::Model& m,
+                                                         std::span<const std::pair<int, double>> changes,
+                                                         bool mesh_order) {
+  std::vector<std::pair<int, double>> out(changes.begin(), changes.end());
+  if (!mesh_order) return out;
+  std::vector<int> to(m.mesh_tet.size(), -1);
+  for (std::size_t e = 0; e < m.mesh_tet.size(); ++e) to[std::size_t(m.mesh_tet[e])] = int(e);
+  for (auto& [e, E] : out)
+    if (e >= 0 && std::size_t(e) < to.size()) e = to[std::size_t(e)];
+  return out;
+}
+
 }  // namespace palpation::app::store

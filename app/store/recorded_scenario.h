@@ -4,9 +4,12 @@
 
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "model.h"
 #include "params.h"
 #include "scenario.h"
 #include "store/recording.h"
@@ -22,5 +25,18 @@ sim::Scenario parse_recorded_scenario(const nlohmann::json& scenario, const std:
 /// What a recorded step gave the simulation, as its inputs again (position, velocity,
 /// radius, active) for the first in.size() fingers: a replay and a review re-simulate it.
 void recorded_inputs(const RecordedStep& step, std::span<sim::FingerInput> in);
+
+/// Whether the recording's "young" changes (the instructor's element moduli) name
+/// elements in the patient mesh's own order rather than the model's: a recording whose
+/// header's session has no "element_numbering", made before build_model renumbered
+/// meshes for locality (sim::Model::mesh_tet).
+bool young_in_mesh_order(const RecordingInfo& rec);
+
+/// `changes` (element, Pa) with their elements in m's numbering: taken through
+/// m.mesh_tet where `mesh_order`, else as they are. An index outside the mesh stays
+/// outside it, for the caller's range check to skip.
+std::vector<std::pair<int, double>> young_in_model_order(const sim::Model& m,
+                                                         std::span<const std::pair<int, double>> changes,
+                                                         bool mesh_order);
 
 }  // namespace palpation::app::store

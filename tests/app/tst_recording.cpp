@@ -27,7 +27,9 @@
 #include "review/review_session.h"
 #include "review/workstation_recorder.h"
 #include "live/workstation.h"
+#include "phantom.h"
 #include "scenario.h"
+#include "simulation.h"
 #include "live/session.h"
 #include "crc32.h"
 
@@ -1035,6 +1037,43 @@ class TestRecording : public QObject {
   //    than twice the scaled replay's difference, not by the 25 % bound, which it fell
   //    under in about half the sanitizer runs. The headless re-simulation before this
   //    comparison existed reported 8.9 N on a workstation recording.
+  // The instructor's element moduli in a recording made before meshes were renumbered for
+  // locality name elements in the mesh's own order (no session.element_numbering): a
+  // review applies each to the element that is now at another index.
+  void olderRecordingsNameElementsInTheMeshOrder() {
+    sim::Scenario s = sim::parse_scenario(kScene, "tst_recording");
+    const sim::Model m = sim::build_scenario_model(s, sim::patient_mesh(s));
+    const int ntet = m.num_tets();
+    int e = 0;
+    while (e < ntet && m.mesh_tet[std::size_t(e)] == e) ++e;
+    QVERIFY2(e < ntet, "the renumbering moved an element");
+    const int before = m.mesh_tet[std::size_t(e)];
+    RecordingInfo old_rec, new_rec, bare;
+    old_rec.header = {{"session", {{"kind", "workstation"}}}};
+    new_rec.header = {{"session", {{"kind", "workstation"}, {"element_numbering", "model"}}}};
+    QVERIFY(young_in_mesh_order(old_rec));
+    QVERIFY(!young_in_mesh_order(new_rec));
+    QVERIFY(young_in_mesh_order(bare));
+    const std::vector<std::pair<int, double>> changes = {{before, 40000.0}, {-3, 1.0}, {ntet + 5, 2.0}};
+    const auto mapped = young_in_model_order(m, changes, true);
+    QCOMPARE(mapped.size(), std::size_t(3));
+    QCOMPARE(mapped[0].first, e);
+    QCOMPARE(mapped[0].second, 40000.0);
+    QCOMPARE(mapped[1].first, -3);         // outside the mesh, left for the range check
+    QCOMPARE(mapped[2].first, ntet + 5);
+    QVERIFY(young_in_model_order(m, changes, false) == changes);
+    // Through a review's path: the command read from the events, applied to the patient.
+    old_rec.events.push_back({{"kind", "parameter"}, {"command", "young"}, {"index", 0u}, {"changes", {{before, 40000.0}}}});
+    const auto commands = recorded_commands(old_rec);
+    QCOMPARE(commands.size(), std::size_t(1));
+    QVERIFY(commands[0].young_in_mesh_order);
+    sim::Simulation simulation(s, m);
+    const double untouched = simulation.materials().young[std::size_t(before)];
+    apply_recorded_young(simulation, commands[0]);
+    QCOMPARE(simulation.materials().young[std::size_t(e)], 40000.0);
+    QCOMPARE(simulation.materials().young[std::size_t(before)], untouched);
+  }
+
   void workstationRecordingReplays() {
     const std::string p = tmpdir("workstation") + "/ws.palrec";
     {
@@ -1087,6 +1126,7 @@ class TestRecording : public QObject {
     const Recording rec = read_recording(p);
     QVERIFY(rec.complete);
     QVERIFY2(rec.steps.size() > 20, qPrintable(QString::number(rec.steps.size())));
+    QVERIFY(!young_in_mesh_order(rec));  // the recorder names elements in the model's numbering
     const ReplayResult r = replay_recording(rec, {});
     qInfo("workstation replay: %zu steps, %zu ticks; simulated: largest difference %.3g N of %.3g N; sent (scale %.3f, %s): "
           "largest difference %.3g N at t = %.3f s of %.3g N",

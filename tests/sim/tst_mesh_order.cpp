@@ -97,12 +97,21 @@ class TestMeshOrder : public QObject {
     TetMesh m = shuffled(box, 7);
     const auto before = geometry(m);
     const std::size_t faces = m.boundary_faces().size();
-    m.order_for_locality();
+    const TetMesh given = m;
+    const std::vector<int> from = m.order_for_locality();
     QCOMPARE(m.validate(), std::string());
     QCOMPARE(m.num_nodes(), box.num_nodes());
     QCOMPARE(m.num_tets(), box.num_tets());
     QVERIFY(geometry(m) == before);
     QCOMPARE(m.boundary_faces().size(), faces);
+    // Each tetrahedron says where it was: the same corners, by position, as that one.
+    QCOMPARE(from.size(), m.tets.size());
+    for (std::size_t e = 0; e < m.tets.size(); ++e) {
+      const auto& was = given.tets[std::size_t(from[e])];
+      for (int k = 0; k < 4; ++k)
+        QCOMPARE(m.nodes[std::size_t(m.tets[e][std::size_t(k)])], given.nodes[std::size_t(was[std::size_t(k)])]);
+      QCOMPARE(m.region[e], given.region[std::size_t(from[e])]);
+    }
     // Every tetrahedron keeps its positive orientation (make_box_mesh's are positive):
     // nothing is flipped by a renumbering.
     for (const auto& t : m.tets)
