@@ -133,8 +133,9 @@ std::vector<int> TetMesh::order_for_locality() {
   std::vector<int> order;  // Cuthill-McKee order, reversed at the end
   order.reserve(N);
   std::vector<int> level(N, -1), stamp(N, -1);
-  // Breadth-first levels from s over the nodes not yet ordered (stamp marks this walk);
-  // returns the last level's node of least degree.
+  // Breadth-first levels from s over its piece of the mesh (stamp marks this walk; the
+  // pieces already ordered are not reachable from it); returns the last level's node of
+  // least degree.
   int walk = 0;
   auto far_end = [&](int s) {
     ++walk;
@@ -145,7 +146,7 @@ std::vector<int> TetMesh::order_for_locality() {
       const int u = queue[q];
       for (int k = ptr[std::size_t(u)]; k < ptr[std::size_t(u) + 1]; ++k) {
         const int w = adj[std::size_t(k)];
-        if (stamp[std::size_t(w)] == walk || stamp[std::size_t(w)] == -2) continue;
+        if (stamp[std::size_t(w)] == walk) continue;
         stamp[std::size_t(w)] = walk;
         level[std::size_t(w)] = level[std::size_t(u)] + 1;
         queue.push_back(w);

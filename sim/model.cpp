@@ -27,9 +27,8 @@ int Model::block_of(int ia, int ib) const {
 Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is_fixed) {
   if (std::string why = mesh.validate(); !why.empty()) throw std::invalid_argument(why);
   mesh.orient();
-  std::vector<int> mesh_tet = mesh.order_for_locality();
   Model m;
-  m.mesh_tet = std::move(mesh_tet);
+  m.mesh_tet = mesh.order_for_locality();
   m.tissue = tissue;
   m.density = tissue.density;
   const int nn = mesh.num_nodes();

@@ -86,10 +86,8 @@ std::vector<RecordedCommand> recorded_commands(const store::RecordingInfo& rec) 
     c.index = e["index"].get<std::uint64_t>();
     c.kind = e.value("command", "");
     c.young_in_mesh_order = mesh_order;
-    if (c.kind == "young" && e.contains("changes") && e["changes"].is_array()) {
-      for (const auto& p : e["changes"])
-        if (p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number())
-          c.young.emplace_back(p[0].get<int>(), p[1].get<double>());
+    if (c.kind == "young") {
+      c.young = store::recorded_young_changes(e);
     } else if ((c.kind == "params" || c.kind == "patient") && e.contains("scenario")) {
       c.scenario = e["scenario"];
     }

@@ -1,5 +1,7 @@
 #include "store/recorded_scenario.h"
 
+#include <limits>
+
 namespace palpation::app::store {
 
 sim::Scenario parse_recorded_scenario(const nlohmann::json& scenario, const std::string& where) {
@@ -19,6 +21,17 @@ void recorded_inputs(const RecordedStep& step, std::span<sim::FingerInput> in) {
     in[k].radius = fi.radius;
     in[k].active = fi.active;
   }
+}
+
+std::vector<std::pair<int, double>> recorded_young_changes(const nlohmann::json& event) {
+  std::vector<std::pair<int, double>> out;
+  if (!event.is_object() || !event.contains("changes") || !event["changes"].is_array()) return out;
+  for (const auto& p : event["changes"])
+    if (p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number()) {
+      const long long e = p[0].get<long long>();
+      out.emplace_back(e >= 0 && e <= std::numeric_limits<int>::max() ? int(e) : -1, p[1].get<double>());
+    }
+  return out;
 }
 
 bool young_in_mesh_order(const RecordingInfo& rec) {

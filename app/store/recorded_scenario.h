@@ -26,6 +26,11 @@ sim::Scenario parse_recorded_scenario(const nlohmann::json& scenario, const std:
 /// radius, active) for the first in.size() fingers: a replay and a review re-simulate it.
 void recorded_inputs(const RecordedStep& step, std::span<sim::FingerInput> in);
 
+/// A "young" parameter event's changes, [[element, Pa], ...]: the well-formed pairs, an
+/// element index beyond int's range as -1 (outside every mesh, for the caller's range
+/// check to skip).
+std::vector<std::pair<int, double>> recorded_young_changes(const nlohmann::json& event);
+
 /// Whether the recording's "young" changes (the instructor's element moduli) name
 /// elements in the patient mesh's own order rather than the model's: a recording whose
 /// header's session has no "element_numbering", made before build_model renumbered

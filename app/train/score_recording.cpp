@@ -84,16 +84,10 @@ ScoredExam score_any(const Rec& rec, const PressureThresholds& thresholds) {
   std::vector<double> young = model->materials.young;
   const bool mesh_order = store::young_in_mesh_order(rec);
   for (const json& e : rec.events) {
-    if (!e.is_object() || e.value("kind", "") != "parameter" || e.value("command", "") != "young" || !e.contains("changes") ||
-        !e["changes"].is_array())
-      continue;
+    if (!e.is_object() || e.value("kind", "") != "parameter" || e.value("command", "") != "young") continue;
     if (swapped && (!e.contains("index") || !e["index"].is_number_unsigned() || e["index"].get<std::uint64_t>() < swap_index))
       continue;
-    std::vector<std::pair<int, double>> changes;
-    for (const auto& c : e["changes"])
-      if (c.is_array() && c.size() == 2 && c[0].is_number_integer() && c[1].is_number())
-        changes.emplace_back(int(std::clamp<long long>(c[0].get<long long>(), -1, young.size())), c[1].get<double>());
-    for (const auto& [el, E] : store::young_in_model_order(*model, changes, mesh_order))
+    for (const auto& [el, E] : store::young_in_model_order(*model, store::recorded_young_changes(e), mesh_order))
       if (el >= 0 && std::size_t(el) < young.size()) young[std::size_t(el)] = E;
   }
   auto skin = std::make_shared<const SkinMap>(build_skin_map(*model));

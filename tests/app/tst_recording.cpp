@@ -1062,6 +1062,12 @@ class TestRecording : public QObject {
     QCOMPARE(mapped[1].first, -3);         // outside the mesh, left for the range check
     QCOMPARE(mapped[2].first, ntet + 5);
     QVERIFY(young_in_model_order(m, changes, false) == changes);
+    // An event's changes as read: malformed pairs left out, an index beyond int's range
+    // outside every mesh.
+    const auto read = recorded_young_changes(
+        {{"changes", {nlohmann::json::array({5000000000LL, 1.0}), nlohmann::json::array({2, 3.0}), "x",
+                      nlohmann::json::array({4})}}});
+    QVERIFY((read == std::vector<std::pair<int, double>>{{-1, 1.0}, {2, 3.0}}));
     // Through a review's path: the command read from the events, applied to the patient.
     old_rec.events.push_back({{"kind", "parameter"}, {"command", "young"}, {"index", 0u}, {"changes", {{before, 40000.0}}}});
     const auto commands = recorded_commands(old_rec);
