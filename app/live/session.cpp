@@ -64,6 +64,7 @@ class SimulationThread {
   bool finite = true;
   double sim_time = 0;
   std::int64_t first_step_ns = 0, last_step_ns = 0;
+  const SimulationLoop& loop() const { return loop_; }
 
  private:
   void run() {
@@ -367,6 +368,8 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"dt_mode", opt.sim_realtime ? "realtime" : "fixed"},
                        {"dt_ms_median", percentile(timed_dt, 50)},
                        {"dt_ms_max", percentile(timed_dt, 100)},
+                       {"dt_ms_limit", sim_thread.loop().dt_limit_s() * 1e3},
+                       {"dt_sweeps", sim_thread.loop().dt_sweeps()},
                        {"simulated_time_s", sim_thread.sim_time},
                        {"cg_iterations_max", cg_max},
                        {"divergence_resets", sim_thread.resets},

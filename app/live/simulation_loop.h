@@ -110,6 +110,10 @@ class SimulationLoop {
   const SimulationLoopOptions& options() const { return opt_; }
   bool recovering() const { return recovering_.load(std::memory_order_acquire); }
   double sim_time() const { return sim_time_; }
+  /// The real-time pacing's longest dt now and its sweeps (step_pacer.h); read when the
+  /// loop is not running.
+  double dt_limit_s() const { return pacer_.limit_s(); }
+  int dt_sweeps() const { return pacer_.sweeps(); }
   std::int64_t first_step_ns() const { return first_step_ns_; }
 
  private:

@@ -112,17 +112,59 @@ class TestStepPacer : public QObject {
     // The lag is constant, not a drift.
     QVERIFY2(std::abs(r.lag.back() - r.lag[r.lag.size() - 1000]) < 0.1e-3, qPrintable(QString::number(r.lag.back())));
     QVERIFY(r.lag.back() <= p.max_lag_s());
+    // Steps that fit are never weighed: no sweep, the limit stays max_dt.
+    QCOMPARE(p.sweeps(), 0);
+    QCOMPARE(p.limit_s(), kMaxDt);
   }
 
-  // A step that never fits (2 h + 1 ms): dt stops at max_dt and the lag stops at its cap.
-  void neverFittingStepsStopAtTheCap() {
+  // A step that never fits (1 ms + 2 h): the tissue falls behind whatever dt is, and a
+  // longer dt buys less and less simulated time (h / (1 ms + 2 h): 0.476 of the wall clock
+  // at 10 ms, 0.400 at 1.98 ms, 0.363 at 1.32 ms). The sweep keeps the shortest dt of the
+  // ladder within 80 % of max_dt's rate, 10 / 1.5^4 = 1.98 ms: four times the updates a
+  // second for a sixth of the simulated time. The lag stays within its cap all along.
+  void neverFittingStepsKeepTheShortestDtThatBuysTime() {
     StepPacer p(kDt, kMaxDt);
-    const Run r = drive(p, [](double h, int) { return 1e-3 + 2 * h; }, 500);
+    auto step = [](double h, int) { return 1e-3 + 2 * h; };
+    const Run r = drive(p, step, 2000);
     for (std::size_t i = 0; i < r.h.size(); ++i) {
       QVERIFY(r.h[i] >= kDt && r.h[i] <= kMaxDt);
       QVERIFY(r.lag[i] <= p.max_lag_s() + 1e-9);
     }
-    QCOMPARE(r.h.back(), kMaxDt);
+    QCOMPARE(p.sweeps(), 1);
+    QVERIFY2(std::abs(p.limit_s() - kMaxDt / std::pow(1.5, 4)) < 1e-12, qPrintable(QString::number(p.limit_s())));
+    QCOMPARE(r.h.back(), p.limit_s());
+    // Over the last 1,000 steps: the simulated time a wall second within 20 % of max_dt's
+    // (0.476), at more than four times its 47.6 updates a second.
+    double wall = 0;
+    for (std::size_t i = r.h.size() - 1000; i < r.h.size(); ++i) wall += step(r.h[i], 0);
+    const double rate = sum(r.h, r.h.size() - 1000) / wall, updates = 1000 / wall;
+    QVERIFY2(rate >= 0.8 * kMaxDt / step(kMaxDt, 0), qPrintable(QString::number(rate)));
+    QVERIFY2(updates > 4 / step(kMaxDt, 0), qPrintable(QString::number(updates)));
+  }
+
+  // A rate that grows with dt up to 4 ms and is flat beyond (0.32 of the wall clock at
+  // 1 ms, 0.53 at 2.96 ms, 0.42 at 1.98 ms, 0.64 from 4 ms). The sweep stops at 2.96 ms, the
+  // last dt of the ladder within 80 % of 10 ms's rate. When the step's cost changes so that
+  // only max_dt keeps the rate (8 ms + h / 2: 0.77 at 10 ms, 0.59 at 6.7 ms), the next
+  // sweep, kHoldSteps saturated steps after the first, goes back to it.
+  void theSweepFollowsTheStepsCost() {
+    StepPacer p(kDt, kMaxDt);
+    auto flat = [](double h) { return h / (0.64 * std::min(1.0, 0.5 + 0.5 * (h - 1e-3) / 3e-3)); };
+    const Run a = drive(p, [&](double h, int) { return flat(h); }, 1000);
+    QCOMPARE(p.sweeps(), 1);
+    QVERIFY2(std::abs(p.limit_s() - kMaxDt / std::pow(1.5, 3)) < 1e-12, qPrintable(QString::number(p.limit_s())));
+    QCOMPARE(a.h.back(), p.limit_s());
+    const Run b = drive(p, [](double h, int) { return 8e-3 + 0.5 * h; }, StepPacer::kHoldSteps);
+    QCOMPARE(p.sweeps(), 2);
+    QCOMPARE(p.limit_s(), kMaxDt);
+    QCOMPARE(b.h.back(), kMaxDt);
+    // restart() (a new patient) puts the limit back to max_dt and sweeps at the first
+    // saturation.
+    p.restart();
+    QCOMPARE(p.limit_s(), kMaxDt);
+    drive(p, [&](double h, int) { return flat(h); }, 1000);
+    QCOMPARE(p.sweeps(), 3);
+    QVERIFY(p.limit_s() < kMaxDt);
   }
 
   // After restart() the next step covers dt and starts a new grid, however late it is.
