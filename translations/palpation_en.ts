@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="48"/>
+        <location filename="../ui/panels.cpp" line="50"/>
         <source>Thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="48"/>
+        <location filename="../ui/panels.cpp" line="50"/>
         <source>Index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="49"/>
+        <location filename="../ui/panels.cpp" line="51"/>
         <source>Middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="49"/>
+        <location filename="../ui/panels.cpp" line="51"/>
         <source>Ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="50"/>
+        <location filename="../ui/panels.cpp" line="52"/>
         <source>Little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -88,47 +88,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="427"/>
+        <location filename="../ui/panels.cpp" line="440"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="428"/>
+        <location filename="../ui/panels.cpp" line="441"/>
         <source>Mouse palpation (no robot)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="429"/>
+        <location filename="../ui/panels.cpp" line="442"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="430"/>
+        <location filename="../ui/panels.cpp" line="443"/>
         <source>HandHIRO address</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="431"/>
+        <location filename="../ui/panels.cpp" line="444"/>
         <source>Loop jitter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="432"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="445"/>
+        <location filename="../ui/panels.cpp" line="458"/>
         <source>attached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="445"/>
+        <location filename="../ui/panels.cpp" line="458"/>
         <source>released</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="447"/>
+        <location filename="../ui/panels.cpp" line="460"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1288,77 +1288,77 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="120"/>
+        <location filename="../ui/panels.cpp" line="122"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="121"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>Box phantom</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="124"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="130"/>
+        <location filename="../ui/panels.cpp" line="132"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="131"/>
+        <location filename="../ui/panels.cpp" line="133"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="132"/>
+        <location filename="../ui/panels.cpp" line="134"/>
         <source>Fine (GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="133"/>
+        <location filename="../ui/panels.cpp" line="135"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="134"/>
+        <location filename="../ui/panels.cpp" line="136"/>
         <source>Resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="135"/>
+        <location filename="../ui/panels.cpp" line="137"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="136"/>
+        <location filename="../ui/panels.cpp" line="138"/>
         <source>Poisson ratio</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="137"/>
+        <location filename="../ui/panels.cpp" line="139"/>
         <source>Load patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="138"/>
+        <location filename="../ui/panels.cpp" line="140"/>
         <source>Import scan...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="139"/>
+        <location filename="../ui/panels.cpp" line="141"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="140"/>
+        <location filename="../ui/panels.cpp" line="142"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2002,107 +2002,117 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="345"/>
+        <location filename="../ui/panels.cpp" line="349"/>
         <source>Backend</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="346"/>
+        <location filename="../ui/panels.cpp" line="350"/>
         <source>CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="347"/>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>CG max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="348"/>
+        <location filename="../ui/panels.cpp" line="352"/>
         <source>Force error held</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>off: fixed CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="350"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>The finger-force error the solver holds, in percent of the converged force: it picks the loosest CG tolerance that keeps it, starting from the one above, and checks it against a converged step every so often. Off: the CG tolerance stays as set.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="353"/>
+        <location filename="../ui/panels.cpp" line="357"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="354"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>Safety</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="355"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>Step time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="356"/>
+        <location filename="../ui/panels.cpp" line="360"/>
         <source>CG iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="357"/>
+        <location filename="../ui/panels.cpp" line="361"/>
         <source>Simulation rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="358"/>
+        <location filename="../ui/panels.cpp" line="362"/>
+        <source>Tissue pace</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="363"/>
+        <source>Simulated time a wall-clock second. Below 100 % this patient&apos;s mesh is too fine for this machine to keep real time: the tissue moves in slow motion, and the solver&apos;s time step is the shortest that keeps four fifths of the pace the longest one would.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="366"/>
         <source>Haptic rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="359"/>
+        <location filename="../ui/panels.cpp" line="367"/>
         <source>Apply solver settings</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="368"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="373"/>
+        <location filename="../ui/panels.cpp" line="381"/>
         <source>stopped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="374"/>
+        <location filename="../ui/panels.cpp" line="382"/>
         <source>loading</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="375"/>
+        <location filename="../ui/panels.cpp" line="383"/>
         <source>running</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="376"/>
+        <location filename="../ui/panels.cpp" line="384"/>
         <source>swapping</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="377"/>
+        <location filename="../ui/panels.cpp" line="385"/>
         <source>error: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="382"/>
+        <location filename="../ui/panels.cpp" line="390"/>
         <source>no fault</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="383"/>
+        <location filename="../ui/panels.cpp" line="391"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>%n backend fallback</numerusform>
@@ -2110,7 +2120,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="384"/>
+        <location filename="../ui/panels.cpp" line="392"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>%n divergence reset</numerusform>
@@ -2118,19 +2128,24 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="385"/>
+        <location filename="../ui/panels.cpp" line="393"/>
         <source>forces held and blended</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="389"/>
+        <location filename="../ui/panels.cpp" line="397"/>
         <source>%1 ms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="391"/>
-        <location filename="../ui/panels.cpp" line="392"/>
+        <location filename="../ui/panels.cpp" line="399"/>
+        <location filename="../ui/panels.cpp" line="405"/>
         <source>%1 Hz</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="403"/>
+        <source>%1 % of real time, dt %2 ms</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2220,103 +2235,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="244"/>
-        <location filename="../ui/panels.cpp" line="272"/>
+        <location filename="../ui/panels.cpp" line="246"/>
+        <location filename="../ui/panels.cpp" line="274"/>
         <source>Source: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="273"/>
+        <location filename="../ui/panels.cpp" line="275"/>
         <source>Preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="276"/>
         <source>Stiffness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="275"/>
+        <location filename="../ui/panels.cpp" line="277"/>
         <source>Add by shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="276"/>
+        <location filename="../ui/panels.cpp" line="278"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="277"/>
+        <location filename="../ui/panels.cpp" line="279"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="278"/>
+        <location filename="../ui/panels.cpp" line="280"/>
         <source>Shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="279"/>
+        <location filename="../ui/panels.cpp" line="281"/>
         <source>Centre x, y, z</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="280"/>
+        <location filename="../ui/panels.cpp" line="282"/>
         <source>Radius (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="281"/>
+        <location filename="../ui/panels.cpp" line="283"/>
         <source>Add tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="282"/>
+        <location filename="../ui/panels.cpp" line="284"/>
         <source>Remove selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="283"/>
+        <location filename="../ui/panels.cpp" line="285"/>
         <source>Brush</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="284"/>
+        <location filename="../ui/panels.cpp" line="286"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="285"/>
+        <location filename="../ui/panels.cpp" line="287"/>
         <source>Depth below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="286"/>
+        <location filename="../ui/panels.cpp" line="288"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="287"/>
+        <location filename="../ui/panels.cpp" line="289"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="288"/>
+        <location filename="../ui/panels.cpp" line="290"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="289"/>
+        <location filename="../ui/panels.cpp" line="291"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="290"/>
+        <location filename="../ui/panels.cpp" line="292"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="291"/>
+        <location filename="../ui/panels.cpp" line="293"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>

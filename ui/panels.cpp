@@ -1,5 +1,7 @@
 #include "panels.h"
 
+#include <algorithm>
+
 #include <QCheckBox>
 #include <QCoreApplication>
 #include <QComboBox>
@@ -322,6 +324,7 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   step_ms = new QLabel;
   cg = new QLabel;
   step_rate = new QLabel;
+  pace = new QLabel;
   haptic_rate = new QLabel;
   state = new QLabel;
   safety = new QLabel;
@@ -337,6 +340,7 @@ SimulationPanel::SimulationPanel(QWidget* parent) : QWidget(parent) {
   form_->addRow(QStringLiteral("-"), step_ms);
   form_->addRow(QStringLiteral("-"), cg);
   form_->addRow(QStringLiteral("-"), step_rate);
+  form_->addRow(QStringLiteral("-"), pace);
   form_->addRow(QStringLiteral("-"), haptic_rate);
   retranslate();
 }
@@ -355,6 +359,10 @@ void SimulationPanel::retranslate() {
   set_label(form_, step_ms, tr("Step time"));
   set_label(form_, cg, tr("CG iterations"));
   set_label(form_, step_rate, tr("Simulation rate"));
+  set_label(form_, pace, tr("Tissue pace"));
+  pace->setToolTip(tr("Simulated time a wall-clock second. Below 100 % this patient's mesh is too fine for this "
+                      "machine to keep real time: the tissue moves in slow motion, and the solver's time step "
+                      "is the shortest that keeps four fifths of the pace the longest one would."));
   set_label(form_, haptic_rate, tr("Haptic rate"));
   apply->setText(tr("Apply solver settings"));
   backend->setToolTip(tr("A backend change takes effect when the patient is (re)loaded."));
@@ -389,6 +397,11 @@ void SimulationPanel::show_stats(const app::live::LiveStats& s, const QString& b
   step_ms->setText(tr("%1 ms").arg(s.step_ms, 0, 'f', 2));
   cg->setText(QString::number(s.cg_iterations));
   step_rate->setText(tr("%1 Hz").arg(s.step_rate_hz, 0, 'f', 0));
+  // Steps start on a grid of dt and never run ahead of the wall clock: 95 % and up is real
+  // time within the window's counting.
+  const bool slow = s.step_rate_hz > 0 && s.pace < 0.95;
+  pace->setText(tr("%1 % of real time, dt %2 ms").arg(100 * std::min(s.pace, 1.0), 0, 'f', 0).arg(s.dt_ms, 0, 'f', 1));
+  pace->setStyleSheet(slow ? QStringLiteral("color: #b35c00") : QString());
   haptic_rate->setText(tr("%1 Hz").arg(s.haptic_rate_hz, 0, 'f', 0));
 }
 

@@ -100,6 +100,7 @@ class SimulationPanel : public QWidget {
   QDoubleSpinBox* force_error = nullptr;  // percent; 0: the tolerance fixed
   QPushButton* apply = nullptr;
   QLabel *step_ms = nullptr, *cg = nullptr, *step_rate = nullptr, *haptic_rate = nullptr, *state = nullptr;
+  QLabel* pace = nullptr;    // the tissue's pace against the wall clock, and the mean dt
   QLabel* safety = nullptr;  // fallbacks / divergence resets and the newest reason
  protected:
   void changeEvent(QEvent* e) override;

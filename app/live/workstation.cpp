@@ -475,6 +475,7 @@ bool Workstation::poll() {
   StepSample ss;
   while (steps_.pop(ss)) {
     ++window_steps_;
+    window_sim_s_ += ss.h;
     stats_.step_ms = ss.step_ms;
     stats_.cg_iterations = ss.cg_iterations;
     for (auto& l : step_listeners_) l(ss);
@@ -491,8 +492,11 @@ bool Workstation::poll() {
     const double w = double(now - rate_window_ns_) * 1e-9;
     stats_.haptic_rate_hz = double(window_ticks_) / w;
     stats_.step_rate_hz = double(window_steps_) / w;
+    stats_.pace = window_sim_s_ / w;
+    stats_.dt_ms = window_steps_ > 0 ? 1e3 * window_sim_s_ / double(window_steps_) : 0.0;
     stats_.jitter_us = window_jitter_;
     window_ticks_ = window_steps_ = 0;
+    window_sim_s_ = 0;
     window_jitter_ = 0;
     rate_window_ns_ = now;
   }

@@ -174,6 +174,9 @@ const char* sim_state_name(SimState s);
 /// Live figures (GUI thread, updated by poll()).
 struct LiveStats {
   double step_rate_hz = 0, haptic_rate_hz = 0, step_ms = 0, jitter_us = 0;
+  // Simulated seconds a wall second over the same window (1: the tissue keeps real time;
+  // below where no dt fits, live/step_pacer.h), and the steps' mean dt (ms).
+  double pace = 0, dt_ms = 0;
   int cg_iterations = 0;
   bool connected = false;
   std::array<bool, dv::kMaxFingers> attached{};
@@ -345,6 +348,7 @@ class Workstation {
   void notify_command(CommandRecord r);
   std::int64_t rate_window_ns_ = 0;
   std::uint64_t window_ticks_ = 0, window_steps_ = 0;
+  double window_sim_s_ = 0;
   std::int64_t prev_tick_ns_ = 0;
   double window_jitter_ = 0;
 };

@@ -286,6 +286,33 @@ class TstUiMainWindow : public QObject {
     QVERIFY(w_->menuBar()->actions().size() >= 5);
   }
 
+  // The tissue's pace: from the running workstation (the default patient's steps never run
+  // ahead of the wall clock, and cover at least the scenario's 1 ms), and, for a mesh too
+  // fine for the machine, a pace below real time in amber with the dt the pacer chose.
+  void simulation_panel_shows_the_pace() {
+    auto* sim_panel = w_->findChild<ui::SimulationPanel*>();
+    QVERIFY(sim_panel);
+    QTRY_VERIFY_WITH_TIMEOUT(w_->workstation().stats().pace > 0, 20000);
+    const app::live::LiveStats live = w_->workstation().stats();
+    QVERIFY2(live.pace <= 1.05, qPrintable(QString::number(live.pace)));
+    QVERIFY2(live.dt_ms >= 0.999 && live.dt_ms <= 10.001, qPrintable(QString::number(live.dt_ms)));
+    QTRY_VERIFY(sim_panel->pace->text().endsWith(QStringLiteral(" ms")));
+    app::live::LiveStats slow = live;
+    slow.step_rate_hz = 107;
+    slow.pace = 0.534;
+    slow.dt_ms = 4.44;
+    sim_panel->show_stats(slow, QStringLiteral("cuda"));
+    QCOMPARE(sim_panel->pace->text(), QStringLiteral("53 % of real time, dt 4.4 ms"));
+    QVERIFY(sim_panel->pace->styleSheet().contains(QStringLiteral("#b35c00")));
+    app::live::LiveStats real_time = slow;
+    real_time.step_rate_hz = 1000;
+    real_time.pace = 1.001;
+    real_time.dt_ms = 1.0;
+    sim_panel->show_stats(real_time, QStringLiteral("cuda"));
+    QCOMPARE(sim_panel->pace->text(), QStringLiteral("100 % of real time, dt 1.0 ms"));
+    QVERIFY(sim_panel->pace->styleSheet().isEmpty());
+  }
+
   // The Simulation panel shows the force error the default patient holds (1 % of the
   // converged force) and Apply sends what it is set to: 0 for a fixed CG tolerance.
   void simulation_panel_force_error() {
