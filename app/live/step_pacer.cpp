@@ -6,17 +6,13 @@
 namespace palpation::app::live {
 
 StepPacer::StepPacer(double dt, double max_dt)
-    : dt_(dt), max_dt_(std::max(dt, max_dt)), dt_ns_(std::llround(dt * 1e9)), keep_ns_(std::llround(max_lag_s() * 1e9)) {}
+    : dt_(dt), max_dt_(std::max(dt, max_dt)), dt_ns_(std::llround(dt * 1e9)), keep_ns_(std::llround(max_lag_s() * 1e9)) {
+  while (limit(levels_ - 1) > dt_) ++levels_;
+}
 
 double StepPacer::max_lag_s() const { return kLagAtDt * dt_ + (max_dt_ - dt_) / kLagShare + max_dt_; }
 
 double StepPacer::limit(int level) const { return std::max(dt_, max_dt_ / std::pow(kLadder, level)); }
-
-int StepPacer::levels() const {
-  int k = 0;
-  while (limit(k) > dt_) ++k;
-  return k + 1;
-}
 
 void StepPacer::restart() {
   covered_ns_ = 0;
@@ -39,7 +35,7 @@ void StepPacer::observe(double h, double wall_s, bool saturated) {
     return;
   }
   if (!sweeping_) {
-    if (++hold_ < kHoldSteps || levels() < 2) return;
+    if (++hold_ < kHoldSteps || levels_ < 2) return;
     hold_ = 0;
     sweeping_ = true;
     ++sweeps_;
@@ -62,7 +58,7 @@ void StepPacer::observe(double h, double wall_s, bool saturated) {
     return;
   }
   chosen_ = level_;
-  if (level_ + 1 < levels())
+  if (level_ + 1 < levels_)
     compare(level_ + 1);
   else
     sweeping_ = false;
@@ -74,14 +70,16 @@ StepPacer::Slot StepPacer::next(std::int64_t now_ns) {
     step_start_ns_ = 0;
   }
   Slot s;
+  auto start = [&](double h, bool saturated) {
+    s.h = step_h_ = h;
+    step_start_ns_ = now_ns;
+    step_saturated_ = saturated;
+    return s;
+  };
   if (covered_ns_ == 0) {
     covered_ns_ = now_ns;
     lag_s_ = 0;
-    s.h = dt_;
-    step_start_ns_ = now_ns;
-    step_h_ = s.h;
-    step_saturated_ = false;
-    return s;
+    return start(dt_, false);
   }
   if (now_ns < covered_ns_ + dt_ns_) {
     s.wait = true;
@@ -93,14 +91,11 @@ StepPacer::Slot StepPacer::next(std::int64_t now_ns) {
   const double lag = double(now_ns - covered_ns_) * 1e-9;
   const double wanted = dt_ + kLagShare * std::max(0.0, lag - kLagAtDt * dt_);
   const double cap = limit(sweeping_ ? (at_max_ ? 0 : level_) : chosen_);
-  s.h = std::min(cap, wanted);
-  covered_ns_ += std::llround(s.h * 1e9);
+  const double h = std::min(cap, wanted);
+  covered_ns_ += std::llround(h * 1e9);
   if (now_ns - covered_ns_ > keep_ns_) covered_ns_ = now_ns - keep_ns_;
   lag_s_ = double(now_ns - covered_ns_) * 1e-9;
-  step_start_ns_ = now_ns;
-  step_h_ = s.h;
-  step_saturated_ = wanted > cap;
-  return s;
+  return start(h, wanted > cap);
 }
 
 }  // namespace palpation::app::live

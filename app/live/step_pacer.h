@@ -80,7 +80,6 @@ class StepPacer {
 
  private:
   double limit(int level) const;
-  int levels() const;
   // The step that started at the last next(): its wall time is known at the next call.
   void observe(double h, double wall_s, bool saturated);
   void compare(int level);  // starts measuring this ladder level against max_dt
@@ -90,6 +89,7 @@ class StepPacer {
   std::int64_t covered_ns_ = 0;  // the wall-clock time simulated up to (0: before the first step)
   double lag_s_ = 0;
   // The limit where no dt fits: ladder levels (0: max_dt), the one in use and the sweep.
+  int levels_ = 1;          // max_dt / kLadder^k down to dt: the last one is dt
   int chosen_ = 0;
   bool sweeping_ = false;
   int level_ = 0;           // the level compared with max_dt (sweeping_)
