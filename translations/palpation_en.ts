@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="50"/>
+        <location filename="../ui/panels.cpp" line="51"/>
         <source>Thumb</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="50"/>
+        <location filename="../ui/panels.cpp" line="51"/>
         <source>Index</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="51"/>
+        <location filename="../ui/panels.cpp" line="52"/>
         <source>Middle</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="51"/>
+        <location filename="../ui/panels.cpp" line="52"/>
         <source>Ring</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="52"/>
+        <location filename="../ui/panels.cpp" line="53"/>
         <source>Little</source>
         <translation type="unfinished"></translation>
     </message>
@@ -88,47 +88,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="440"/>
+        <location filename="../ui/panels.cpp" line="442"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="441"/>
+        <location filename="../ui/panels.cpp" line="443"/>
         <source>Mouse palpation (no robot)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="442"/>
+        <location filename="../ui/panels.cpp" line="444"/>
         <source>Device</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="443"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>HandHIRO address</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="444"/>
+        <location filename="../ui/panels.cpp" line="446"/>
         <source>Loop jitter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="445"/>
+        <location filename="../ui/panels.cpp" line="447"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="458"/>
+        <location filename="../ui/panels.cpp" line="460"/>
         <source>attached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="458"/>
+        <location filename="../ui/panels.cpp" line="460"/>
         <source>released</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="460"/>
+        <location filename="../ui/panels.cpp" line="462"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1288,77 +1288,77 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="124"/>
         <source>Box phantom</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="124"/>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="125"/>
+        <location filename="../ui/panels.cpp" line="126"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="132"/>
+        <location filename="../ui/panels.cpp" line="133"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="133"/>
+        <location filename="../ui/panels.cpp" line="134"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="134"/>
+        <location filename="../ui/panels.cpp" line="135"/>
         <source>Fine (GPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="135"/>
+        <location filename="../ui/panels.cpp" line="136"/>
         <source>Patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="136"/>
+        <location filename="../ui/panels.cpp" line="137"/>
         <source>Resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="137"/>
+        <location filename="../ui/panels.cpp" line="138"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="138"/>
+        <location filename="../ui/panels.cpp" line="139"/>
         <source>Poisson ratio</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="139"/>
+        <location filename="../ui/panels.cpp" line="140"/>
         <source>Load patient</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="140"/>
+        <location filename="../ui/panels.cpp" line="141"/>
         <source>Import scan...</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="141"/>
+        <location filename="../ui/panels.cpp" line="142"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="142"/>
+        <location filename="../ui/panels.cpp" line="143"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2002,117 +2002,117 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="350"/>
         <source>Backend</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="350"/>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="351"/>
+        <location filename="../ui/panels.cpp" line="352"/>
         <source>CG max. iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="352"/>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>Force error held</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="353"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>off: fixed CG tolerance</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="354"/>
+        <location filename="../ui/panels.cpp" line="355"/>
         <source>The finger-force error the solver holds, in percent of the converged force: it picks the loosest CG tolerance that keeps it, starting from the one above, and checks it against a converged step every so often. Off: the CG tolerance stays as set.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="357"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="358"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>Safety</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="359"/>
+        <location filename="../ui/panels.cpp" line="360"/>
         <source>Step time</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="361"/>
         <source>CG iterations</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="361"/>
+        <location filename="../ui/panels.cpp" line="362"/>
         <source>Simulation rate</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="362"/>
+        <location filename="../ui/panels.cpp" line="363"/>
         <source>Tissue pace</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="363"/>
-        <source>Simulated time a wall-clock second. Below 100 % this patient&apos;s mesh is too fine for this machine to keep real time: the tissue moves in slow motion, and the solver&apos;s time step is the shortest that keeps four fifths of the pace the longest one would.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/panels.cpp" line="366"/>
-        <source>Haptic rate</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../ui/panels.cpp" line="367"/>
-        <source>Apply solver settings</source>
+        <location filename="../ui/panels.cpp" line="364"/>
+        <source>Simulated time a wall-clock second. Below 100 % this patient&apos;s mesh is too fine for this machine to keep real time: the tissue moves in slow motion, and the solver&apos;s time step is the shortest that keeps %1 % of the pace the longest one would.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../ui/panels.cpp" line="368"/>
+        <source>Haptic rate</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="369"/>
+        <source>Apply solver settings</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../ui/panels.cpp" line="370"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="381"/>
+        <location filename="../ui/panels.cpp" line="383"/>
         <source>stopped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="382"/>
+        <location filename="../ui/panels.cpp" line="384"/>
         <source>loading</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="383"/>
+        <location filename="../ui/panels.cpp" line="385"/>
         <source>running</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="384"/>
+        <location filename="../ui/panels.cpp" line="386"/>
         <source>swapping</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="385"/>
+        <location filename="../ui/panels.cpp" line="387"/>
         <source>error: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="390"/>
+        <location filename="../ui/panels.cpp" line="392"/>
         <source>no fault</source>
         <translation type="unfinished"></translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="391"/>
+        <location filename="../ui/panels.cpp" line="393"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>%n backend fallback</numerusform>
@@ -2120,7 +2120,7 @@
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="392"/>
+        <location filename="../ui/panels.cpp" line="394"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>%n divergence reset</numerusform>
@@ -2128,23 +2128,23 @@
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="393"/>
+        <location filename="../ui/panels.cpp" line="395"/>
         <source>forces held and blended</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="397"/>
+        <location filename="../ui/panels.cpp" line="399"/>
         <source>%1 ms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="399"/>
-        <location filename="../ui/panels.cpp" line="405"/>
+        <location filename="../ui/panels.cpp" line="401"/>
+        <location filename="../ui/panels.cpp" line="407"/>
         <source>%1 Hz</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="403"/>
+        <location filename="../ui/panels.cpp" line="405"/>
         <source>%1 % of real time, dt %2 ms</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2235,103 +2235,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="246"/>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="247"/>
+        <location filename="../ui/panels.cpp" line="275"/>
         <source>Source: %1</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="275"/>
+        <location filename="../ui/panels.cpp" line="276"/>
         <source>Preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="276"/>
+        <location filename="../ui/panels.cpp" line="277"/>
         <source>Stiffness</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="277"/>
+        <location filename="../ui/panels.cpp" line="278"/>
         <source>Add by shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="278"/>
+        <location filename="../ui/panels.cpp" line="279"/>
         <source>Sphere</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="279"/>
+        <location filename="../ui/panels.cpp" line="280"/>
         <source>Ellipsoid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="280"/>
+        <location filename="../ui/panels.cpp" line="281"/>
         <source>Shape</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="281"/>
+        <location filename="../ui/panels.cpp" line="282"/>
         <source>Centre x, y, z</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="282"/>
+        <location filename="../ui/panels.cpp" line="283"/>
         <source>Radius (x, y, z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="283"/>
+        <location filename="../ui/panels.cpp" line="284"/>
         <source>Add tumour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="284"/>
+        <location filename="../ui/panels.cpp" line="285"/>
         <source>Remove selected</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="285"/>
+        <location filename="../ui/panels.cpp" line="286"/>
         <source>Brush</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="286"/>
+        <location filename="../ui/panels.cpp" line="287"/>
         <source>Radius</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="287"/>
+        <location filename="../ui/panels.cpp" line="288"/>
         <source>Depth below the skin</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="288"/>
+        <location filename="../ui/panels.cpp" line="289"/>
         <source>Paint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="289"/>
+        <location filename="../ui/panels.cpp" line="290"/>
         <source>Erase</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="290"/>
+        <location filename="../ui/panels.cpp" line="291"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="291"/>
+        <location filename="../ui/panels.cpp" line="292"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="292"/>
+        <location filename="../ui/panels.cpp" line="293"/>
         <source>Undo</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="293"/>
+        <location filename="../ui/panels.cpp" line="294"/>
         <source>Redo</source>
         <translation type="unfinished"></translation>
     </message>

@@ -4,27 +4,27 @@
 <context>
     <name>DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="50"/>
+        <location filename="../ui/panels.cpp" line="51"/>
         <source>Thumb</source>
         <translation>親指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="50"/>
+        <location filename="../ui/panels.cpp" line="51"/>
         <source>Index</source>
         <translation>人差し指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="51"/>
+        <location filename="../ui/panels.cpp" line="52"/>
         <source>Middle</source>
         <translation>中指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="51"/>
+        <location filename="../ui/panels.cpp" line="52"/>
         <source>Ring</source>
         <translation>薬指</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="52"/>
+        <location filename="../ui/panels.cpp" line="53"/>
         <source>Little</source>
         <translation>小指</translation>
     </message>
@@ -88,47 +88,47 @@
 <context>
     <name>palpation::ui::DevicePanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="440"/>
+        <location filename="../ui/panels.cpp" line="442"/>
         <source>Simulated HandHIRO (scripted palpation)</source>
         <translation>シミュレーションの HandHIRO（自動触診）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="441"/>
+        <location filename="../ui/panels.cpp" line="443"/>
         <source>Mouse palpation (no robot)</source>
         <translation>マウス触診（ロボットなし）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="442"/>
+        <location filename="../ui/panels.cpp" line="444"/>
         <source>Device</source>
         <translation>デバイス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="443"/>
+        <location filename="../ui/panels.cpp" line="445"/>
         <source>HandHIRO address</source>
         <translation>HandHIRO アドレス</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="444"/>
+        <location filename="../ui/panels.cpp" line="446"/>
         <source>Loop jitter</source>
         <translation>ループのジッタ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="445"/>
+        <location filename="../ui/panels.cpp" line="447"/>
         <source>The HandHIRO network link is chosen at start: palpation-trainer --device emulator, or --device handhiro --robot ADDRESS:PORT.</source>
         <translation>HandHIRO のネットワーク接続は起動時に選びます: palpation-trainer --device emulator、または --device handhiro --robot アドレス:ポート</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="458"/>
+        <location filename="../ui/panels.cpp" line="460"/>
         <source>attached</source>
         <translation>装着</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="458"/>
+        <location filename="../ui/panels.cpp" line="460"/>
         <source>released</source>
         <translation>解放</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="460"/>
+        <location filename="../ui/panels.cpp" line="462"/>
         <source>%1 us (max over 0.5 s)</source>
         <translation>%1 µs（0.5 秒間の最大）</translation>
     </message>
@@ -1293,77 +1293,77 @@
 <context>
     <name>palpation::ui::PatientPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="122"/>
+        <location filename="../ui/panels.cpp" line="123"/>
         <source>Breast phantom (paper&apos;s tumour)</source>
         <translation>乳房ファントム（論文の腫瘍）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="123"/>
+        <location filename="../ui/panels.cpp" line="124"/>
         <source>Box phantom</source>
         <translation>直方体ファントム</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="124"/>
+        <location filename="../ui/panels.cpp" line="125"/>
         <source>The paper&apos;s breast with its tumour (107 kPa at x = 12.5 cm).</source>
         <translation>論文の乳房と腫瘍（x = 12.5 cm、107 kPa）。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="125"/>
+        <location filename="../ui/panels.cpp" line="126"/>
         <source>A 10 x 10 x 5 cm block of tissue, no tumour.</source>
         <translation>10 x 10 x 5 cm の組織ブロック、腫瘍なし。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="132"/>
+        <location filename="../ui/panels.cpp" line="133"/>
         <source>Coarse (about 1,000 nodes, real time on a CPU)</source>
         <translation>粗い（約 1,000 節点、CPU でリアルタイム）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="133"/>
+        <location filename="../ui/panels.cpp" line="134"/>
         <source>Paper (about 9,100 nodes, GPU)</source>
         <translation>論文（約 9,100 節点、GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="134"/>
+        <location filename="../ui/panels.cpp" line="135"/>
         <source>Fine (GPU)</source>
         <translation>細かい（GPU）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="135"/>
+        <location filename="../ui/panels.cpp" line="136"/>
         <source>Patient</source>
         <translation>患者</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="136"/>
+        <location filename="../ui/panels.cpp" line="137"/>
         <source>Resolution</source>
         <translation>解像度</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="137"/>
+        <location filename="../ui/panels.cpp" line="138"/>
         <source>Tissue Young&apos;s modulus</source>
         <translation>組織のヤング率</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="138"/>
+        <location filename="../ui/panels.cpp" line="139"/>
         <source>Poisson ratio</source>
         <translation>ポアソン比</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="139"/>
+        <location filename="../ui/panels.cpp" line="140"/>
         <source>Load patient</source>
         <translation>患者を読み込む</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="140"/>
+        <location filename="../ui/panels.cpp" line="141"/>
         <source>Import scan...</source>
         <translation>スキャンを取り込む...</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="141"/>
+        <location filename="../ui/panels.cpp" line="142"/>
         <source>Patients from the library (built-in shapes, graded tumour cases, imported scans) and the built-in phantoms.</source>
         <translation>ライブラリの患者（内蔵の乳房形状、大きさ・深さ・硬さ別の腫瘍症例、取り込んだスキャン）と内蔵ファントム。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="142"/>
+        <location filename="../ui/panels.cpp" line="143"/>
         <source>Phantom patients only; an imported scan keeps the resolution it was meshed at.</source>
         <translation>ファントム患者のみ。取り込んだスキャンはメッシュ生成時の解像度のままです。</translation>
     </message>
@@ -2006,147 +2006,147 @@
 <context>
     <name>palpation::ui::SimulationPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="349"/>
+        <location filename="../ui/panels.cpp" line="350"/>
         <source>Backend</source>
         <translation>バックエンド</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="350"/>
+        <location filename="../ui/panels.cpp" line="351"/>
         <source>CG tolerance</source>
         <translation>CG 許容誤差</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="351"/>
+        <location filename="../ui/panels.cpp" line="352"/>
         <source>CG max. iterations</source>
         <translation>CG 最大反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="352"/>
+        <location filename="../ui/panels.cpp" line="353"/>
         <source>Force error held</source>
         <translation>保持する力の誤差</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="353"/>
+        <location filename="../ui/panels.cpp" line="354"/>
         <source>off: fixed CG tolerance</source>
         <translation>オフ：CG 許容誤差を固定</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="354"/>
+        <location filename="../ui/panels.cpp" line="355"/>
         <source>The finger-force error the solver holds, in percent of the converged force: it picks the loosest CG tolerance that keeps it, starting from the one above, and checks it against a converged step every so often. Off: the CG tolerance stays as set.</source>
         <translation>ソルバーが保持する指先の力の誤差（収束した力に対する割合、%）。これを満たす最も緩い CG 許容誤差を上の値から選び、ときどき収束したステップと比べて確かめます。オフ：CG 許容誤差は設定のまま。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="357"/>
+        <location filename="../ui/panels.cpp" line="358"/>
         <source>State</source>
         <translation>状態</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="358"/>
+        <location filename="../ui/panels.cpp" line="359"/>
         <source>Safety</source>
         <translation>安全</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="359"/>
+        <location filename="../ui/panels.cpp" line="360"/>
         <source>Step time</source>
         <translation>ステップ時間</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="360"/>
+        <location filename="../ui/panels.cpp" line="361"/>
         <source>CG iterations</source>
         <translation>CG 反復回数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="361"/>
+        <location filename="../ui/panels.cpp" line="362"/>
         <source>Simulation rate</source>
         <translation>シミュレーション周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="362"/>
+        <location filename="../ui/panels.cpp" line="363"/>
         <source>Tissue pace</source>
         <translation>組織の時間の進み</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="363"/>
-        <source>Simulated time a wall-clock second. Below 100 % this patient&apos;s mesh is too fine for this machine to keep real time: the tissue moves in slow motion, and the solver&apos;s time step is the shortest that keeps four fifths of the pace the longest one would.</source>
-        <translation>壁時計の 1 秒あたりに進むシミュレーション時間。100 % 未満では、この患者のメッシュはこの計算機で実時間を保つには細かすぎます。組織はスローモーションで動き、ソルバーの時間刻みは、最長の刻みで得られる進みの 5 分の 4 を保つ最短のものになります。</translation>
+        <location filename="../ui/panels.cpp" line="364"/>
+        <source>Simulated time a wall-clock second. Below 100 % this patient&apos;s mesh is too fine for this machine to keep real time: the tissue moves in slow motion, and the solver&apos;s time step is the shortest that keeps %1 % of the pace the longest one would.</source>
+        <translation>壁時計の 1 秒あたりに進むシミュレーション時間。100 % 未満では、この患者のメッシュはこの計算機で実時間を保つには細かすぎます。組織はスローモーションで動き、ソルバーの時間刻みは、最長の刻みで得られる進みの %1 % を保つ最短のものになります。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="366"/>
+        <location filename="../ui/panels.cpp" line="368"/>
         <source>Haptic rate</source>
         <translation>力覚ループ周波数</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="367"/>
+        <location filename="../ui/panels.cpp" line="369"/>
         <source>Apply solver settings</source>
         <translation>ソルバー設定を適用</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="368"/>
+        <location filename="../ui/panels.cpp" line="370"/>
         <source>A backend change takes effect when the patient is (re)loaded.</source>
         <translation>バックエンドの変更は患者の（再）読み込み時に反映されます。</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="381"/>
+        <location filename="../ui/panels.cpp" line="383"/>
         <source>stopped</source>
         <translation>停止</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="382"/>
+        <location filename="../ui/panels.cpp" line="384"/>
         <source>loading</source>
         <translation>読み込み中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="383"/>
+        <location filename="../ui/panels.cpp" line="385"/>
         <source>running</source>
         <translation>実行中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="384"/>
+        <location filename="../ui/panels.cpp" line="386"/>
         <source>swapping</source>
         <translation>患者を切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="385"/>
+        <location filename="../ui/panels.cpp" line="387"/>
         <source>error: %1</source>
         <translation>エラー: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="390"/>
+        <location filename="../ui/panels.cpp" line="392"/>
         <source>no fault</source>
         <translation>異常なし</translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="391"/>
+        <location filename="../ui/panels.cpp" line="393"/>
         <source>%n backend fallback(s)</source>
         <translation>
             <numerusform>バックエンドのフォールバック %n 回</numerusform>
         </translation>
     </message>
     <message numerus="yes">
-        <location filename="../ui/panels.cpp" line="392"/>
+        <location filename="../ui/panels.cpp" line="394"/>
         <source>%n divergence reset(s)</source>
         <translation>
             <numerusform>発散リセット %n 回</numerusform>
         </translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="393"/>
+        <location filename="../ui/panels.cpp" line="395"/>
         <source>forces held and blended</source>
         <translation>力を保持して切り替え中</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="397"/>
+        <location filename="../ui/panels.cpp" line="399"/>
         <source>%1 ms</source>
         <translation>%1 ms</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="399"/>
-        <location filename="../ui/panels.cpp" line="405"/>
+        <location filename="../ui/panels.cpp" line="401"/>
+        <location filename="../ui/panels.cpp" line="407"/>
         <source>%1 Hz</source>
         <translation>%1 Hz</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="403"/>
+        <location filename="../ui/panels.cpp" line="405"/>
         <source>%1 % of real time, dt %2 ms</source>
         <translation>実時間の %1 %、dt %2 ms</translation>
     </message>
@@ -2237,103 +2237,103 @@
 <context>
     <name>palpation::ui::TumourPanel</name>
     <message>
-        <location filename="../ui/panels.cpp" line="246"/>
-        <location filename="../ui/panels.cpp" line="274"/>
+        <location filename="../ui/panels.cpp" line="247"/>
+        <location filename="../ui/panels.cpp" line="275"/>
         <source>Source: %1</source>
         <translation>出典: %1</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="275"/>
+        <location filename="../ui/panels.cpp" line="276"/>
         <source>Preset</source>
         <translation>プリセット</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="276"/>
+        <location filename="../ui/panels.cpp" line="277"/>
         <source>Stiffness</source>
         <translation>硬さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="277"/>
+        <location filename="../ui/panels.cpp" line="278"/>
         <source>Add by shape</source>
         <translation>形状で追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="278"/>
+        <location filename="../ui/panels.cpp" line="279"/>
         <source>Sphere</source>
         <translation>球</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="279"/>
+        <location filename="../ui/panels.cpp" line="280"/>
         <source>Ellipsoid</source>
         <translation>楕円体</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="280"/>
+        <location filename="../ui/panels.cpp" line="281"/>
         <source>Shape</source>
         <translation>形状</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="281"/>
+        <location filename="../ui/panels.cpp" line="282"/>
         <source>Centre x, y, z</source>
         <translation>中心 x, y, z</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="282"/>
+        <location filename="../ui/panels.cpp" line="283"/>
         <source>Radius (x, y, z)</source>
         <translation>半径 (x, y, z)</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="283"/>
+        <location filename="../ui/panels.cpp" line="284"/>
         <source>Add tumour</source>
         <translation>腫瘍を追加</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="284"/>
+        <location filename="../ui/panels.cpp" line="285"/>
         <source>Remove selected</source>
         <translation>選択を削除</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="285"/>
+        <location filename="../ui/panels.cpp" line="286"/>
         <source>Brush</source>
         <translation>ブラシ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="286"/>
+        <location filename="../ui/panels.cpp" line="287"/>
         <source>Radius</source>
         <translation>半径</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="287"/>
+        <location filename="../ui/panels.cpp" line="288"/>
         <source>Depth below the skin</source>
         <translation>皮膚からの深さ</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="288"/>
+        <location filename="../ui/panels.cpp" line="289"/>
         <source>Paint</source>
         <translation>描画</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="289"/>
+        <location filename="../ui/panels.cpp" line="290"/>
         <source>Erase</source>
         <translation>消去</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="290"/>
+        <location filename="../ui/panels.cpp" line="291"/>
         <source>Drag on the breast to paint tumour tissue (one undo step per stroke)</source>
         <translation>乳房上をドラッグして腫瘍組織を描画（1 ストロークで 1 回の取り消し）</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="291"/>
+        <location filename="../ui/panels.cpp" line="292"/>
         <source>Drag on the breast to restore healthy tissue</source>
         <translation>乳房上をドラッグして正常組織に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="292"/>
+        <location filename="../ui/panels.cpp" line="293"/>
         <source>Undo</source>
         <translation>元に戻す</translation>
     </message>
     <message>
-        <location filename="../ui/panels.cpp" line="293"/>
+        <location filename="../ui/panels.cpp" line="294"/>
         <source>Redo</source>
         <translation>やり直し</translation>
     </message>

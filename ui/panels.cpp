@@ -23,6 +23,7 @@
 
 #include "event_text.h"
 #include "live/patient_choice.h"
+#include "live/step_pacer.h"
 #include "tumour_editor.h"
 
 namespace palpation::ui {
@@ -362,7 +363,8 @@ void SimulationPanel::retranslate() {
   set_label(form_, pace, tr("Tissue pace"));
   pace->setToolTip(tr("Simulated time a wall-clock second. Below 100 % this patient's mesh is too fine for this "
                       "machine to keep real time: the tissue moves in slow motion, and the solver's time step "
-                      "is the shortest that keeps four fifths of the pace the longest one would."));
+                      "is the shortest that keeps %1 % of the pace the longest one would.")
+                       .arg(100 * app::live::StepPacer::kRateShare, 0, 'f', 0));
   set_label(form_, haptic_rate, tr("Haptic rate"));
   apply->setText(tr("Apply solver settings"));
   backend->setToolTip(tr("A backend change takes effect when the patient is (re)loaded."));

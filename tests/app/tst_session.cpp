@@ -110,14 +110,19 @@ class TestSession : public QObject {
     QCOMPARE(r.loop["simulation"]["multigrid_smoother"].get<std::string>(), std::string("none"));
     const double dt_median = r.loop["simulation"]["dt_ms_median"].get<double>();
     const double step_median = r.loop["simulation"]["step_ms_median"].get<double>(), dt_ms = 1e3 * s.params.solver.dt;
+    const double limit = r.loop["simulation"]["dt_ms_limit"].get<double>();
     if (step_median < 0.5 * dt_ms) {
       QVERIFY2(std::abs(dt_median - dt_ms) < 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
+      // Every step fits: the pacer never weighs a shorter dt against the longest.
+      QCOMPARE(r.loop["simulation"]["dt_sweeps"].get<int>(), 0);
+      QCOMPARE(limit, 1e3 * opt.sim_max_dt);
     } else {
       // Steps longer than dt (the sanitizer build on a 2-core machine: 2.2 ms in contact)
       // cover their own time: the grid rule has nothing to show, only that dt never
       // falls below the scenario's.
       qInfo("the median step takes %.3f ms here, over half of dt: dt median %.3f ms", step_median, dt_median);
       QVERIFY2(dt_median >= dt_ms - 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
+      QVERIFY2(limit >= dt_ms - 1e-9 && limit <= 1e3 * opt.sim_max_dt + 1e-9, qPrintable(QString::number(limit)));
     }
     // Positions are the scenario's path (the script clock starts one tick before the
     // first record: allow that tick's motion, 10 mm/s x 1 ms).
