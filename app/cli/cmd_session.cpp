@@ -142,10 +142,11 @@ CommandAction add_session_command(CLI::App& app) {
       const auto& h = r.loop["haptic"];
       std::fprintf(stderr,
                    "session: haptic %.1f Hz, jitter p50 %.1f / p99 %.1f / max %.1f us, %llu overruns (%s); "
-                   "simulation %.0f steps/s; largest force %.2f N -> %s\n",
+                   "simulation %.0f steps/s at %.0f %% of real time (dt up to %.2f ms); largest force %.2f N -> %s\n",
                    h["rate_hz"].get<double>(), h["jitter_us"]["p50"].get<double>(), h["jitter_us"]["p99"].get<double>(),
                    h["jitter_us"]["max"].get<double>(), (unsigned long long)h["overruns"].get<std::uint64_t>(),
                    h["scheduling"].get<std::string>().c_str(), r.loop["simulation"]["step_rate_hz"].get<double>(),
+                   100 * r.loop["simulation"]["pace"].get<double>(), r.loop["simulation"]["dt_ms_limit"].get<double>(),
                    r.loop["forces"]["largest_sent_n"].get<double>(), o->out.c_str());
     }
     return r.ok ? kExitOk : kExitFailure;

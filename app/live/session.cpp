@@ -371,6 +371,9 @@ SessionResult run_session(const sim::Scenario& s, const SessionOptions& opt) {
                        {"dt_ms_limit", sim_thread.loop().dt_limit_s() * 1e3},
                        {"dt_sweeps", sim_thread.loop().dt_sweeps()},
                        {"simulated_time_s", sim_thread.sim_time},
+                       // Simulated seconds a wall second over the steps (1: real time; below
+                       // where no dt fits, step_pacer.h).
+                       {"pace", wall > 0 ? sim_thread.sim_time / wall : 0.0},
                        {"cg_iterations_max", cg_max},
                        {"divergence_resets", sim_thread.resets},
                        {"backend_fallbacks", sim_thread.fallbacks},

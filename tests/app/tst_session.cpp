@@ -113,9 +113,13 @@ class TestSession : public QObject {
     const double limit = r.loop["simulation"]["dt_ms_limit"].get<double>();
     if (step_median < 0.5 * dt_ms) {
       QVERIFY2(std::abs(dt_median - dt_ms) < 1e-6, qPrintable(QString::number(dt_median, 'g', 12)));
-      // Every step fits: the pacer never weighs a shorter dt against the longest.
+      // Every step fits: the pacer never weighs a shorter dt against the longest, and
+      // the tissue keeps the wall clock's pace (the simulated time over the steps' wall
+      // time: one dt more than the span between the first and last step's start).
       QCOMPARE(r.loop["simulation"]["dt_sweeps"].get<int>(), 0);
       QCOMPARE(limit, 1e3 * opt.sim_max_dt);
+      const double pace = r.loop["simulation"]["pace"].get<double>();
+      QVERIFY2(pace > 0.95 && pace < 1.05, qPrintable(QString::number(pace)));
     } else {
       // Steps longer than dt (the sanitizer build on a 2-core machine: 2.2 ms in contact)
       // cover their own time: the grid rule has nothing to show, only that dt never
