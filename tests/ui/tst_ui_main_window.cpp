@@ -297,18 +297,18 @@ class TstUiMainWindow : public QObject {
     QVERIFY2(live.pace <= 1.05, qPrintable(QString::number(live.pace)));
     QVERIFY2(live.dt_ms >= 0.999 && live.dt_ms <= 10.001, qPrintable(QString::number(live.dt_ms)));
     QTRY_VERIFY(sim_panel->pace->text().endsWith(QStringLiteral(" ms")));
-    app::live::LiveStats slow = live;
-    slow.step_rate_hz = 107;
-    slow.pace = 0.534;
-    slow.dt_ms = 4.44;
-    sim_panel->show_stats(slow, QStringLiteral("cuda"));
+    // The panel shown a state of these rates, pace and dt.
+    auto show = [&](double rate_hz, double pace, double dt_ms) {
+      app::live::LiveStats st = live;
+      st.step_rate_hz = rate_hz;
+      st.pace = pace;
+      st.dt_ms = dt_ms;
+      sim_panel->show_stats(st, QStringLiteral("cuda"));
+    };
+    show(107, 0.534, 4.44);
     QCOMPARE(sim_panel->pace->text(), QStringLiteral("53 % of real time, dt 4.4 ms"));
     QVERIFY(sim_panel->pace->styleSheet().contains(QStringLiteral("#b35c00")));
-    app::live::LiveStats real_time = slow;
-    real_time.step_rate_hz = 1000;
-    real_time.pace = 1.001;
-    real_time.dt_ms = 1.0;
-    sim_panel->show_stats(real_time, QStringLiteral("cuda"));
+    show(1000, 1.001, 1.0);
     QCOMPARE(sim_panel->pace->text(), QStringLiteral("100 % of real time, dt 1.0 ms"));
     QVERIFY(sim_panel->pace->styleSheet().isEmpty());
   }
