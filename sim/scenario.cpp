@@ -1,5 +1,6 @@
 #include "scenario.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -33,6 +34,27 @@ class Reader : public JsonReader {
 
 }  // namespace
 
+const char* path_interpolation_name(PathInterpolation p) {
+  return p == PathInterpolation::MonotoneCubic ? "monotone-cubic" : "linear";
+}
+
+namespace {
+/// The monotone cubic's slope at an interior key for one coordinate, from the secants
+/// d0 over the interval before it (length h0) and d1 over the one after (length h1): the
+/// three-point derivative (second order in the spacing), zero where the secants differ in
+/// sign or one is flat (the coordinate turns or rests there), and at most 3 min(|d0|, |d1|)
+/// (Hyman 1983): both end slopes of every interval are then between 0 and 3 times its
+/// secant, where a cubic Hermite interval is monotone (Fritsch & Carlson 1980), so it never
+/// leaves the range of its two keys. Written out here: Eigen has no monotone spline, and
+/// these dozen lines are the whole method.
+double monotone_slope(double h0, double d0, double h1, double d1) {
+  if (!(d0 * d1 > 0)) return 0.0;
+  const double m = (h1 * d0 + h0 * d1) / (h0 + h1);
+  const double limit = 3.0 * std::min(std::abs(d0), std::abs(d1));
+  return std::copysign(std::min(std::abs(m), limit), m);
+}
+}  // namespace
+
 void FingerPath::sample(double t, Eigen::Vector3d& pos, Eigen::Vector3d& vel) const {
   vel.setZero();
   if (keys.empty()) {
@@ -55,9 +77,47 @@ void FingerPath::sample(double t, Eigen::Vector3d& pos, Eigen::Vector3d& vel) co
     (keys[mid][0] <= t ? lo : hi) = mid;
   }
   const double t0 = keys[lo][0], t1 = keys[hi][0];
-  const double u = (t - t0) / (t1 - t0);
-  pos = (1 - u) * at(lo) + u * at(hi);
-  vel = (at(hi) - at(lo)) / (t1 - t0);
+  const double h = t1 - t0;
+  const double u = (t - t0) / h;
+  if (interpolation == PathInterpolation::Linear) {
+    pos = (1 - u) * at(lo) + u * at(hi);
+    vel = (at(hi) - at(lo)) / h;
+    return;
+  }
+  // The segment's end slopes from its neighbours' secants (zero at the path's ends).
+  const Eigen::Vector3d d = (at(hi) - at(lo)) / h;
+  Eigen::Vector3d m0 = Eigen::Vector3d::Zero(), m1 = Eigen::Vector3d::Zero();
+  if (lo > 0) {
+    const double hp = t0 - keys[lo - 1][0];
+    const Eigen::Vector3d dp = (at(lo) - at(lo - 1)) / hp;
+    for (int c = 0; c < 3; ++c) m0[c] = monotone_slope(hp, dp[c], h, d[c]);
+  }
+  if (hi + 1 < keys.size()) {
+    const double hn = keys[hi + 1][0] - t1;
+    const Eigen::Vector3d dn = (at(hi + 1) - at(hi)) / hn;
+    for (int c = 0; c < 3; ++c) m1[c] = monotone_slope(h, d[c], hn, dn[c]);
+  }
+  // Cubic Hermite basis on u in [0, 1] and its derivative.
+  const double u2 = u * u, u3 = u2 * u;
+  const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3, h11 = u3 - u2;
+  const double g00 = 6 * u2 - 6 * u, g10 = 3 * u2 - 4 * u + 1, g11 = 3 * u2 - 2 * u;
+  pos = h00 * at(lo) + h10 * h * m0 + h01 * at(hi) + h11 * h * m1;
+  vel = (g00 * at(lo) - g00 * at(hi)) / h + g10 * m0 + g11 * m1;
+}
+
+std::vector<std::array<double, 4>> FingerPath::linear_keys(double step) const {
+  if (interpolation == PathInterpolation::Linear || keys.size() < 2 || !(step > 0)) return keys;
+  const double t0 = keys.front()[0], t1 = keys.back()[0];
+  const auto n = static_cast<std::size_t>(std::ceil((t1 - t0) / step - 1e-9));
+  std::vector<std::array<double, 4>> out;
+  out.reserve(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) {
+    const double t = i == n ? t1 : t0 + double(i) * step;
+    Eigen::Vector3d p, v;
+    sample(t, p, v);
+    out.push_back({t, p.x(), p.y(), p.z()});
+  }
+  return out;
 }
 
 std::vector<std::string> resolution_names() { return {"coarse", "paper", "fine", "xfine"}; }
@@ -306,9 +366,13 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     if (!arr.is_array() || arr.empty() || arr.size() > 5) rd.fail("fingers", "must be an array of 1 to 5 fingers");
     for (std::size_t i = 0; i < arr.size(); ++i) {
       const std::string f = "fingers[" + std::to_string(i) + "]";
-      rd.only_keys(arr[i], f, {"radius", "path"});
+      rd.only_keys(arr[i], f, {"radius", "path", "interpolation"});
       FingerPath fp;
       if (arr[i].contains("radius")) fp.radius = rd.positive(arr[i]["radius"], f + ".radius");
+      if (arr[i].contains("interpolation"))
+        fp.interpolation = rd.choice(arr[i]["interpolation"], f + ".interpolation", {"linear", "monotone-cubic"}) == "linear"
+                               ? PathInterpolation::Linear
+                               : PathInterpolation::MonotoneCubic;
       if (!arr[i].contains("path")) rd.fail(f + ".path", "is required");
       const json& path = arr[i]["path"];
       if (!path.is_array() || path.empty()) rd.fail(f + ".path", "must be a non-empty array of [t, x, y, z]");
@@ -433,7 +497,11 @@ std::string scenario_to_json(const Scenario& s) {
   for (const auto& f : s.fingers) {
     json path = json::array();
     for (const auto& k : f.keys) path.push_back({k[0], k[1], k[2], k[3]});
-    j["fingers"].push_back({{"radius", f.radius}, {"path", path}});
+    json finger = {{"radius", f.radius}, {"path", path}};
+    // Written only where it is not the default, so a linear scenario's text (and the
+    // cached references keyed by its hash) stay as they were.
+    if (f.interpolation != PathInterpolation::Linear) finger["interpolation"] = path_interpolation_name(f.interpolation);
+    j["fingers"].push_back(std::move(finger));
   }
   j["duration"] = s.duration;
   if (!s.marks.empty()) {

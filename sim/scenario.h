@@ -47,11 +47,32 @@ struct PatientSpec {
   double skin_edge = 0.0;
 };
 
+/// How a finger path runs between its keys ("fingers[i].interpolation").
+///  - Linear (the default): straight at constant velocity; the velocity jumps at each key.
+///  - MonotoneCubic: a C1 piecewise cubic Hermite curve per coordinate (three-point
+///    slopes limited for monotonicity, Hyman 1983), through every key, with velocity zero
+///    at the first and last keys (the path is held outside them). Between two keys each coordinate
+///    stays between the keys' values, so a press is never deeper than its keys say; where
+///    a coordinate turns (a press that turns back up, a sweep that reverses) its velocity is
+///    zero at that key. For keys sampled from a smooth motion, as a hand moves: the linear
+///    path's jumps in velocity are what the implicit step's warm start cannot foresee, and
+///    cost the solver several times a smooth step's CG iterations (docs/simulation.md,
+///    "Finger paths").
+enum class PathInterpolation { Linear, MonotoneCubic };
+const char* path_interpolation_name(PathInterpolation p);
+
 struct FingerPath {
   double radius = 0.008;                        // m
   std::vector<std::array<double, 4>> keys;      // [t, x, y, z], t increasing
-  /// Centre position and velocity at time t (linear between keys, held outside).
+  PathInterpolation interpolation = PathInterpolation::Linear;
+  /// Centre position and velocity at time t (by `interpolation` between keys, held
+  /// outside). Never allocates.
   void sample(double t, Eigen::Vector3d& pos, Eigen::Vector3d& vel) const;
+  /// Keys that a linear follower (device::HandScript) traces as this path: the keys
+  /// themselves when linear, else the path sampled every `step` s from the first key to
+  /// the last (both kept). At step = 1 ms (the haptic tick) the chord of a monotone
+  /// cubic lies within max|x''| step^2 / 8 of it: 0.4 um on the paper sweep.
+  std::vector<std::array<double, 4>> linear_keys(double step) const;
 };
 
 /// A trainee's mark in a scripted session ("marks": [[t, x, y, z, confidence], ...]): where

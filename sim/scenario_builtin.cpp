@@ -52,6 +52,10 @@ Scenario paper_sweep(bool tumour, bool layered = false) {
   const double key_dt = 0.02;           // keyframe spacing, s
   FingerPath fp;
   fp.radius = radius;
+  // The keys sample a smooth motion (a steady sweep, the cosine push): followed as a
+  // monotone cubic, the finger's velocity is continuous as a hand's, not a jump every
+  // 20 ms, and its turns (the top of a push, the end of a pass) are where the keys turn.
+  fp.interpolation = PathInterpolation::MonotoneCubic;
   const double total = passes * pass_time;
   const int nkeys = static_cast<int>(std::lround(total / key_dt));
   for (int k = 0; k <= nkeys; ++k) {

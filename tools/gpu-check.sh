@@ -41,6 +41,13 @@
 #          multigrid-chebyshev back to back: CG iterations, step time and the nodal-pressure
 #          share at the build (smoother.txt), where MultigridKeeper::kChebyshevShare should
 #          lie. Not a default stage
+#   path   the finger path followed linearly between its keys against the monotone cubic
+#          (the paper sweeps' default; `palpation bench --path`): each point of PATH_RUNS
+#          (default "paper:6000:double paper:6000:float xfine:1000:float",
+#          mesh:steps:precision) PATH_REPEAT times (default 2), the two paths alternated, held
+#          at 1 %, on the same keys; then an 8 s session on the paper mesh with each path
+#          (path.txt: every run's median / p99 ms and CG iterations from its series, the mean
+#          and 99th percentile of the iterations, the force error). Not a default stage
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   control the error-controlled tolerance against the fixed ones: bench (all tolerances and
 #          fe1%; fe1% with its checks in the step and auto, twice) and palpation session with
@@ -644,6 +651,46 @@ if has idle; then
     --element linear --steps 1000 --out /tmp/palpation-idle-csr
   [[ -f /tmp/palpation-idle-csr/bench.csv ]] && tail -n +2 /tmp/palpation-idle-csr/bench.csv >>"$OUT/idle.csv"
 fi
+if has path; then
+  for run in ${PATH_RUNS:-paper:6000:double paper:6000:float xfine:1000:float}; do
+    IFS=: read -r m n prec <<<"$run"
+    for round in $(seq "${PATH_REPEAT:-2}"); do
+      for path in linear monotone-cubic; do
+        d=/tmp/palpation-path-$m-$n-$prec-$path-$round
+        say "path: bench $m, $n steps, $prec, --path $path, round $round"
+        timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda --precisions "$prec" --force-error 0.01 \
+          --steps "$n" --path "$path" --series --out "$d" | grep -E "^$m |error controller" | tee -a "$OUT/path.txt"
+        python3 - "$d/series.csv" "$path" <<'EOF2' | tee -a "$OUT/path.txt"
+import csv, statistics, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["timed"] == "1"]
+it = sorted(int(r["cg_iterations"]) for r in rows)
+ms = sorted(float(r["step_ms"]) for r in rows)
+n = len(rows)
+print(f"  {sys.argv[2]}: {n} timed steps, step median {statistics.median(ms):.4f} / p99 {ms[int(0.99 * n)]:.4f} ms, "
+      f"CG iterations mean {sum(it) / n:.2f}, median {statistics.median(it):.0f}, p99 {it[int(0.99 * n)]}, max {it[-1]}")
+EOF2
+      done
+    done
+  done
+  "$P" scenario paper-sweep | sed '/"interpolation"/d' >/tmp/palpation-paper-sweep-linear.json
+  for round in 1 2; do
+    for path in linear monotone-cubic; do
+      sc=paper-sweep
+      [[ $path == linear ]] && sc=/tmp/palpation-paper-sweep-linear.json
+      say "path: session paper-sweep ($path), paper mesh, held at 1 %, 8 s, round $round"
+      timeout 120 "$P" session "$sc" --device emulator --backend cuda --resolution paper --force-error 0.01 \
+        --duration 8 --quiet --out "/tmp/palpation-path-session-$path-$round" >/dev/null 2>&1
+      python3 - "/tmp/palpation-path-session-$path-$round/loop.json" "$path" <<'EOF2' | tee -a "$OUT/path.txt"
+import json, sys
+j = json.load(open(sys.argv[1]))["simulation"]
+print(f"session {sys.argv[2]}: {j['step_rate_hz']:.0f} steps/s, dt median {j['dt_ms_median']:.3f} ms, "
+      f"step median {j['step_ms_median']:.3f} / p99 {j['step_ms_p99']:.3f} / max {j['step_ms_max']:.3f} ms, "
+      f"CG max {j['cg_iterations_max']}, resets {j['divergence_resets']}")
+EOF2
+    done
+  done
+fi
+
 if has control; then
   # The error-controlled tolerance (solver.force_error) against the fixed ones, through the
   # bench (Simulation::step, force error against the converged reference) and through the

@@ -110,6 +110,10 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     report["element"] = sim::element_name(sim::resolve_element(s.params.element, s.poisson_ratio));
     if (opt.skin >= 0) s.skin.thickness = opt.skin;
     report["skin_thickness"] = s.skin.thickness;
+    if (!opt.path.empty())
+      for (auto& f : s.fingers)
+        f.interpolation = opt.path == "linear" ? sim::PathInterpolation::Linear : sim::PathInterpolation::MonotoneCubic;
+    report["path"] = s.fingers.empty() ? "linear" : sim::path_interpolation_name(s.fingers.front().interpolation);
     if (!opt.preconditioner.empty()) s.params.solver.preconditioner = sim::parse_preconditioner(opt.preconditioner);
     report["preconditioner"] = sim::preconditioner_name(s.params.solver.preconditioner);
     if (!opt.check.empty()) s.params.solver.check = sim::parse_check_place(opt.check);
@@ -128,13 +132,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     sref.params.solver.preconditioner = sim::Preconditioner::BlockJacobi;  // any converges to 1e-10; one cached reference
     sref.params.solver.force_error = 0;
     sref.params.solver.check = sim::CheckPlace::Auto;  // no controller, no check: one cached reference whatever --check says
-    std::ostringstream key;
-    sim::TetMesh keymesh;
-    keymesh.nodes = model.rest;
-    keymesh.tets = model.tets;
-    key << "ref-v2-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sref)) << std::dec << '-'
-        << opt.steps;
-    const std::string ref_path = (std::filesystem::path(sim::cache_dir()) / (key.str() + ".bin")).string();
+    const std::string ref_path =
+        (std::filesystem::path(sim::cache_dir()) / (trace_cache_key("ref-v3", model, sref, opt.steps) + ".bin")).string();
     Trace ref;
     if (!load_trace(ref_path, ref)) {
       std::fprintf(stderr, "bench: computing the reference for %s on %s (cached in %s)\n", level.c_str(),

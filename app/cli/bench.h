@@ -27,6 +27,7 @@ struct BenchOptions {
   std::string preconditioner;                  // "block-jacobi" | "multigrid"; empty: the scenario's
   std::string element;                         // "linear" | "nodal-pressure"; empty: the scenario's
   double skin = -1;                            // >= 0: the skin membrane's thickness, m (0: none); < 0: the scenario's
+  std::string path;                            // "linear" | "monotone-cubic": every finger path's interpolation; empty: the scenario's
   double force_error = 0;                      // > 0: only the error-controlled point, at this target
   std::vector<double> tolerances;              // not empty: only these fixed CG tolerances (cap 1,000)
   bool series = false;                         // also series.csv in `out`: every step of every point

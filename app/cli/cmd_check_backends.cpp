@@ -156,14 +156,9 @@ int run_check(const CheckOptions& o) {
       sd.params.element = sim::parse_element(element);
 
       // CPU reference, cached.
-      sim::TetMesh keymesh;
-      keymesh.nodes = model.rest;
-      keymesh.tets = model.tets;
-      std::ostringstream key;
-      // v2: area-weighted contact; bump whenever the CPU step changes results.
-      key << "cpu-trace-v3-" << std::hex << keymesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(sd)) << std::dec
-          << '-' << o.steps << ".bin";
-      const std::string path = (std::filesystem::path(sim::cache_dir()) / key.str()).string();
+      // v4: the finger inputs hashed too; bump whenever the CPU step changes results.
+      const std::string path =
+          (std::filesystem::path(sim::cache_dir()) / (trace_cache_key("cpu-trace-v4", model, sd, o.steps) + ".bin")).string();
       Trace cpu;
       if (o.no_cache || !load_trace(path, cpu)) {
         std::fprintf(stderr, "check-backends: %s: CPU reference (%d steps, CG %.0e) -> %s\n", label.c_str(), o.steps,

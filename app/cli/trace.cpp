@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "backend.h"
 #include "simulation.h"
@@ -100,6 +101,25 @@ std::uint64_t trace_sum(const Trace& t) {
   return sim::key_hash(std::string(reinterpret_cast<const char*>(t.force.data()), t.force.size() * 8));
 }
 }  // namespace
+
+std::string trace_cache_key(const std::string& kind, const sim::Model& model, const sim::Scenario& s, int steps) {
+  sim::TetMesh mesh;
+  mesh.nodes = model.rest;
+  mesh.tets = model.tets;
+  std::vector<double> inputs;
+  inputs.reserve(std::size_t(steps) * s.fingers.size() * 3);
+  for (int k = 1; k <= steps; ++k)
+    for (const auto& f : s.fingers) {
+      Eigen::Vector3d x, v;
+      f.sample(k * s.params.solver.dt, x, v);
+      inputs.insert(inputs.end(), {x.x(), x.y(), x.z()});
+    }
+  std::ostringstream key;
+  key << kind << '-' << std::hex << mesh.hash() << '-' << sim::key_hash(sim::scenario_to_json(s)) << '-'
+      << sim::key_hash(std::string(reinterpret_cast<const char*>(inputs.data()), inputs.size() * sizeof(double)))
+      << std::dec << '-' << steps;
+  return key.str();
+}
 
 bool load_trace(const std::string& path, Trace& t) {
   std::ifstream in(path, std::ios::binary);

@@ -44,6 +44,13 @@ double rel_l2(const std::vector<double>& a, const std::vector<double>& ref);
 /// Relative L2 norm of the displacements (x - X) over all snapshots.
 double displacement_error(const Trace& a, const Trace& ref, const sim::Model& m);
 
+/// The name of a cached trace of `s` on `model` over `steps` steps (a file in
+/// sim::cache_dir()): `kind`, then hashes of the mesh, of the scenario's text and of the
+/// finger inputs its steps sample (every finger's centre at every step's end), so a
+/// change in how a path is followed between its keys is a new reference even where the
+/// scenario's text is the same.
+std::string trace_cache_key(const std::string& kind, const sim::Model& model, const sim::Scenario& s, int steps);
+
 /// Cached traces: a binary file (magic, the series, an FNV sum of the forces), written
 /// through a temporary file and renamed. load_trace is false for a missing, foreign or
 /// damaged file.

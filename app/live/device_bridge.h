@@ -43,6 +43,22 @@ inline device::FingerContactModel contact_model(const sim::FingerOutput& o, cons
   return m;
 }
 
+/// The spacing of the keys a scripted hand gets from a path that is not linear: the haptic
+/// tick (device::HapticLoopParams::period), so the device's linear follower samples the
+/// path itself at every tick.
+inline constexpr double kScriptKeyStep = 0.001;
+
+/// A finger path as the device's keys (device frame, through the registration):
+/// device::HandScript follows keys linearly, and device/ does not include sim/, so a
+/// curved path arrives sampled (sim::FingerPath::linear_keys).
+inline std::vector<device::PathKey> device_keys(const sim::FingerPath& path, const device::RigidFrame& reg) {
+  std::vector<device::PathKey> keys;
+  const auto world = path.linear_keys(kScriptKeyStep);
+  keys.reserve(world.size());
+  for (const auto& key : world) keys.push_back({key[0], reg.to_device({key[1], key[2], key[3]})});
+  return keys;
+}
+
 /// The operator's hand from the scenario's finger paths: finger k drives device finger
 /// map[k], positions through the registration.
 inline device::HandScript script_from_scenario(const sim::Scenario& s, const device::RigidFrame& reg,
@@ -51,9 +67,7 @@ inline device::HandScript script_from_scenario(const sim::Scenario& s, const dev
     throw sim::ScenarioError(s.source + ": fingers: at most 5 (the device has five), got " + std::to_string(s.fingers.size()));
   device::HandScript script;
   for (std::size_t k = 0; k < s.fingers.size(); ++k) {
-    std::vector<device::PathKey> keys;
-    keys.reserve(s.fingers[k].keys.size());
-    for (const auto& key : s.fingers[k].keys) keys.push_back({key[0], reg.to_device({key[1], key[2], key[3]})});
+    std::vector<device::PathKey> keys = device_keys(s.fingers[k], reg);
     if (keys.empty()) throw sim::ScenarioError(s.source + ": fingers[" + std::to_string(k) + "].path: no keys");
     script.set_path(map[k], std::move(keys));
   }

@@ -45,7 +45,7 @@ sim::Scenario default_workstation_scenario() {
 dv::HandScript default_hand_script(const DeviceConfig& cfg) {
   const sim::Scenario paper = sim::builtin_scenario("paper-sweep");
   const auto& reg = cfg.hand.registration;
-  const auto& keys = paper.fingers.at(0).keys;
+  const auto keys = paper.fingers.at(0).linear_keys(kScriptKeyStep);
   // Hand layout relative to the index fingertip (world frame, m): the other fingers
   // hover just above the dome (top at 6.5 cm), spread along y like a hand.
   const std::array<Eigen::Vector3d, dv::kMaxFingers> offset{

@@ -62,6 +62,7 @@ sim::Scenario replay_scenario(const Recording& rec) {
                              " fingers, the recording has " + std::to_string(rec.fingers));
   // The device input as the finger paths: one keyframe per recorded tick.
   for (int k = 0; k < rec.fingers; ++k) {
+    s.fingers[k].interpolation = sim::PathInterpolation::Linear;  // the ticks are the path
     auto& keys = s.fingers[k].keys;
     keys.clear();
     keys.reserve(rec.ticks());

@@ -30,6 +30,7 @@ json recorded_scenario_json(const sim::Scenario& s0, int fingers) {
   sim::Scenario s = s0;
   sim::FingerPath proto = s.fingers.empty() ? sim::FingerPath{} : s.fingers.front();
   if (proto.keys.size() > 2) proto.keys.resize(2);
+  proto.interpolation = sim::PathInterpolation::Linear;  // a placeholder: the ticks are the path
   if (proto.keys.empty()) proto.keys = {{0.0, 0.0, 0.0, 0.2}, {1.0, 0.0, 0.0, 0.2}};
   s.fingers.assign(std::size_t(fingers), proto);
   return json::parse(sim::scenario_to_json(s));
