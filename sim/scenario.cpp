@@ -38,6 +38,15 @@ const char* path_interpolation_name(PathInterpolation p) {
   return p == PathInterpolation::MonotoneCubic ? "monotone-cubic" : "linear";
 }
 
+std::vector<std::string> path_interpolation_names() {
+  return {path_interpolation_name(PathInterpolation::Linear), path_interpolation_name(PathInterpolation::MonotoneCubic)};
+}
+
+PathInterpolation parse_path_interpolation(const std::string& name) {
+  return name == path_interpolation_name(PathInterpolation::MonotoneCubic) ? PathInterpolation::MonotoneCubic
+                                                                           : PathInterpolation::Linear;
+}
+
 namespace {
 /// The monotone cubic's slope at an interior key for one coordinate, from the secants
 /// d0 over the interval before it (length h0) and d1 over the one after (length h1): the
@@ -370,9 +379,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
       FingerPath fp;
       if (arr[i].contains("radius")) fp.radius = rd.positive(arr[i]["radius"], f + ".radius");
       if (arr[i].contains("interpolation"))
-        fp.interpolation = rd.choice(arr[i]["interpolation"], f + ".interpolation", {"linear", "monotone-cubic"}) == "linear"
-                               ? PathInterpolation::Linear
-                               : PathInterpolation::MonotoneCubic;
+        fp.interpolation =
+            parse_path_interpolation(rd.choice(arr[i]["interpolation"], f + ".interpolation", path_interpolation_names()));
       if (!arr[i].contains("path")) rd.fail(f + ".path", "is required");
       const json& path = arr[i]["path"];
       if (!path.is_array() || path.empty()) rd.fail(f + ".path", "must be a non-empty array of [t, x, y, z]");

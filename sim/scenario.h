@@ -60,6 +60,11 @@ struct PatientSpec {
 ///    "Finger paths").
 enum class PathInterpolation { Linear, MonotoneCubic };
 const char* path_interpolation_name(PathInterpolation p);
+/// The names path_interpolation_name gives, in the enum's order (scenario and CLI choices).
+std::vector<std::string> path_interpolation_names();
+/// The interpolation of a name path_interpolation_name gives (one of
+/// path_interpolation_names(); the caller checks it is).
+PathInterpolation parse_path_interpolation(const std::string& name);
 
 struct FingerPath {
   double radius = 0.008;                        // m

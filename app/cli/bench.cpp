@@ -112,8 +112,9 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     report["skin_thickness"] = s.skin.thickness;
     if (!opt.path.empty())
       for (auto& f : s.fingers)
-        f.interpolation = opt.path == "linear" ? sim::PathInterpolation::Linear : sim::PathInterpolation::MonotoneCubic;
-    report["path"] = s.fingers.empty() ? "linear" : sim::path_interpolation_name(s.fingers.front().interpolation);
+        f.interpolation = sim::parse_path_interpolation(opt.path);
+    report["path"] = sim::path_interpolation_name(s.fingers.empty() ? sim::PathInterpolation::Linear
+                                                                    : s.fingers.front().interpolation);
     if (!opt.preconditioner.empty()) s.params.solver.preconditioner = sim::parse_preconditioner(opt.preconditioner);
     report["preconditioner"] = sim::preconditioner_name(s.params.solver.preconditioner);
     if (!opt.check.empty()) s.params.solver.check = sim::parse_check_place(opt.check);

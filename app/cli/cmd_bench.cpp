@@ -31,7 +31,7 @@ CommandAction add_bench_command(CLI::App& app) {
   sub->add_option("--path", o->path,
                   "How the finger paths run between their keys (linear, monotone-cubic; default: the scenario's, monotone-cubic "
                   "in the paper sweeps): the same keys either way, to see what the path's velocity jumps cost")
-      ->check(CLI::IsMember({"linear", "monotone-cubic"}));
+      ->check(CLI::IsMember(sim::path_interpolation_names()));
   sub->add_option("--preconditioner", o->preconditioner,
                   "CG preconditioner (auto, block-jacobi, multigrid, multigrid-chebyshev, multigrid-jacobi; default: the scenario's, auto unless it names one: multigrid on the GPU from " +
                       std::to_string(sim::kGpuMultigridFromNodes) + " nodes, else block-jacobi). Multigrid runs on the cpu and cuda backends: "

@@ -10,6 +10,7 @@
 
 #include "contact_model.h"
 #include "hand_script.h"
+#include "haptic_loop.h"
 #include "params.h"
 #include "scenario.h"
 #include "vec3.h"
@@ -44,9 +45,8 @@ inline device::FingerContactModel contact_model(const sim::FingerOutput& o, cons
 }
 
 /// The spacing of the keys a scripted hand gets from a path that is not linear: the haptic
-/// tick (device::HapticLoopParams::period), so the device's linear follower samples the
-/// path itself at every tick.
-inline constexpr double kScriptKeyStep = 0.001;
+/// tick, so the device's linear follower samples the path itself at every tick.
+inline const double kScriptKeyStep = device::HapticLoopParams{}.period;
 
 /// A finger path as the device's keys (device frame, through the registration):
 /// device::HandScript follows keys linearly, and device/ does not include sim/, so a
