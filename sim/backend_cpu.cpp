@@ -110,10 +110,13 @@ class CpuBackend final : public Backend {
     b0_.resize(3 * (std::size_t(nf) + threads_));
     dv_.resize(3 * nf);
     kv_.resize(3 * nf);
-    vfree_.resize(3 * nf);
+    vfree_.resize(3 * nf + 1);  // + 1: a product through the upper triangle reads one past (cg::UpperBlocks)
+    build_upper_pattern();
     build_element_tables();
     build_skin_tables();
     cg_.resize(3 * nf);
+    cg_.precond_kept = true;  // refresh_preconditioner()
+    pc_dirty_.assign(std::size_t(nf), 1);
     set_materials(m_.materials);
     reset();
   }
@@ -145,6 +148,15 @@ class CpuBackend final : public Backend {
     if (element_changed) set_materials(mat_);
   }
   const CpuWorkCounters& counters() const { return counters_; }
+  double preconditioner_staleness() const {
+    if (!pc_solved_) return -1;
+    const cg::BlockSystem<T> sys = system(T(p_.solver.dt));
+    std::vector<T> fresh(cg_.precond.size());
+    cg::build_block_jacobi(sys, fresh.data());
+    double d = 0;
+    for (std::size_t k = 0; k < fresh.size(); ++k) d = std::max(d, double(std::abs(fresh[k] - cg_.precond[k])));
+    return d;
+  }
   MultigridCounts multigrid_counts() const override { return multigrid_.with_smoother(multigrid_counts_); }
   void prepare_solver() override {
     if (!is_multigrid(p_.solver.preconditioner) || !rested_) return;
@@ -250,6 +262,7 @@ class CpuBackend final : public Backend {
     egg_.resize(10 * std::size_t(ne));
     evol_.resize(ne);
     eblk_.resize(16 * std::size_t(ne));
+    eup_.resize(16 * std::size_t(ne));
     erow_.resize(4 * std::size_t(ne));
     for (int e = 0; e < ne; ++e) {
       evol_[e] = T(m_.volume[e]);
@@ -268,8 +281,36 @@ class CpuBackend final : public Backend {
       for (int k = 0; k < 16; ++k) {
         const int blk = m_.tet_block[e][k];
         eblk_[16 * std::size_t(e) + k] = blk < 0 ? -1 : 9 * blk;
+        eup_[16 * std::size_t(e) + k] = blk < 0 ? -1 : up_of_block_[std::size_t(blk)];
       }
     }
+  }
+
+  // The upper triangle of the block pattern (cg::UpperBlocks: row i's columns c >= i, the
+  // diagonal first since each row's columns ascend), each full block's entry in it (that of
+  // its pair of rows in either order), and its arrays, kept beside the full ones: where a
+  // full block (r, c) with r >= c changes, so does upper entry (c, r), which holds A_rc;
+  // where the couplings at a block (r, c) with r <= c do, so do entry (r, c)'s.
+  void build_upper_pattern() {
+    const int nf = m_.num_free();
+    up_row_ptr_.assign(std::size_t(nf) + 1, 0);
+    up_col_.clear();
+    up_of_block_.assign(std::size_t(m_.num_blocks()), -1);
+    for (int i = 0; i < nf; ++i) {
+      for (int k = m_.row_ptr[i]; k < m_.row_ptr[i + 1]; ++k) {
+        const int c = m_.col[k];
+        if (c < i) continue;
+        const int u = static_cast<int>(up_col_.size());
+        up_col_.push_back(c);
+        up_of_block_[std::size_t(k)] = u;
+        up_of_block_[std::size_t(m_.block_of(c, i))] = u;
+      }
+      up_row_ptr_[std::size_t(i) + 1] = static_cast<int>(up_col_.size());
+    }
+    const std::size_t nu = up_col_.size();
+    ublocks_.assign(9 * nu + 1, T(0));  // + 1: four-lane loads of the last block
+    uscatter_.assign(4 * std::size_t(nf), T(0));
+    upper_ = cg::UpperBlocks<T>{up_row_ptr_.data(), up_col_.data(), ublocks_.data(), nullptr, nullptr, uscatter_.data()};
   }
 
   // The skin membrane's rest data in T and room for what each triangle last added.
@@ -310,10 +351,19 @@ class CpuBackend final : public Backend {
         const int blk = sk.block[ts][std::size_t(ab)];
         if (blk < 0) continue;
         T* dst = &blocks_[9 * std::size_t(blk)];  // column-major
+        // Block (row of a, row of b) is also the upper entry's when its row is the larger.
+        const int ra = m_.dof[std::size_t(tri[ab / 3])], rb = m_.dof[std::size_t(tri[ab % 3])];
+        T* up = ra >= rb ? &ublocks_[9 * std::size_t(up_of_block_[std::size_t(blk)])] : nullptr;
         for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) dst[3 * j + i] += K[9 * ab + 3 * i + j] - (increment ? last_k[9 * ab + 3 * i + j] : T(0));
+          for (int j = 0; j < 3; ++j) {
+            const T d = K[9 * ab + 3 * i + j] - (increment ? last_k[9 * ab + 3 * i + j] : T(0));
+            dst[3 * j + i] += d;
+            if (up) up[3 * j + i] += d;
+          }
       }
       std::copy(K, K + 81, last_k);
+      for (int a = 0; a < 3; ++a)
+        if (const int row = m_.dof[std::size_t(tri[a])]; row >= 0) pc_dirty_[std::size_t(row)] = 1;
       for (int a = 0; a < 3; ++a) {
         const int row = m_.dof[std::size_t(tri[a])];
         T part[3];
@@ -346,6 +396,10 @@ class CpuBackend final : public Backend {
       // the blocks' trash slots for fixed rows), for the CG's product by block rows.
       npbb_.assign(3 * (std::size_t(m_.num_blocks()) + threads_) + 1, T(0));
       npbt_.assign(npbb_.size(), T(0));
+      ubb_.assign(3 * up_col_.size() + 1, T(0));
+      ubt_.assign(ubb_.size(), T(0));
+      upper_.bb = ubb_.data();
+      upper_.bt = ubt_.data();
       npi_.resize(nn);
       npif_.resize(nf);
       npc_.resize(nn);
@@ -424,6 +478,7 @@ class CpuBackend final : public Backend {
     } else {
       dvprev_ = dv_;
     }
+    refresh_preconditioner(sys);
     use_multigrid(sys);
     const auto res = cg::solve(sys, b_.data(), dv_.data(), T(p_.solver.cg_tolerance), p_.solver.cg_max_iterations,
                                cg_, parallel(), T(p_.solver.cg_rescue_tolerance), p_.solver.cg_rescue_iterations);
@@ -479,16 +534,40 @@ class CpuBackend final : public Backend {
   bool nodal() const { return p_.element == Element::NodalPressure; }
 
   // The step's system as assembled: (h^2 + h beta) K + D, and the nodal-pressure term.
-  cg::BlockSystem<T> system(T h) {
+  cg::BlockSystem<T> system(T h) const {
     cg::BlockSystem<T> sys{m_.num_free(), m_.row_ptr.data(), m_.col.data(), blocks_.data()};
     sys.scale = h * h + h * T(p_.damping.stiffness);
     sys.diag = diag_.data();
     sys.diag_index = m_.diag_block.data();
+    sys.upper = &upper_;
     if (nodal()) {
       sys.pressure = &npt_;
       sys.pressure_diag = npdiag_.data();
     }
     return sys;
+  }
+
+  // The block-Jacobi inverses (cg_.precond) for this step's system, kept from the last: only
+  // the rows whose diagonal block changed are inverted again, those marked in pc_dirty_
+  // (the rows of re-rotated elements, of the skin's triangles and of contacts, now or in the
+  // last solved system), or all of them after a full assembly or where the time step or
+  // the mass damping changed the scales. On the paper breast most rows are still: inverting
+  // all of them every step cost a product's worth.
+  void refresh_preconditioner(const cg::BlockSystem<T>& sys) {
+    const int nf = m_.num_free();
+    cg_.resize(3 * std::size_t(nf));
+    const T mscale = T(1) + T(p_.solver.dt) * T(p_.damping.mass);
+    const bool all = pc_all_ || sys.scale != pc_scale_ || mscale != pc_mscale_;
+    for (int i = 0; i < nf; ++i) {
+      if (!all && !pc_dirty_[std::size_t(i)]) continue;
+      cg::invert_diagonal(sys, i, cg_.precond.data());
+      pc_dirty_[std::size_t(i)] = 0;
+      ++counters_.preconditioner_rows;
+    }
+    pc_solved_ = true;
+    pc_all_ = false;
+    pc_scale_ = sys.scale;
+    pc_mscale_ = mscale;
   }
 
   // The levels below this step's system, when the preconditioner is a multigrid and they
@@ -555,8 +634,12 @@ class CpuBackend final : public Backend {
       std::fill(npb_.begin(), npb_.end(), T(0));
       std::fill(npbb_.begin(), npbb_.end(), T(0));
       std::fill(npbt_.begin(), npbt_.end(), T(0));
+      std::fill(ublocks_.begin(), ublocks_.end(), T(0));
+      std::fill(ubb_.begin(), ubb_.end(), T(0));
+      std::fill(ubt_.begin(), ubt_.end(), T(0));
       steps_since_assembly_ = 0;
       ++counters_.full_assemblies;
+      pc_all_ = true;
     }
     ++steps_since_assembly_;
     if (!kept) std::fill(b_.begin(), b_.end(), T(0));
@@ -582,6 +665,7 @@ class CpuBackend final : public Backend {
     const int nf = m_.num_free();
     const T damp = T(p_.damping.stiffness) + h;
     cg::BlockSystem<T> K{nf, m_.row_ptr.data(), m_.col.data(), blocks_.data()};
+    K.upper = &upper_;
     if (kept) {
       for (int i = 0; i < nf; ++i) {
         const int node = m_.free_nodes[i];
@@ -663,6 +747,8 @@ class CpuBackend final : public Backend {
         }
         lanes::add_block<T>(&blocks_[std::size_t(blk[4 * a + b])], kc);
         if (b != a) lanes::add_block<T>(&blocks_[std::size_t(blk[4 * b + a])], kr);
+        // The upper entry of the pair holds the block whose row is the larger one.
+        if (const int u = eup_[16 * e + 4 * a + b]; u >= 0) lanes::add_block<T>(&ublocks_[9 * std::size_t(u)], rows[a] >= rows[b] ? kc : kr);
       }
     }
     if (!y1) return;
@@ -693,6 +779,15 @@ class CpuBackend final : public Backend {
           bk[c] += d[c];
           bb[c] += d[c];
           bt[c] += d[c];
+        }
+        // The upper entry (min, max) of the rows: bb where n's row is the smaller, bt where
+        // it is the larger (both on the diagonal). A fixed n has none.
+        if (const int u = eup_[16 * e + 4 * a + b]; u >= 0) {
+          const int ra = erow_[4 * e + a], rb = erow_[4 * e + b];
+          for (int c = 0; c < 3; ++c) {
+            if (ra <= rb) ubb_[3 * std::size_t(u) + c] += d[c];
+            if (ra >= rb) ubt_[3 * std::size_t(u) + c] += d[c];
+          }
         }
       }
     }
@@ -726,6 +821,9 @@ class CpuBackend final : public Backend {
     for (int j = 0; j < nf; ++j) {
       const V4 g = cg::pressure_by_blocks(sys, j);
       for (int k = 0; k < 3; ++k) b_[3 * j + k] -= g[k];
+      // The diagonal block changes only with row j's couplings, those of the elements at j
+      // that were re-rotated (marked in pc_dirty_; all of them at a full assembly).
+      if (!pc_all_ && !pc_dirty_[std::size_t(j)]) continue;
       M3 D = M3::Zero();
       for (int k = m_.row_ptr[j]; k < m_.row_ptr[j + 1]; ++k) {
         const Eigen::Map<const V3> bk(&npbt_[3 * std::size_t(k)]);
@@ -852,6 +950,8 @@ class CpuBackend final : public Backend {
         if (nodal()) rotate_pairs(es, r, r0, blk);
       }
       for (int i = 0; i < 9; ++i) Rk[i] = R.data()[i];
+      for (int a = 0; a < 4; ++a)
+        if (const int v = erow_[4 * es + a]; v >= 0) pc_dirty_[std::size_t(v / 3)] = 1;  // no two of a colour share one
     }
     if (kept) return;  // the force is -K u + b0 (assemble())
     // Elastic force f_a = -V R sigma(R^T F - I) g_a (fem::element_forces, with R sigma
@@ -897,6 +997,10 @@ class CpuBackend final : public Backend {
   // exact.)
   void add_contacts(std::span<const FingerInput> fingers, T h) {
     const double ks = p_.contact.stiffness, ke = p_.contact.damping;
+    // The rows with contact terms in the last solved system and in this one change their
+    // diagonal.
+    for (int i : contact_rows_) pc_dirty_[std::size_t(i)] = 1;
+    contact_rows_.clear();
     for (const auto& c : contacts_) {
       const double rate = -c.n.dot(point_velocity(c) - fingers[c.finger].velocity);
       const double cks = c.scale * ks, cke = c.scale * ke;  // area-weighted (contact_sphere.h)
@@ -912,6 +1016,8 @@ class CpuBackend final : public Backend {
         const Eigen::Vector3d rhs = double(h) * c.w[k] * (mag * c.n - double(h) * cks * nn * vn);
         const Eigen::Matrix3d A = c.w[k] * (double(h) * double(h) * cks + double(h) * cke) * nn;
         T* d = &diag_[9 * std::size_t(i)];
+        contact_rows_.push_back(i);
+        pc_dirty_[std::size_t(i)] = 1;
         for (int r = 0; r < 3; ++r) {
           b_[3 * i + r] += T(rhs[r]);
           for (int s = 0; s < 3; ++s) d[3 * r + s] += T(A(r, s));
@@ -959,6 +1065,12 @@ class CpuBackend final : public Backend {
   std::vector<T> eg_, egg_, evol_;           // (ntet x 12, x 10, x 1) element constants in T
   std::vector<T> eX_;                        // (ntet x 12) rest positions about the element's centroid
   std::vector<int> eblk_, erow_;             // (ntet x 16, x 4) block / row offsets, fixed -> trash
+  std::vector<int> eup_;                     // (ntet x 16) upper entry of each block, -1 with a fixed node
+  std::vector<int> up_row_ptr_, up_col_;     // the upper triangle's pattern (cg::UpperBlocks)
+  std::vector<int> up_of_block_;             // (nblock) the upper entry of each full block
+  std::vector<T> ublocks_, ubb_, ubt_;       // (nupper x 9, x 3, x 3) its blocks and couplings, kept beside the full ones
+  std::vector<T> uscatter_;                  // (nfree x 4) the upper product's scratch
+  cg::UpperBlocks<T> upper_;
   std::vector<T> eF_;                        // (ntet x 12) F's columns (4 lanes) at the last extraction
   std::vector<T> ekrot_;                     // (ntet x 9) the rotation its blocks in K were built with
   std::vector<T> blocks_;                    // (nblock x 9) rotated stiffness K, column-major blocks, kept
@@ -967,6 +1079,11 @@ class CpuBackend final : public Backend {
   std::vector<T> dvprev_;                    // (nfree x 3) the solution before dv_ (warm start)
   std::vector<T> b0_;                        // (nfree x 3 + trash) sum of K_e (R_e - I) X_e, kept with K
   cg::Workspace<T> cg_;
+  std::vector<unsigned char> pc_dirty_;      // (nfree) the row's diagonal block changed since its inverse was taken
+  std::vector<int> contact_rows_;            // the rows with contact terms in the last system
+  bool pc_all_ = true;                       // every row's (a full assembly)
+  T pc_scale_ = -1, pc_mscale_ = -1;         // the scales the inverses were taken with
+  bool pc_solved_ = false;                   // cg_.precond holds a system's
   MultigridKeeper multigrid_;  // the levels below the system (Preconditioner::Multigrid*) and when to rebuild them
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
@@ -995,6 +1112,12 @@ CpuWorkCounters cpu_work_counters(const Backend& b) {
   if (const auto* d = dynamic_cast<const CpuBackend<double>*>(&b)) return d->counters();
   if (const auto* f = dynamic_cast<const CpuBackend<float>*>(&b)) return f->counters();
   return {};
+}
+
+double cpu_preconditioner_staleness(const Backend& b) {
+  if (const auto* d = dynamic_cast<const CpuBackend<double>*>(&b)) return d->preconditioner_staleness();
+  if (const auto* f = dynamic_cast<const CpuBackend<float>*>(&b)) return f->preconditioner_staleness();
+  return -1;
 }
 
 std::unique_ptr<Backend> make_cpu_backend(const Model& model, const SimParams& params) {

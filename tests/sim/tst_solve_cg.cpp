@@ -1,6 +1,7 @@
 // The preconditioned CG against Eigen's sparse Cholesky on the same system.
 #include <QtTest>
 
+#include <algorithm>
 #include <random>
 
 #include <Eigen/SparseCholesky>
@@ -161,6 +162,89 @@ class TestSolveCg : public QObject {
     QVERIFY2(blocks <= 1e-12, qPrintable(QString::number(blocks)));
     QVERIFY2(threads <= 1e-12, qPrintable(QString::number(threads)));
     QVERIFY2(gathered <= 1e-12, qPrintable(QString::number(gathered)));
+  }
+
+  // The product through the upper triangle (cg::UpperBlocks, one thread) is the same
+  // product: entry (i, c), c >= i, holds A_ci and the couplings at block (i, c), and each
+  // serves both (i, c) and (c, i). Against the sparse matrix of the full blocks and the
+  // pressure term (with the chest wall's fixed rows), with a mass diagonal, with and without
+  // the term, twice in a row (the scratch must be left clear). The same 1e-12 as above: only
+  // the order of the sums differs. A block served to the wrong side (A_ic for A_ci) breaks
+  // it, as the blocks here are not symmetric one by one.
+  void upperTriangleProductMatchesSparse() {
+    const System s = make_system(0.001);
+    const int nf = s.m.num_free(), nn = s.m.num_nodes(), n = 3 * nf;
+    const NodalPressurePattern pat = build_nodal_pressure_pattern(s.m);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<double> b(3 * std::size_t(pat.num_pairs())), w(nn), pi(nn), pif(nf), x(n + 1), diag(9 * std::size_t(nf) + 1);
+    for (double& v : b) v = u(rng);
+    for (double& v : w) v = 1.0 + u(rng) * 0.5;
+    for (double& v : x) v = u(rng);  // x[n]: the padding an upper product may read, not used
+    for (double& v : diag) v = u(rng);
+    // A symmetric matrix whose blocks are not: A_ci = A_ic^T, random.
+    std::vector<double> blocks(9 * std::size_t(s.m.num_blocks()) + 1, 0.0);
+    for (int i = 0; i < nf; ++i)
+      for (int k = s.m.row_ptr[i]; k < s.m.row_ptr[i + 1]; ++k) {
+        const int c = s.m.col[k];
+        if (c < i) continue;
+        const std::size_t kt = std::size_t(s.m.block_of(c, i));
+        for (int r = 0; r < 3; ++r)
+          for (int q = 0; q < 3; ++q) {
+            const double v = c == i && q < r ? blocks[9 * std::size_t(k) + 3 * r + q] : u(rng);  // the diagonal symmetric
+            blocks[9 * std::size_t(k) + r + 3 * q] = v;
+            blocks[9 * kt + q + 3 * r] = v;
+          }
+      }
+    std::vector<double> bb(3 * std::size_t(s.m.num_blocks()) + 1, 0.0), bt(bb.size(), 0.0);
+    couplings_to_block_order(s.m, pat, b.data(), bb.data(), bt.data());
+    // The upper triangle as the layout says.
+    std::vector<int> urow{0}, ucol;
+    std::vector<double> ublocks, ubb, ubt;
+    for (int i = 0; i < nf; ++i) {
+      for (int k = s.m.row_ptr[i]; k < s.m.row_ptr[i + 1]; ++k) {
+        const int c = s.m.col[k];
+        if (c < i) continue;
+        ucol.push_back(c);
+        const std::size_t kt = std::size_t(s.m.block_of(c, i));
+        for (int q = 0; q < 9; ++q) ublocks.push_back(blocks[9 * kt + q]);
+        for (int q = 0; q < 3; ++q) {
+          ubb.push_back(bb[3 * std::size_t(k) + q]);
+          ubt.push_back(bt[3 * std::size_t(k) + q]);
+        }
+      }
+      urow.push_back(int(ucol.size()));
+    }
+    ublocks.push_back(0.0);
+    ubb.push_back(0.0);
+    ubt.push_back(0.0);
+    std::vector<double> scatter(4 * std::size_t(nf), 0.0);
+    const cg::UpperBlocks<double> U{urow.data(), ucol.data(), ublocks.data(), ubb.data(), ubt.data(), scatter.data()};
+    cg::PressureTerm<double> P{nn, pat.row_ptr.data(), pat.col.data(), pat.t_row_ptr.data(), pat.t_node.data(),
+                               pat.t_pair.data(), b.data(), w.data(), pi.data()};
+    cg::set_block_layout(P, pat, s.m.free_nodes.data(), bb.data(), bt.data(), pif.data());
+    for (const bool with_pressure : {false, true}) {
+      cg::BlockSystem<double> sys{nf, s.m.row_ptr.data(), s.m.col.data(), blocks.data()};
+      sys.scale = 0.5;
+      sys.diag = diag.data();
+      if (with_pressure) sys.pressure = &P;
+      amg::SpMat M = cg::to_sparse(sys) + cg::pressure_to_sparse(sys);
+      const Eigen::Map<const Eigen::VectorXd> xv(x.data(), n);
+      const Eigen::VectorXd ref = M * xv;
+      QVERIFY(ref.norm() > 0);
+      sys.upper = &U;
+      for (int rep = 0; rep < 2; ++rep) {
+        std::vector<double> y(n);
+        double xy = 0;
+        cg::multiply(sys, x.data(), y.data(), false, &xy);
+        const double e = (Eigen::Map<const Eigen::VectorXd>(y.data(), n) - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+        const double exy = std::abs(xy - xv.dot(ref)) / (xv.norm() * ref.norm());
+        qInfo("pressure term %d, product %d: largest error %.2e, x . y %.2e", int(with_pressure), rep + 1, e, exy);
+        QVERIFY2(e <= 1e-12, qPrintable(QString::number(e)));
+        QVERIFY2(exy <= 1e-12, qPrintable(QString::number(exy)));
+      }
+      QVERIFY(std::all_of(scatter.begin(), scatter.end(), [](double v) { return v == 0.0; }));
+    }
   }
 };
 

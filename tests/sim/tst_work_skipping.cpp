@@ -8,6 +8,7 @@
 
 #include "relative_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -241,6 +242,98 @@ class TestWorkSkipping : public QObject {
       QCOMPARE(cpu_work_counters(*b).parallel_steps, team == 1 ? 0L : 5L);
     }
 #endif
+  }
+
+  // One thread runs the CG's products through the upper triangle that the CPU backend keeps
+  // beside its full blocks (cg::UpperBlocks), updated by the same element, coupling and
+  // skin increments; two threads through the full rows. A press that slides (elements
+  // re-rotated and kept by turns, the nodal-pressure element, a skin) gives the same state
+  // on both: only the order of the sums differs, and the CG is solved to 1e-12, so 1e-8
+  // relative is a thousand times the rounding that can reach the positions. A block or a
+  // coupling missing from the upper triangle, or added to the wrong side, moves the force
+  // by its whole part.
+  void upperTriangleKeptWithTheBlocks() {
+#ifndef _OPENMP
+    QSKIP("built without OpenMP: no full-row product to compare with");
+#else
+    const int before = omp_get_max_threads();
+    const auto restore = qScopeGuard([before] { omp_set_num_threads(before); });
+    omp_set_num_threads(2);
+    Scenario s = box();
+    s.skin = SkinSpec{0.0015, 56000};
+    s.params.solver.corotation_tolerance = 1e-3;
+    s.params.solver.cg_tolerance = 1e-12;
+    s.params.solver.cg_max_iterations = 5000;
+    QCOMPARE(resolve_element(s.params.element, s.poisson_ratio), Element::NodalPressure);
+    const Model m = model_of(s);
+    QVERIFY(m.skin.size() > 0);
+    std::vector<double> f[2], x[2];
+    for (const int threads : {1, 2}) {
+      s.params.solver.threads = threads;
+      auto b = make_cpu_backend(m, s.params);
+      std::vector<FingerOutput> out(1);
+      for (int k = 0; k < 200; ++k) {
+        // 3 mm down over 100 steps, then 8 mm across.
+        const double t = (k + 1) / 100.0;
+        const std::vector<FingerInput> in{finger_pressing(0.003 * std::min(t, 1.0), 0.008 * std::max(t - 1.0, 0.0))};
+        QVERIFY(b->step(in, out).solved);
+        for (int c = 0; c < 3; ++c) f[threads - 1].push_back(out[0].force[c]);
+      }
+      b->positions(x[threads - 1]);
+      QCOMPARE(cpu_work_counters(*b).parallel_steps, threads == 1 ? 0L : 200L);
+      QCOMPARE(cpu_work_counters(*b).full_assemblies, 1L);
+    }
+    const double ef = relative_error(f[0], f[1]), ex = relative_error(x[0], x[1]);
+    qInfo("upper triangle (one thread) against full rows (two): force %.2e, positions %.2e relative", ef, ex);
+    QVERIFY2(ef <= 1e-8, qPrintable(QString::number(ef)));
+    QVERIFY2(ex <= 1e-8, qPrintable(QString::number(ex)));
+#endif
+  }
+
+  // The CPU backend keeps its block-Jacobi inverses from step to step and inverts again only
+  // the rows whose diagonal block changed (re-rotated elements, the skin's triangles,
+  // contacts now or in the last system, everything after a full assembly or a change of
+  // dt or of the mass damping). After every solved step of a press that slides and lifts
+  // off, under a dt and a damping change, the kept inverses are exactly those taken afresh
+  // from the system just solved (the same function of the same values: any stale row
+  // differs by its whole change). Without a skin, on a press that touches part of the top,
+  // fewer than half the rows are inverted in a step.
+  void preconditionerKeptForTheChangedRows() {
+    for (const bool skin : {true, false}) {
+      Scenario s = box(0.004);
+      if (skin) s.skin = SkinSpec{0.0015, 56000};
+      s.params.solver.corotation_tolerance = 1e-3;
+      const Model m = model_of(s);
+      auto b = make_cpu_backend(m, s.params);
+      QCOMPARE(cpu_preconditioner_staleness(*b), -1.0);
+      std::vector<FingerOutput> out(1);
+      long solved = 0;
+      for (int k = 0; k < 260; ++k) {
+        if (k == 120) {
+          SimParams p = b->params();
+          p.solver.dt *= 0.5;
+          b->set_params(p);
+        }
+        if (k == 160) {
+          SimParams p = b->params();
+          p.damping.mass += 0.5;
+          b->set_params(p);
+        }
+        // 2 mm down over 60 steps, 6 mm across, then up and clear of the body.
+        const double depth = k < 200 ? 0.002 * std::min(1.0, (k + 1) / 60.0) : 0.002 - 0.0001 * (k - 199);
+        const double x = 0.006 * std::clamp((k - 60) / 140.0, 0.0, 1.0);
+        const std::vector<FingerInput> in{finger_pressing(depth, x)};
+        if (!b->step(in, out).solved) continue;
+        ++solved;
+        const double stale = cpu_preconditioner_staleness(*b);
+        if (stale != 0.0) QFAIL(qPrintable(QString("skin %1, step %2: kept inverses off by %3").arg(skin).arg(k).arg(stale)));
+      }
+      const CpuWorkCounters c = cpu_work_counters(*b);
+      const double share = double(c.preconditioner_rows) / (double(solved) * m.num_free());
+      qInfo("skin %d: %ld solved steps, %.1f %% of the rows inverted a step", int(skin), solved, 100 * share);
+      QVERIFY(solved >= 200);
+      if (!skin) QVERIFY2(share < 0.5, qPrintable(QString::number(share)));
+    }
   }
 
   // The periodic full re-assembly: with a finger held in the body (never at rest) K and
