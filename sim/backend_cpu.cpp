@@ -115,7 +115,7 @@ class CpuBackend final : public Backend {
     build_element_tables();
     build_skin_tables();
     cg_.resize(3 * nf);
-    cg_.precond_kept = true;  // refresh_preconditioner()
+    cg_.precond_kept = true;  // refresh_preconditioner() keeps cg_.precond
     pc_dirty_.assign(std::size_t(nf), 1);
     set_materials(m_.materials);
     reset();
@@ -149,7 +149,7 @@ class CpuBackend final : public Backend {
   }
   const CpuWorkCounters& counters() const { return counters_; }
   double preconditioner_staleness() const {
-    if (!pc_solved_) return -1;
+    if (pc_scale_ < 0) return -1;  // nothing solved yet
     const cg::BlockSystem<T> sys = system(T(p_.solver.dt));
     std::vector<T> fresh(cg_.precond.size());
     cg::build_block_jacobi(sys, fresh.data());
@@ -362,10 +362,9 @@ class CpuBackend final : public Backend {
           }
       }
       std::copy(K, K + 81, last_k);
-      for (int a = 0; a < 3; ++a)
-        if (const int row = m_.dof[std::size_t(tri[a])]; row >= 0) pc_dirty_[std::size_t(row)] = 1;
       for (int a = 0; a < 3; ++a) {
         const int row = m_.dof[std::size_t(tri[a])];
+        if (row >= 0) pc_dirty_[std::size_t(row)] = 1;  // its diagonal block changed
         T part[3];
         for (int i = 0; i < 3; ++i) {
           part[i] = f[3 * a + i];
@@ -532,6 +531,8 @@ class CpuBackend final : public Backend {
 
  private:
   bool nodal() const { return p_.element == Element::NodalPressure; }
+  // The mass terms' factor on the diagonal, 1 + h alpha.
+  T mass_scale() const { return T(1) + T(p_.solver.dt) * T(p_.damping.mass); }
 
   // The step's system as assembled: (h^2 + h beta) K + D, and the nodal-pressure term.
   cg::BlockSystem<T> system(T h) const {
@@ -555,8 +556,7 @@ class CpuBackend final : public Backend {
   // all of them every step cost a product's worth.
   void refresh_preconditioner(const cg::BlockSystem<T>& sys) {
     const int nf = m_.num_free();
-    cg_.resize(3 * std::size_t(nf));
-    const T mscale = T(1) + T(p_.solver.dt) * T(p_.damping.mass);
+    const T mscale = mass_scale();
     const bool all = pc_all_ || sys.scale != pc_scale_ || mscale != pc_mscale_;
     for (int i = 0; i < nf; ++i) {
       if (!all && !pc_dirty_[std::size_t(i)]) continue;
@@ -564,7 +564,6 @@ class CpuBackend final : public Backend {
       pc_dirty_[std::size_t(i)] = 0;
       ++counters_.preconditioner_rows;
     }
-    pc_solved_ = true;
     pc_all_ = false;
     pc_scale_ = sys.scale;
     pc_mscale_ = mscale;
@@ -683,7 +682,7 @@ class CpuBackend final : public Backend {
     }
     if (nodal()) nodal_pressure_forces(damp, par);
     // Mass terms of the diagonal: (1 + h alpha) M.
-    const T mscale = T(1) + T(p_.solver.dt) * T(p_.damping.mass);
+    const T mscale = mass_scale();
     std::fill(diag_.begin(), diag_.end(), T(0));
     for (int i = 0; i < nf; ++i) {
       T* d = &diag_[9 * std::size_t(i)];
@@ -1082,8 +1081,7 @@ class CpuBackend final : public Backend {
   std::vector<unsigned char> pc_dirty_;      // (nfree) the row's diagonal block changed since its inverse was taken
   std::vector<int> contact_rows_;            // the rows with contact terms in the last system
   bool pc_all_ = true;                       // every row's (a full assembly)
-  T pc_scale_ = -1, pc_mscale_ = -1;         // the scales the inverses were taken with
-  bool pc_solved_ = false;                   // cg_.precond holds a system's
+  T pc_scale_ = -1, pc_mscale_ = -1;         // the scales the inverses were taken with (-1: none yet)
   MultigridKeeper multigrid_;  // the levels below the system (Preconditioner::Multigrid*) and when to rebuild them
   std::vector<contact::SurfaceContact> contacts_;
   std::vector<Eigen::Vector3d> filtered_;    // (nfinger) filtered force
@@ -1108,16 +1106,22 @@ class CpuBackend final : public Backend {
 
 }  // namespace
 
+namespace {
+// f(the CPU backend b is, in its precision), or `other` for any other backend.
+template <class R, class F>
+R on_cpu_backend(const Backend& b, R other, F f) {
+  if (const auto* d = dynamic_cast<const CpuBackend<double>*>(&b)) return f(*d);
+  if (const auto* s = dynamic_cast<const CpuBackend<float>*>(&b)) return f(*s);
+  return other;
+}
+}  // namespace
+
 CpuWorkCounters cpu_work_counters(const Backend& b) {
-  if (const auto* d = dynamic_cast<const CpuBackend<double>*>(&b)) return d->counters();
-  if (const auto* f = dynamic_cast<const CpuBackend<float>*>(&b)) return f->counters();
-  return {};
+  return on_cpu_backend(b, CpuWorkCounters{}, [](const auto& c) { return c.counters(); });
 }
 
 double cpu_preconditioner_staleness(const Backend& b) {
-  if (const auto* d = dynamic_cast<const CpuBackend<double>*>(&b)) return d->preconditioner_staleness();
-  if (const auto* f = dynamic_cast<const CpuBackend<float>*>(&b)) return f->preconditioner_staleness();
-  return -1;
+  return on_cpu_backend(b, -1.0, [](const auto& c) { return c.preconditioner_staleness(); });
 }
 
 std::unique_ptr<Backend> make_cpu_backend(const Model& model, const SimParams& params) {

@@ -232,6 +232,29 @@ lanes::V4<T> pressure_by_blocks(const BlockSystem<T>& A, int i) {
   return y;
 }
 
+/// b x for the 3x3 block b (column-major; four-lane columns, the fourth lane not used).
+template <class T>
+[[gnu::always_inline]] inline lanes::V4<T> block_times(const T* __restrict b, T x0, T x1, T x2) {
+  return lanes::load4(b) * x0 + lanes::load4(b + 3) * x1 + lanes::load4(b + 6) * x2;
+}
+
+/// The end of block row i of a product, acc holding the row's sum over the stored blocks:
+/// y_i = scale acc + D_i x_i; returns x_i . y_i.
+template <class T>
+[[gnu::always_inline]] inline T finish_row(const BlockSystem<T>& A, int i, lanes::V4<T> acc, const T* __restrict x,
+                                           T* __restrict y) {
+  const T x0 = x[3 * i], x1 = x[3 * i + 1], x2 = x[3 * i + 2];
+  if (A.diag) {
+    acc = A.scale * acc + block_times(A.diag + 9 * std::size_t(i), x0, x1, x2);
+  } else if (A.scale != T(1)) {
+    acc *= A.scale;
+  }
+  y[3 * i] = acc[0];
+  y[3 * i + 1] = acc[1];
+  y[3 * i + 2] = acc[2];
+  return x0 * acc[0] + x1 * acc[1] + x2 * acc[2];
+}
+
 /// y_i = scale (sum_k (B_ik x_k + at_block(k)) + at_row(i)) + D_i x_i over the block rows;
 /// returns x . y.
 ///
@@ -245,10 +268,7 @@ T block_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bo
   using V4 = lanes::V4<T>;
   using lanes::load4;
   // One block: three columns times x's three entries broadcast.
-  auto block = [](const T* __restrict b, const T* __restrict xx) {
-    const V4 x0 = {xx[0], xx[0], xx[0], xx[0]}, x1 = {xx[1], xx[1], xx[1], xx[1]}, x2 = {xx[2], xx[2], xx[2], xx[2]};
-    return load4(b) * x0 + load4(b + 3) * x1 + load4(b + 6) * x2;
-  };
+  auto block = [](const T* __restrict b, const T* __restrict xx) { return block_times(b, xx[0], xx[1], xx[2]); };
   T xy = 0;
 #pragma omp parallel for schedule(static) reduction(+ : xy) if (parallel)
   for (int i = 0; i < A.n; ++i) {
@@ -264,15 +284,7 @@ T block_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y, bo
     }
     if (k < end) acc += block(b, x + 3 * c[k]) + at_block(k);
     acc += acc2 + at_row(i);
-    if (A.diag) {
-      acc = A.scale * acc + block(A.diag + 9 * std::size_t(i), x + 3 * i);
-    } else if (A.scale != T(1)) {
-      acc *= A.scale;
-    }
-    y[3 * i] = acc[0];
-    y[3 * i + 1] = acc[1];
-    y[3 * i + 2] = acc[2];
-    xy += x[3 * i] * acc[0] + x[3 * i + 1] * acc[1] + x[3 * i + 2] * acc[2];
+    xy += finish_row(A, i, acc, x, y);
   }
   return xy;
 }
@@ -301,7 +313,7 @@ T upper_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y) {
     const int k0 = U.row_ptr[i], end = U.row_ptr[i + 1];
     const T x0 = x[3 * i], x1 = x[3 * i + 1], x2 = x[3 * i + 2];
     const T* b = blocks + 9 * std::size_t(k0);
-    V4 acc = load4(b) * x0 + load4(b + 3) * x1 + load4(b + 6) * x2;  // the diagonal block
+    V4 acc = block_times(b, x0, x1, x2);  // the diagonal block
     T pi = 0;
     if constexpr (Pressure) {
       pi = pif[i];
@@ -331,16 +343,7 @@ T upper_rows(const BlockSystem<T>& A, const T* __restrict x, T* __restrict y) {
     acc += load4(own);
     lanes::store4(own, V4{0, 0, 0, 0});
     if constexpr (Pressure) acc += pressure_fixed_pairs(A, i);
-    if (A.diag) {
-      const T* d = A.diag + 9 * std::size_t(i);
-      acc = A.scale * acc + (load4(d) * x0 + load4(d + 3) * x1 + load4(d + 6) * x2);
-    } else if (A.scale != T(1)) {
-      acc *= A.scale;
-    }
-    y[3 * i] = acc[0];
-    y[3 * i + 1] = acc[1];
-    y[3 * i + 2] = acc[2];
-    xy += x0 * acc[0] + x1 * acc[1] + x2 * acc[2];
+    xy += finish_row(A, i, acc, x, y);
   }
   return xy;
 }
