@@ -21,8 +21,8 @@
 // gets a force off by d theta relative and the symmetric part of its strain only to
 // second order; between its updates it is exactly a linear element in a fixed frame
 // (energy-consistent), which is what makes f = -K u + b0 exact for it. Tolerance 0
-// updates every element every step (CPU-GPU agreement checks use it). The CUDA backends
-// keep rotations by the same rule and form each element's force from the kept one. docs/benchmarks.md has the measured step time against force
+// updates every element every step, which is the arithmetic of the CUDA backend (CPU-GPU
+// agreement checks use it). docs/benchmarks.md has the measured step time against force
 // error.
 #include "backend_cpu.h"
 
@@ -616,8 +616,8 @@ class CpuBackend final : public Backend {
   // with, f = -K u + b0, b0 = sum over elements of K_e (R_e - I) X_e, kept like K (an
   // element's update adds its new minus its old part), and f - (beta + h) K v is one
   // product: b0 - K (u + (beta + h) v). The element pass then only computes F and checks
-  // it; the per-element force (R sigma(R^T F - I) g, what the CUDA backends form from the
-  // kept rotation) only at tolerance 0, where every element is re-rotated every step anyway.
+  // it; the per-element force (R sigma(R^T F - I) g) is formed only at tolerance 0, the
+  // CUDA backend's arithmetic, where every element is re-rotated every step anyway.
   void assemble(T h) {
     // Assembled in full at the start, after a reset or a material change, and every
     // kReassembleSteps updates (the increments' rounding stays far below the CG
