@@ -186,6 +186,7 @@ class CpuBackend final : public Backend {
     kept_.filtered = filtered_;
     kept_.rested = rested_;
     kept_.last_converged = last_converged_;
+    kept_.tight_solves = tight_solves_;
     return true;
   }
   void rollback() override {
@@ -198,6 +199,7 @@ class CpuBackend final : public Backend {
     filtered_ = kept_.filtered;
     rested_ = kept_.rested;
     last_converged_ = kept_.last_converged;
+    tight_solves_ = kept_.tight_solves;
   }
   void rollback_for_reference() override {
     if (!kept_.valid) return;
@@ -229,6 +231,7 @@ class CpuBackend final : public Backend {
     s->filtered_ = kept_.filtered;
     s->rested_ = kept_.rested;
     s->last_converged_ = kept_.last_converged;
+    s->tight_solves_ = kept_.tight_solves;
     s->reuse_dv_ = dv_;
     s->reuse_pending_ = true;
     s->kept_.valid = false;
@@ -419,6 +422,7 @@ class CpuBackend final : public Backend {
     std::fill(dv_.begin(), dv_.end(), T(0));
     dvprev_.clear();
     last_converged_ = false;
+    tight_solves_ = 0;
     multigrid_.invalidate();
     kept_.valid = false;
     reuse_pending_ = false;
@@ -457,18 +461,19 @@ class CpuBackend final : public Backend {
     add_contacts(fingers, h);
 
     const cg::BlockSystem<T> sys = system(h);
-    // Warm start: the last two solutions extrapolated linearly (the velocity change of a
-    // pushed body varies smoothly from step to step; on the coarse sweep 10-13 % fewer CG
-    // iterations than the last solution alone). A guess worse than zero is caught by
-    // cg::solve, which then starts from zero. Only after a converged solve: with the
+    // Warm start (WarmStart in params.h): the last two solutions extrapolated linearly
+    // (the velocity change of a pushed body varies smoothly from step to step; at CG 1e-3
+    // 10-13 % fewer CG iterations than the last solution alone), or the last solution.
+    // Extrapolated only after a converged solve (WarmStart::Last: two tight ones): with the
     // iterations capped below convergence, extrapolating the truncation error doubles it
-    // every step (the capped bench settings diverged).
+    // every step (the capped bench settings diverged), and so it does a loose solve's. A
+    // guess far worse than zero is caught by cg::solve, which then starts from zero.
     if (reuse && reuse_dv_.size() == dv_.size()) {
       // rollback_for_reference(): from the undone take's solution; the previous step's
       // solution is kept for the next extrapolation, as an extrapolating take keeps it.
       dvprev_ = dv_;
       dv_.swap(reuse_dv_);
-    } else if (dvprev_.size() == dv_.size() && last_converged_) {
+    } else if (dvprev_.size() == dv_.size() && warm_start_extrapolates(p_.solver.warm_start, last_converged_, tight_solves_)) {
       for (std::size_t i = 0; i < dv_.size(); ++i) {
         const T cur = dv_[i];
         dv_[i] = T(2) * cur - dvprev_[i];
@@ -489,6 +494,7 @@ class CpuBackend final : public Backend {
       note_multigrid_iterations(res.iterations, res.relative_residual <= std::max(p_.solver.cg_tolerance,
                                                                                   p_.solver.cg_rescue_tolerance));
     last_converged_ = res.converged;
+    tight_solves_ = count_tight_solves(tight_solves_, res.relative_residual);
     st.cg_residual = res.relative_residual;
     st.solved = true;
 
@@ -1088,6 +1094,7 @@ class CpuBackend final : public Backend {
   contact::Bounds bounds_;
   bool rested_ = true;
   bool last_converged_ = false;               // the last CG solve met its tolerance
+  int tight_solves_ = 0;                      // count_tight_solves of the last solves (params.h)
   bool assembled_ = false;                   // blocks_ holds K for the current rotations
   long steps_since_assembly_ = 0;
   CpuWorkCounters counters_;
@@ -1097,6 +1104,7 @@ class CpuBackend final : public Backend {
     std::vector<Eigen::Quaternion<T>> q;
     std::vector<Eigen::Vector3d> filtered;
     bool rested = true, last_converged = false, valid = false;
+    int tight_solves = 0;
   } kept_;                                   // checkpoint()
   std::vector<T> reuse_dv_;                  // rollback_for_reference(): the undone take's solution
   bool reuse_pending_ = false;               // ... which the next take starts from

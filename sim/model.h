@@ -135,10 +135,11 @@ Model build_model(TetMesh mesh, const Material& tissue, const FixedPredicate& is
 /// Parameters as a backend of this model runs them: Element::Auto resolved from the
 /// tissue's Poisson's ratio, Preconditioner::Auto from the mesh's size and whether the
 /// backend is the GPU's persistent solver (`gpu`), the corotation tolerance from the
-/// force-error target (params.h). Both backends apply it to what they are given, so
-/// params() names what runs.
+/// force-error target (params.h), WarmStart::Auto. Both backends apply it to what they are
+/// given, so params() names what runs.
 inline SimParams resolved_for(const Model& m, SimParams p, bool gpu = false) {
   p.element = resolve_element(p.element, m.tissue.poisson_ratio);
+  p.solver.warm_start = resolve_warm_start(p.solver.warm_start);
   p.solver.preconditioner = resolve_preconditioner(p.solver.preconditioner, gpu, m.num_nodes());
   p.solver.corotation_tolerance = resolve_corotation_tolerance(p.solver);
   return p;

@@ -36,6 +36,45 @@ inline CheckPlace parse_check_place(const std::string& name) {
   return name == "in-step" ? CheckPlace::InStep : name == "beside" ? CheckPlace::Beside : CheckPlace::Auto;
 }
 
+/// How a step's CG solve starts, from the velocity changes dv of the last solves (both
+/// backends; SolverParams::warm_start). Extrapolated: after a converged solve the last two
+/// extrapolated, 2 dv_n - dv_n-1, else dv_n. Last (what Auto means): dv_n, the last two
+/// extrapolated only after two solves in a row to kExtrapolateBelow or tighter. The
+/// extrapolation doubles the error of the solves it extrapolates: under the error
+/// controller's tolerances (1e-2 to 0.1) the guess then lands far off (on the paper sweep
+/// held at 1 % the warm start's residual was 0.2-5.5 |b|, where a zero start's is |b|), and
+/// the loose steps' errors add up in the force series. On the CPU, paper sweep held at 1 %:
+/// 12.7 -> 9.6 CG iterations a step on average; the error controller's test box: series
+/// error 2.9e-3 -> 1.3e-3 of the converged force (docs/benchmarks.md). At a fixed tolerance
+/// of 1e-3 both extrapolate after every solve but the first. Tried and not kept: the
+/// start scaled by its energy-optimal factor (x . b) / (x . A x), 5 iterations a step on
+/// the paper sweep but a force series 1.2 % off on the test box at a 1 % target (the
+/// scale shrinks every start towards zero, the same way each step).
+enum class WarmStart { Auto, Extrapolated, Last };
+inline const char* warm_start_name(WarmStart w) {
+  return w == WarmStart::Extrapolated ? "extrapolated" : w == WarmStart::Last ? "last" : "auto";
+}
+inline std::vector<std::string> warm_start_names() { return {"auto", "extrapolated", "last"}; }
+/// The warm start named (one of warm_start_names(); any other name: Auto).
+inline WarmStart parse_warm_start(const std::string& name) {
+  return name == "extrapolated" ? WarmStart::Extrapolated : name == "last" ? WarmStart::Last : WarmStart::Auto;
+}
+inline WarmStart resolve_warm_start(WarmStart w) { return w == WarmStart::Auto ? WarmStart::Last : w; }
+/// The relative residual at or below which WarmStart::Last extrapolates (after two such
+/// solves in a row): at CG 1e-3 the extrapolation takes 13 % fewer iterations than the last
+/// solution (paper sweep, CPU, float: 26 against 30), from 1e-2 on more (above).
+inline constexpr double kExtrapolateBelow = 3e-3;
+/// The solves in a row to kExtrapolateBelow, counted up to the two that WarmStart::Last
+/// asks, after one that reached `relative_residual`.
+inline int count_tight_solves(int before, double relative_residual) {
+  return relative_residual <= kExtrapolateBelow ? std::min(before + 1, 2) : 0;
+}
+/// Whether the next warm start extrapolates: after a converged solve (Extrapolated), or
+/// two tight ones (Last).
+inline bool warm_start_extrapolates(WarmStart w, bool last_converged, int tight_solves) {
+  return w == WarmStart::Extrapolated ? last_converged : tight_solves >= 2;
+}
+
 enum class Preconditioner { Auto, BlockJacobi, Multigrid, MultigridChebyshev, MultigridJacobi };
 inline bool is_multigrid(Preconditioner p) { return p != Preconditioner::BlockJacobi && p != Preconditioner::Auto; }
 
@@ -119,6 +158,7 @@ struct SolverParams {
   // a step up by a slice rather than by a whole reference solve), InStep elsewhere (on the
   // CPU a second solve would take the same cores).
   CheckPlace check = CheckPlace::Auto;
+  WarmStart warm_start = WarmStart::Auto;
 };
 
 /// The force error a scenario holds when it names neither solver.force_error nor

@@ -315,7 +315,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
     const json& sv = j["solver"];
     rd.only_keys(sv, "solver", {"backend", "dt", "precision", "cg_tolerance", "cg_max_iterations",
                              "cg_rescue_tolerance", "cg_rescue_iterations", "threads", "corotation_tolerance",
-                             "preconditioner", "force_error", "check"});
+                             "preconditioner", "force_error", "check", "warm_start"});
     if (sv.contains("backend")) s.backend = rd.choice(sv["backend"], "solver.backend", {"auto", "cpu", "cuda"});
     if (sv.contains("dt")) {
       s.params.solver.dt = rd.positive(sv["dt"], "solver.dt");
@@ -347,6 +347,8 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
           parse_preconditioner(rd.choice(sv["preconditioner"], "solver.preconditioner", preconditioner_names()));
     if (sv.contains("check"))
       s.params.solver.check = parse_check_place(rd.choice(sv["check"], "solver.check", check_place_names()));
+    if (sv.contains("warm_start"))
+      s.params.solver.warm_start = parse_warm_start(rd.choice(sv["warm_start"], "solver.warm_start", warm_start_names()));
     // A scenario that names a CG tolerance and no force error keeps that tolerance fixed
     // (every scenario written before the key: its results stay what they were).
     s.params.solver.force_error = sv.contains("cg_tolerance") ? 0.0 : kDefaultForceError;
@@ -495,6 +497,7 @@ std::string scenario_to_json(const Scenario& s) {
   // which curricula pin by hash; recordings) stays byte for byte what it was before the key.
   if (sv.preconditioner != Preconditioner::Auto) j["solver"]["preconditioner"] = preconditioner_name(sv.preconditioner);
   if (sv.check != CheckPlace::Auto) j["solver"]["check"] = check_place_name(sv.check);
+  if (sv.warm_start != WarmStart::Auto) j["solver"]["warm_start"] = warm_start_name(sv.warm_start);
   // Read back, a scenario with cg_tolerance and no force_error has a fixed tolerance.
   if (sv.force_error > 0) j["solver"]["force_error"] = sv.force_error;
   j["contact"] = {{"stiffness", s.params.contact.stiffness},

@@ -48,6 +48,11 @@
 #          at 1 %, on the same keys; then an 8 s session on the paper mesh with each path
 #          (path.txt: every run's median / p99 ms and CG iterations from its series, the mean
 #          and 99th percentile of the iterations, the force error). Not a default stage
+#   warmstart the CG's warm start (`palpation bench --warm-start`): each point of
+#          WARMSTART_RUNS (default "paper:1000:double paper:1000:float xfine:1000:float")
+#          WARMSTART_REPEAT times (default 2), extrapolated and last alternated, held at 1 %;
+#          then an 8 s session on the paper mesh with each, twice (warmstart.txt). Not a
+#          default stage
 #   idle   palpation bench --scenario idle (no contact, at rest)
 #   control the error-controlled tolerance against the fixed ones: bench (all tolerances and
 #          fe1%; fe1% with its checks in the step and auto, twice) and palpation session with
@@ -651,16 +656,22 @@ if has idle; then
     --element linear --steps 1000 --out /tmp/palpation-idle-csr
   [[ -f /tmp/palpation-idle-csr/bench.csv ]] && tail -n +2 /tmp/palpation-idle-csr/bench.csv >>"$OUT/idle.csv"
 fi
-if has path; then
-  for run in ${PATH_RUNS:-paper:6000:double paper:6000:float xfine:1000:float}; do
+# bench_ab STAGE OPTION RUNS VALUE...: for each point of RUNS (mesh:steps:precision),
+# REPEAT times (default 2), `palpation bench ... --OPTION VALUE` for each VALUE in turn,
+# held at 1 %, with its series: every run's line and the step median / p99 and CG
+# iterations from its series into STAGE.txt.
+bench_ab() {
+  local stage=$1 option=$2 runs=$3
+  shift 3
+  for run in $runs; do
     IFS=: read -r m n prec <<<"$run"
-    for round in $(seq "${PATH_REPEAT:-2}"); do
-      for path in linear monotone-cubic; do
-        d=/tmp/palpation-path-$m-$n-$prec-$path-$round
-        say "path: bench $m, $n steps, $prec, --path $path, round $round"
+    for round in $(seq "${REPEAT:-2}"); do
+      for value in "$@"; do
+        d=/tmp/palpation-$stage-$m-$n-$prec-$value-$round
+        say "$stage: bench $m, $n steps, $prec, --$option $value, round $round"
         timeout "$BENCH_TIMEOUT" "$P" bench --meshes "$m" --backends cuda --precisions "$prec" --force-error 0.01 \
-          --steps "$n" --path "$path" --series --out "$d" | grep -E "^$m |error controller" | tee -a "$OUT/path.txt"
-        python3 - "$d/series.csv" "$path" <<'EOF2' | tee -a "$OUT/path.txt"
+          --steps "$n" --"$option" "$value" --series --out "$d" | grep -E "^$m |error controller" | tee -a "$OUT/$stage.txt"
+        python3 - "$d/series.csv" "$value" <<'EOF2' | tee -a "$OUT/$stage.txt"
 import csv, statistics, sys
 rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["timed"] == "1"]
 it = sorted(int(r["cg_iterations"]) for r in rows)
@@ -672,6 +683,31 @@ EOF2
       done
     done
   done
+}
+
+if has warmstart; then
+  REPEAT=${WARMSTART_REPEAT:-2} bench_ab warmstart warm-start "${WARMSTART_RUNS:-paper:1000:double paper:1000:float xfine:1000:float}" \
+    extrapolated last
+  for round in 1 2; do
+    for ws in extrapolated last; do
+      say "warmstart: session paper-sweep (--warm-start $ws), paper mesh, held at 1 %, 8 s, round $round"
+      "$P" scenario paper-sweep | python3 -c "import json,sys; j=json.load(sys.stdin); j['solver']['warm_start']='$ws'; print(json.dumps(j))" \
+        >/tmp/palpation-paper-sweep-$ws.json
+      timeout 120 "$P" session /tmp/palpation-paper-sweep-$ws.json --device emulator --backend cuda --resolution paper \
+        --force-error 0.01 --duration 8 --quiet --out "/tmp/palpation-ws-session-$ws-$round" >/dev/null 2>&1
+      python3 - "/tmp/palpation-ws-session-$ws-$round/loop.json" "$ws" <<'EOF2' | tee -a "$OUT/warmstart.txt"
+import json, sys
+j = json.load(open(sys.argv[1]))["simulation"]
+print(f"session {sys.argv[2]}: {j['step_rate_hz']:.0f} steps/s, step median {j['step_ms_median']:.3f} / p99 "
+      f"{j['step_ms_p99']:.3f} ms, CG max {j['cg_iterations_max']}, resets {j['divergence_resets']}")
+EOF2
+    done
+  done
+fi
+
+if has path; then
+  REPEAT=${PATH_REPEAT:-2} bench_ab path path "${PATH_RUNS:-paper:6000:double paper:6000:float xfine:1000:float}" \
+    linear monotone-cubic
   "$P" scenario paper-sweep | sed '/"interpolation"/d' >/tmp/palpation-paper-sweep-linear.json
   for round in 1 2; do
     for path in linear monotone-cubic; do

@@ -118,6 +118,8 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     if (!opt.preconditioner.empty()) s.params.solver.preconditioner = sim::parse_preconditioner(opt.preconditioner);
     report["preconditioner"] = sim::preconditioner_name(s.params.solver.preconditioner);
     if (!opt.check.empty()) s.params.solver.check = sim::parse_check_place(opt.check);
+    if (!opt.warm_start.empty()) s.params.solver.warm_start = sim::parse_warm_start(opt.warm_start);
+    report["warm_start"] = sim::warm_start_name(s.params.solver.warm_start);
     const auto t0 = clock_type::now();
     sim::Model model = sim::build_scenario_model(s, sim::patient_mesh(s));
     const double mesh_s = std::chrono::duration<double>(clock_type::now() - t0).count();
@@ -133,6 +135,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
     sref.params.solver.preconditioner = sim::Preconditioner::BlockJacobi;  // any converges to 1e-10; one cached reference
     sref.params.solver.force_error = 0;
     sref.params.solver.check = sim::CheckPlace::Auto;  // no controller, no check: one cached reference whatever --check says
+    sref.params.solver.warm_start = sim::WarmStart::Auto;  // at 1e-10 the start changes round-off only: one reference
     const std::string ref_path =
         (std::filesystem::path(sim::cache_dir()) / (trace_cache_key("ref-v3", model, sref, opt.steps) + ".bin")).string();
     Trace ref;
@@ -236,6 +239,7 @@ nlohmann::json run_bench(const BenchOptions& opt_in) {
                                       {"divergence_resets", tr.divergences},
                                       {"backend_fallbacks", tr.fallbacks},
                                       {"preconditioner", sim::preconditioner_name(tr.preconditioner)},
+                                      {"warm_start", sim::warm_start_name(tr.warm_start)},
                                       {"multigrid_builds", tr.multigrid.builds},
                                       {"multigrid_failures", tr.multigrid.failures},
                                       {"multigrid_smoother", tr.multigrid.smoother()},

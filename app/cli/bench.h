@@ -25,6 +25,7 @@ struct BenchOptions {
   std::string scenario = "paper-sweep";
   std::string check;                           // "in-step" | "beside" | "auto"; empty: the scenario's
   std::string preconditioner;                  // "block-jacobi" | "multigrid"; empty: the scenario's
+  std::string warm_start;                      // "extrapolated" | "last" | "auto"; empty: the scenario's
   std::string element;                         // "linear" | "nodal-pressure"; empty: the scenario's
   double skin = -1;                            // >= 0: the skin membrane's thickness, m (0: none); < 0: the scenario's
   std::string path;                            // "linear" | "monotone-cubic": every finger path's interpolation; empty: the scenario's

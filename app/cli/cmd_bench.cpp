@@ -43,6 +43,10 @@ CommandAction add_bench_command(CLI::App& app) {
                   "on the paper mesh, else on the whole GPU a slice at a time after each step as on xfine; in the step on the cpu "
                   "and the library baselines)")
       ->check(CLI::IsMember(sim::check_place_names()));
+  sub->add_option("--warm-start", o->warm_start,
+                  "How each step's CG starts (auto, extrapolated, last; default: the scenario's, auto unless it names one: last, "
+                  "the last solution, extrapolated only after two solves to 3e-3; extrapolated: after every converged solve)")
+      ->check(CLI::IsMember(sim::warm_start_names()));
   sub->add_option("--force-error", o->force_error,
                   "Only the error-controlled point, holding this finger-force error (a fraction of the converged force; "
                   "the full sweep has one at 0.01 beside its fixed tolerances), beside those of --tolerances when given")

@@ -56,6 +56,7 @@ Trace run_trace(const sim::Scenario& s, const sim::Model& model, const std::stri
   tr.fallbacks = sim.fallbacks();
   tr.multigrid = sim.backend().multigrid_counts();
   tr.preconditioner = sim.backend().params().solver.preconditioner;
+  tr.warm_start = sim.backend().params().solver.warm_start;
   return tr;
 }
 

@@ -29,6 +29,7 @@ struct Trace {
   int fallbacks = 0;                       // the backend failed and the run went on on the CPU
   sim::Backend::MultigridCounts multigrid; // the multigrid builds of the backend at the end
   sim::Preconditioner preconditioner = sim::Preconditioner::Auto;  // the one that ran (Auto resolved)
+  sim::WarmStart warm_start = sim::WarmStart::Auto;                // the one that ran (Auto resolved)
 };
 
 /// The steps whose positions a trace keeps: N/4, N/2, 3N/4, N.

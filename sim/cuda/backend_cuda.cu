@@ -438,6 +438,7 @@ class CudaBackend final : public Backend {
     dv_.zero(stream_);
     dv_prev_.zero(stream_);
     last_converged_ = false;
+    tight_solves_ = 0;
     has_kept_ = false;
     reuse_pending_ = false;
     pending_ = Pending::None;  // a take begun is dropped (the stream was waited for above)
@@ -470,6 +471,7 @@ class CudaBackend final : public Backend {
     kept_filtered_ = filtered_;
     kept_rested_ = rested_;
     kept_last_converged_ = last_converged_;
+    kept_tight_solves_ = tight_solves_;
     return true;
   }
   void rollback() override {
@@ -482,6 +484,7 @@ class CudaBackend final : public Backend {
     filtered_ = kept_filtered_;
     rested_ = kept_rested_;
     last_converged_ = kept_last_converged_;
+    tight_solves_ = kept_tight_solves_;
   }
   void rollback_for_reference() override {
     if (!has_kept_) return;
@@ -552,6 +555,7 @@ class CudaBackend final : public Backend {
     s->filtered_ = kept_filtered_;
     s->rested_ = kept_rested_;
     s->last_converged_ = kept_last_converged_;
+    s->tight_solves_ = kept_tight_solves_;
     s->reuse_pending_ = true;
     s->has_kept_ = false;
     return true;
@@ -593,7 +597,7 @@ class CudaBackend final : public Backend {
     // assembly then keeps it as the previous solution, which is the checkpoint's instead
     // (what the next step extrapolates from, as after any take).
     if (reuse) dv_.copy_from(reuse_dv_, stream_);
-    launch_assemble(k, !reuse && last_converged_);
+    launch_assemble(k, !reuse && warm_start_extrapolates(p_.solver.warm_start, last_converged_, tight_solves_));
     if (reuse) dv_prev_.copy_from(kept_dv_, stream_);
     launch_skin(k);
     if (nodal()) launch_pressure();
@@ -663,9 +667,11 @@ class CudaBackend final : public Backend {
     if (mg && !borrowed_mg_)
       multigrid_.note(iterations, residual <= std::max(p_.solver.cg_tolerance, p_.solver.cg_rescue_tolerance),
                       p_.solver.cg_tolerance);
-    // The next step extrapolates its warm start only after a converged solve: with the
-    // iterations capped below convergence, extrapolating the truncation error doubles it.
+    // The next step extrapolates its warm start only after a converged solve (WarmStart::Last:
+    // two tight ones, params.h): with the iterations capped below convergence,
+    // extrapolating the truncation error doubles it, and so it does a loose solve's.
     last_converged_ = residual <= p_.solver.cg_tolerance;
+    tight_solves_ = count_tight_solves(tight_solves_, residual);
     st.rescued = iterations > p_.solver.cg_max_iterations;
     st.solved = true;
     st.contacts = R.start_contacts;
@@ -1129,10 +1135,12 @@ class CudaBackend final : public Backend {
   DeviceArray<T> grad_, vol_, lambda_, mu_, quat_, mass_;
   DeviceArray<int> block_row_, pair_ptr_, pairs_, free_surf_, row_ptr_, col_, free_nodes_, tri_, node_surf_, dof_;
   DeviceArray<T> x_, v_, rec_, vals_, precond_, b_, dv_, dv_prev_, r_, z_, p0_, p1_, q_, ext_[5];
-  bool last_converged_ = false;  // the last solve reached the tolerance: extrapolate the warm start
+  bool last_converged_ = false;  // the last solve reached the tolerance (warm_start_extrapolates)
+  int tight_solves_ = 0;         // count_tight_solves of the last solves
   DeviceArray<T> kept_x_, kept_v_, kept_quat_, kept_dv_, kept_dv_prev_;  // checkpoint()
   std::vector<Eigen::Vector3d> kept_filtered_;
   bool kept_rested_ = true, kept_last_converged_ = false, has_kept_ = false;
+  int kept_tight_solves_ = 0;
   DeviceArray<T> reuse_dv_;     // rollback_for_reference(): the undone take's solution
   bool reuse_pending_ = false;  // ... which the next take starts from
   // A take begun (begin_step) and not yet finished: what its end needs.

@@ -48,6 +48,8 @@ class TestScenario : public QObject {
                                      << QString("case.json: tissue.element: must be one of");
     QTest::newRow("unknown preconditioner") << QString::fromStdString(with("\"solver\": {\"preconditioner\": \"ilu\"}"))
                                             << QString("case.json: solver.preconditioner: must be one of");
+    QTest::newRow("unknown warm start") << QString::fromStdString(with("\"solver\": {\"warm_start\": \"zero\"}"))
+                                        << QString("case.json: solver.warm_start: must be one of");
     QTest::newRow("layers not an array") << QString::fromStdString(with("\"tissue\": {\"layers\": {}}"))
                                          << QString("case.json: tissue.layers: must be an array of 1 to 8 layers");
     QTest::newRow("layer without thickness")
@@ -221,6 +223,25 @@ class TestScenario : public QObject {
     QVERIFY(sim::parse_scenario(sim::scenario_to_json(jac), "case.json").params.solver.preconditioner ==
             sim::Preconditioner::MultigridJacobi);
     baseline_refuses(jac.params, "multigrid-jacobi");
+  }
+
+  // The warm start: auto (the last solution, WarmStart::Last) unless a scenario names one,
+  // not written when auto (older scenarios keep their text), written and read back when
+  // named; a backend reports the one it runs.
+  void warmStartRoundTrips() {
+    const sim::Scenario plain = sim::parse_scenario(with("\"solver\": {}"), "case.json");
+    QVERIFY(plain.params.solver.warm_start == sim::WarmStart::Auto);
+    QVERIFY(sim::scenario_to_json(plain).find("warm_start") == std::string::npos);
+    const sim::Scenario ex = sim::parse_scenario(with("\"solver\": {\"warm_start\": \"extrapolated\"}"), "case.json");
+    QVERIFY(ex.params.solver.warm_start == sim::WarmStart::Extrapolated);
+    const std::string text = sim::scenario_to_json(ex);
+    QVERIFY(text.find("\"warm_start\": \"extrapolated\"") != std::string::npos);
+    QVERIFY(sim::parse_scenario(text, "case.json").params.solver.warm_start == sim::WarmStart::Extrapolated);
+    sim::Scenario coded = plain;
+    coded.backend = "cpu";
+    const sim::Model m = sim::build_scenario_model(coded, sim::patient_mesh(coded));
+    QVERIFY(sim::make_backend(sim::BackendKind::Cpu, m, coded.params)->params().solver.warm_start == sim::WarmStart::Last);
+    QVERIFY(sim::make_backend(sim::BackendKind::Cpu, m, ex.params)->params().solver.warm_start == sim::WarmStart::Extrapolated);
   }
 
   // Tissue layers read, write and read back as they were; the layered built-in sweep has
