@@ -11,8 +11,9 @@
 //   3. penalty contact on surface triangles inside finger spheres: k_s n n^T and
 //      k_e n n^T go to a separate diagonal D with the mass terms;
 //   4. solve ((h^2 + h beta) K + D) dv = h (f - (h + beta) K v + ...), D = (1 + h alpha) M
-//      + contact, by block-Jacobi preconditioned CG, warm-started with the last two dv
-//      extrapolated, over the free nodes only (the chest wall is removed from the system);
+//      + contact, by block-Jacobi preconditioned CG, warm-started from the last dv (the
+//      last two extrapolated after tight solves: WarmStart in params.h), over the free
+//      nodes only (the chest wall is removed from the system);
 //   5. v += dv, x += h v; finger forces re-evaluated at the new state, low-pass filtered.
 //
 // Skipping the unchanged elements (what a palpation scene does not need): away from
