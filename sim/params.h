@@ -43,9 +43,11 @@ inline CheckPlace parse_check_place(const std::string& name) {
 /// extrapolation doubles the error of the solves it extrapolates: under the error
 /// controller's tolerances (1e-2 to 0.1) the guess then lands far off (on the paper sweep
 /// held at 1 % the warm start's residual was 0.2-5.5 |b|, where a zero start's is |b|), and
-/// the loose steps' errors add up in the force series. On the CPU, paper sweep held at 1 %:
-/// 12.7 -> 9.6 CG iterations a step on average; the error controller's test box: series
-/// error 2.9e-3 -> 1.3e-3 of the converged force (docs/benchmarks.md). At a fixed tolerance
+/// the loose steps' errors add up in the force series. On the CPU, held at 1 %, 1,000 steps
+/// of the paper sweep, CG iterations a step on average: paper float 12.7 -> 9.6, paper
+/// double 11.2 -> 11.1, coarse 5.2 -> 5.6 (the coarse breast's controller sits at 5e-2,
+/// where neither start is close); the error controller's test box: series error 2.9e-3 ->
+/// 1.3e-3 of the converged force (docs/benchmarks.md). At a fixed tolerance
 /// of 1e-3 both extrapolate after every solve but the first. Tried and not kept: the
 /// start scaled by its energy-optimal factor (x . b) / (x . A x), 5 iterations a step on
 /// the paper sweep but a force series 1.2 % off on the test box at a 1 % target (the
@@ -62,7 +64,10 @@ inline WarmStart parse_warm_start(const std::string& name) {
 inline WarmStart resolve_warm_start(WarmStart w) { return w == WarmStart::Auto ? WarmStart::Last : w; }
 /// The relative residual at or below which WarmStart::Last extrapolates (after two such
 /// solves in a row): at CG 1e-3 the extrapolation takes 13 % fewer iterations than the last
-/// solution (paper sweep, CPU, float: 26 against 30), from 1e-2 on more (above).
+/// solution (paper sweep, CPU, float: 26 against 30), from 1e-2 on more (above). Tried
+/// higher: at 8e-3 to 1.2e-2 the paper sweep in double took 9.4 iterations a step (11.1
+/// here) and in float 9.4 (9.6), but the test box's series, whose controller sits at 8e-3
+/// and 1.6e-2, went 1.13 % off against its 1 % target.
 inline constexpr double kExtrapolateBelow = 3e-3;
 /// The solves in a row to kExtrapolateBelow, counted up to the two that WarmStart::Last
 /// asks, after one that reached `relative_residual`.
