@@ -46,8 +46,8 @@ inline CheckPlace parse_check_place(const std::string& name) {
 /// the loose steps' errors add up in the force series. On the CPU, held at 1 %, 1,000 steps
 /// of the paper sweep, CG iterations a step on average: paper float 12.7 -> 9.6, paper
 /// double 11.2 -> 11.1, coarse 5.2 -> 5.6 (the coarse breast's controller sits at 5e-2,
-/// where neither start is close); the error controller's test box: series error 2.9e-3 ->
-/// 1.3e-3 of the converged force (docs/benchmarks.md). At a fixed tolerance
+/// where neither start is close); the error controller's test box: the median step's
+/// force error 3.6e-4 -> 2.7e-4 of the converged run (docs/benchmarks.md). At a fixed tolerance
 /// of 1e-3 both extrapolate after every solve but the first. Tried and not kept: the
 /// start scaled by its energy-optimal factor (x . b) / (x . A x), 5 iterations a step on
 /// the paper sweep but a force series 1.2 % off on the test box at a 1 % target (the
