@@ -685,38 +685,19 @@ EOF2
   done
 }
 
-if has warmstart; then
-  REPEAT=${WARMSTART_REPEAT:-2} bench_ab warmstart warm-start "${WARMSTART_RUNS:-paper:1000:double paper:1000:float xfine:1000:float}" \
-    extrapolated last
+# session_ab STAGE LABEL...: twice, for each LABEL in turn, an 8 s `palpation session` of
+# /tmp/palpation-STAGE-LABEL.json (written by the caller) on the paper mesh, CUDA, held at
+# 1 %, the emulated HandHIRO; each run's rate, dt, step median / p99 / max, largest CG
+# count and divergence resets from its loop.json into STAGE.txt.
+session_ab() {
+  local stage=$1
+  shift
   for round in 1 2; do
-    for ws in extrapolated last; do
-      say "warmstart: session paper-sweep (--warm-start $ws), paper mesh, held at 1 %, 8 s, round $round"
-      "$P" scenario paper-sweep | python3 -c "import json,sys; j=json.load(sys.stdin); j['solver']['warm_start']='$ws'; print(json.dumps(j))" \
-        >/tmp/palpation-paper-sweep-$ws.json
-      timeout 120 "$P" session /tmp/palpation-paper-sweep-$ws.json --device emulator --backend cuda --resolution paper \
-        --force-error 0.01 --duration 8 --quiet --out "/tmp/palpation-ws-session-$ws-$round" >/dev/null 2>&1
-      python3 - "/tmp/palpation-ws-session-$ws-$round/loop.json" "$ws" <<'EOF2' | tee -a "$OUT/warmstart.txt"
-import json, sys
-j = json.load(open(sys.argv[1]))["simulation"]
-print(f"session {sys.argv[2]}: {j['step_rate_hz']:.0f} steps/s, step median {j['step_ms_median']:.3f} / p99 "
-      f"{j['step_ms_p99']:.3f} ms, CG max {j['cg_iterations_max']}, resets {j['divergence_resets']}")
-EOF2
-    done
-  done
-fi
-
-if has path; then
-  REPEAT=${PATH_REPEAT:-2} bench_ab path path "${PATH_RUNS:-paper:6000:double paper:6000:float xfine:1000:float}" \
-    linear monotone-cubic
-  "$P" scenario paper-sweep | sed '/"interpolation"/d' >/tmp/palpation-paper-sweep-linear.json
-  for round in 1 2; do
-    for path in linear monotone-cubic; do
-      sc=paper-sweep
-      [[ $path == linear ]] && sc=/tmp/palpation-paper-sweep-linear.json
-      say "path: session paper-sweep ($path), paper mesh, held at 1 %, 8 s, round $round"
-      timeout 120 "$P" session "$sc" --device emulator --backend cuda --resolution paper --force-error 0.01 \
-        --duration 8 --quiet --out "/tmp/palpation-path-session-$path-$round" >/dev/null 2>&1
-      python3 - "/tmp/palpation-path-session-$path-$round/loop.json" "$path" <<'EOF2' | tee -a "$OUT/path.txt"
+    for label in "$@"; do
+      say "$stage: session paper-sweep ($label), paper mesh, held at 1 %, 8 s, round $round"
+      timeout 120 "$P" session "/tmp/palpation-$stage-$label.json" --device emulator --backend cuda --resolution paper \
+        --force-error 0.01 --duration 8 --quiet --out "/tmp/palpation-$stage-session-$label-$round" >/dev/null 2>&1
+      python3 - "/tmp/palpation-$stage-session-$label-$round/loop.json" "$label" <<'EOF2' | tee -a "$OUT/$stage.txt"
 import json, sys
 j = json.load(open(sys.argv[1]))["simulation"]
 print(f"session {sys.argv[2]}: {j['step_rate_hz']:.0f} steps/s, dt median {j['dt_ms_median']:.3f} ms, "
@@ -725,6 +706,24 @@ print(f"session {sys.argv[2]}: {j['step_rate_hz']:.0f} steps/s, dt median {j['dt
 EOF2
     done
   done
+}
+
+if has warmstart; then
+  REPEAT=${WARMSTART_REPEAT:-2} bench_ab warmstart warm-start "${WARMSTART_RUNS:-paper:1000:double paper:1000:float xfine:1000:float}" \
+    extrapolated last
+  for ws in extrapolated last; do
+    "$P" scenario paper-sweep | python3 -c "import json,sys; j=json.load(sys.stdin); j['solver']['warm_start']='$ws'; print(json.dumps(j))" \
+      >"/tmp/palpation-warmstart-$ws.json"
+  done
+  session_ab warmstart extrapolated last
+fi
+
+if has path; then
+  REPEAT=${PATH_REPEAT:-2} bench_ab path path "${PATH_RUNS:-paper:6000:double paper:6000:float xfine:1000:float}" \
+    linear monotone-cubic
+  "$P" scenario paper-sweep >/tmp/palpation-path-monotone-cubic.json
+  sed '/"interpolation"/d' /tmp/palpation-path-monotone-cubic.json >/tmp/palpation-path-linear.json
+  session_ab path linear monotone-cubic
 fi
 
 if has control; then
